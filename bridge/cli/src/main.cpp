@@ -1,0 +1,47 @@
+// SPDX-License-Identifier: MIT
+// hilbridge: hardware-in-the-loop bridge to fieldbus drives.
+#include <CLI/CLI.hpp>
+#include <fmt/format.h>
+
+#include "hil/cli/context.hpp"
+
+namespace hil::cli {
+void register_all_modules(Context& ctx);  // generated: cli_registry.cpp
+}
+
+int main(int argc, char** argv) {
+  CLI::App app{
+      "hilbridge: hardware-in-the-loop bridge to fieldbus drives.\n"
+      "Runs motion scenarios against simulated or real drives over CANopen (SocketCAN), Modbus/TCP,\n"
+      "GPIO step/direction and legacy serial links. With no hardware, everything runs on\n"
+      "in-process mock endpoints.",
+      "hilbridge"};
+  app.set_version_flag("--version", std::string("hilbridge ") + HIL_VERSION);
+  app.require_subcommand(0, 1);
+  auto* emulate = app.add_subcommand("emulate", "Run a mock endpoint (simulated drive, node or legacy controller)");
+  emulate->require_subcommand(1);
+
+  hil::TransportRegistry transports;
+  hil::cli::Context ctx{app, *emulate, transports};
+  hil::cli::register_all_modules(ctx);
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e);
+  }
+  if (app.get_subcommands().empty()) {
+    // `hilbridge` alone runs the bundled demo when the run module is present.
+    const auto all = app.get_subcommands([](const CLI::App* s) { return s->get_name() == "run"; });
+    if (!all.empty()) {
+      try {
+        app.parse(std::vector<std::string>{"run"});
+      } catch (const CLI::ParseError& e) {
+        return app.exit(e);
+      }
+    } else {
+      fmt::print("{}", app.help());
+    }
+  }
+  return ctx.exit_code;
+}

@@ -1,0 +1,67 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+// How a scenario's `drive:` block becomes a Drive. Each transport (sim, canopen, modbus,
+// stepdir, ...) provides a TransportFactory; the CLI registers one creator per transport in a
+// TransportRegistry (no process-wide singleton). A run creates fresh factory instances, so a
+// factory may keep per-run state shared by its axes (one CANopen master for all nodes on a bus).
+
+#include <expected>
+#include <functional>
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <yaml-cpp/yaml.h>
+
+#include "hil/core/clock.hpp"
+#include "hil/core/config_error.hpp"
+#include "hil/core/drive.hpp"
+
+namespace asio {
+class io_context;
+}
+
+namespace hil {
+
+/// What a run gives its transports.
+struct RunEnvironment {
+  const Clock& clock;
+  bool virtual_time = true;          ///< true: `hilbridge test` / CI runs; no real I/O may block
+  asio::io_context* io = nullptr;    ///< real-time runs: the I/O context for sockets and serial ports
+  std::string source_file;           ///< scenario path, for ConfigError and relative paths
+  Duration period{std::chrono::milliseconds(1)};
+};
+
+class TransportFactory {
+public:
+  virtual ~TransportFactory() = default;
+  /// Build the drive for one axis from its `drive:` node. Errors carry file/line/key.
+  virtual std::expected<DrivePtr, ConfigError> make_drive(const std::string& axis_name,
+                                                          const YAML::Node& drive_node,
+                                                          RunEnvironment& env) = 0;
+  /// Bus-level work before the axes read (deliver frames, step in-process mocks, SYNC).
+  virtual void begin_cycle(const CycleTime&) {}
+  /// Bus-level work after the axes wrote (flush frames, step in-process mocks).
+  virtual void end_cycle(const CycleTime&) {}
+};
+
+class TransportRegistry {
+public:
+  using Creator = std::function<std::unique_ptr<TransportFactory>()>;
+  void add(std::string name, Creator creator) { creators_[std::move(name)] = std::move(creator); }
+  [[nodiscard]] std::unique_ptr<TransportFactory> create(const std::string& name) const {
+    auto it = creators_.find(name);
+    return it == creators_.end() ? nullptr : it->second();
+  }
+  [[nodiscard]] std::vector<std::string> names() const {
+    std::vector<std::string> out;
+    for (const auto& [n, c] : creators_) out.push_back(n);
+    return out;
+  }
+
+private:
+  std::map<std::string, Creator> creators_;
+};
+
+}  // namespace hil

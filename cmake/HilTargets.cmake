@@ -1,0 +1,95 @@
+# SPDX-License-Identifier: MIT
+# Helpers shared by every area. An area never edits a file outside its own folders:
+# it calls these from its own CMakeLists.txt.
+
+# Warnings and sanitizers travel through one interface target.
+add_library(hil_warnings INTERFACE)
+target_compile_options(hil_warnings INTERFACE -Wall -Wextra -Wpedantic -Wshadow -Wconversion
+  -Wno-sign-conversion $<$<BOOL:${HIL_WERROR}>:-Werror>)
+if(HIL_SANITIZE)
+  target_compile_options(hil_warnings INTERFACE -fsanitize=address,undefined -fno-omit-frame-pointer
+    -fno-sanitize-recover=undefined)
+  target_link_options(hil_warnings INTERFACE -fsanitize=address,undefined)
+endif()
+add_library(hil::warnings ALIAS hil_warnings)
+
+function(hil_add_subfolders parent)
+  file(GLOB children LIST_DIRECTORIES true RELATIVE ${CMAKE_CURRENT_SOURCE_DIR}/${parent}
+       ${CMAKE_CURRENT_SOURCE_DIR}/${parent}/*)
+  list(SORT children)
+  foreach(child IN LISTS children)
+    if(EXISTS ${CMAKE_CURRENT_SOURCE_DIR}/${parent}/${child}/CMakeLists.txt AND NOT child STREQUAL "cli")
+      add_subdirectory(${parent}/${child})
+    endif()
+  endforeach()
+endfunction()
+
+# hil_add_library(NAME core SOURCES ... [LIBS ...])  -> target hil_core, alias hil::core,
+# public headers in ./include.
+function(hil_add_library)
+  cmake_parse_arguments(A "" "NAME" "SOURCES;LIBS;PRIVATE_LIBS" ${ARGN})
+  add_library(hil_${A_NAME} ${A_SOURCES})
+  add_library(hil::${A_NAME} ALIAS hil_${A_NAME})
+  target_include_directories(hil_${A_NAME} PUBLIC ${CMAKE_CURRENT_SOURCE_DIR}/include)
+  target_link_libraries(hil_${A_NAME} PUBLIC ${A_LIBS} PRIVATE hil::warnings ${A_PRIVATE_LIBS})
+  target_compile_features(hil_${A_NAME} PUBLIC cxx_std_23)
+endfunction()
+
+# hil_add_test(NAME motion_trajectory SOURCES ... LIBS ... [LABELS kernel])
+# One googletest binary per concern; ctest sees every TEST() separately.
+function(hil_add_test)
+  cmake_parse_arguments(A "" "NAME;TIMEOUT" "SOURCES;LIBS;LABELS" ${ARGN})
+  add_executable(test_${A_NAME} ${A_SOURCES})
+  target_link_libraries(test_${A_NAME} PRIVATE ${A_LIBS} GTest::gtest GTest::gmock GTest::gtest_main hil::warnings)
+  if(NOT A_TIMEOUT)
+    set(A_TIMEOUT 120)
+  endif()
+  set(labels ${A_LABELS})
+  if(NOT labels)
+    set(labels unit)
+  endif()
+  gtest_discover_tests(test_${A_NAME} DISCOVERY_TIMEOUT 60
+    PROPERTIES LABELS "${labels}" TIMEOUT ${A_TIMEOUT}
+    WORKING_DIRECTORY ${PROJECT_SOURCE_DIR})
+endfunction()
+include(GoogleTest OPTIONAL)
+
+# hil_add_fuzzer(NAME sdo_server SOURCES fuzz_sdo.cpp LIBS hil::canopen [CORPUS dir])
+# The source defines LLVMFuzzerTestOneInput. With HIL_FUZZ=ON (clang) it links libFuzzer;
+# otherwise it links a replay driver and ctest runs it over its corpus plus a fixed-seed
+# stream of mutated inputs, so every parser's fuzz target runs in every CI build.
+function(hil_add_fuzzer)
+  cmake_parse_arguments(A "" "NAME;CORPUS" "SOURCES;LIBS" ${ARGN})
+  add_executable(fuzz_${A_NAME} ${A_SOURCES})
+  target_link_libraries(fuzz_${A_NAME} PRIVATE ${A_LIBS} hil::warnings)
+  if(HIL_FUZZ)
+    target_compile_options(fuzz_${A_NAME} PRIVATE -fsanitize=fuzzer,address,undefined)
+    target_link_options(fuzz_${A_NAME} PRIVATE -fsanitize=fuzzer,address,undefined)
+  else()
+    target_link_libraries(fuzz_${A_NAME} PRIVATE hil_fuzz_replay)
+    set(corpus ${A_CORPUS})
+    if(NOT corpus)
+      set(corpus ${CMAKE_CURRENT_SOURCE_DIR}/corpus/${A_NAME})
+    endif()
+    add_test(NAME fuzz.${A_NAME} COMMAND fuzz_${A_NAME} --iterations=20000 ${corpus})
+    set_tests_properties(fuzz.${A_NAME} PROPERTIES LABELS fuzz TIMEOUT 120)
+  endif()
+endfunction()
+
+# hil_add_bench(NAME motion SOURCES ... LIBS ...) -> bench_motion (Google Benchmark; run with
+# --benchmark_format=json). Not a ctest: speed goals live in benchmarks, not in tests.
+function(hil_add_bench)
+  cmake_parse_arguments(A "" "NAME" "SOURCES;LIBS" ${ARGN})
+  add_executable(bench_${A_NAME} ${A_SOURCES})
+  target_link_libraries(bench_${A_NAME} PRIVATE ${A_LIBS} benchmark::benchmark benchmark::benchmark_main hil::warnings)
+endfunction()
+
+# hil_add_cli_module(NAME can SOURCES ... LIBS ...)
+# The source defines `void hil::cli::register_<NAME>(hil::cli::Context&)`; the generated
+# registry in bridge/cli calls every module in name order.
+function(hil_add_cli_module)
+  cmake_parse_arguments(A "" "NAME" "SOURCES;LIBS" ${ARGN})
+  add_library(hil_cli_${A_NAME} OBJECT ${A_SOURCES})
+  target_link_libraries(hil_cli_${A_NAME} PUBLIC hil::cli_base ${A_LIBS} PRIVATE hil::warnings)
+  set_property(GLOBAL APPEND PROPERTY HIL_CLI_MODULES ${A_NAME})
+endfunction()

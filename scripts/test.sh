@@ -1,0 +1,15 @@
+#!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
+# README command 2 (and .ci/run): install what is missing, build with warnings as errors,
+# run the whole test suite on the host, then the `kernel`-labelled tests inside a VM with
+# Debian's real kernel (vcan, gpio-sim). Exits non-zero if anything fails.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+bash scripts/install-deps.sh --with-vm
+bash scripts/build.sh -DHIL_WERROR=ON
+status=0
+ctest --test-dir build --output-on-failure -j"$(nproc)" -LE kernel --no-tests=error || status=$?
+if [[ -x tests/vm/run-in-kernel.sh ]]; then
+  tests/vm/run-in-kernel.sh -- ctest --test-dir build --output-on-failure -L kernel --no-tests=error || status=$?
+fi
+exit $status
