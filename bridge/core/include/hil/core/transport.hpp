@@ -31,6 +31,14 @@ struct RunEnvironment {
   asio::io_context* io = nullptr;    ///< real-time runs: the I/O context for sockets and serial ports
   std::string source_file;           ///< scenario path, for ConfigError and relative paths
   Duration period{std::chrono::milliseconds(1)};
+  bool verify_steps = false;         ///< `hilbridge run --verify-steps`: step/dir transports verify edge streams
+};
+
+/// What a transport says about a finished run (printed in the summary). `ok == false` makes the
+/// run fail (e.g. an edge stream that broke a timing rule).
+struct TransportReport {
+  std::vector<std::string> lines;
+  bool ok = true;
 };
 
 class TransportFactory {
@@ -44,6 +52,8 @@ public:
   virtual void begin_cycle(const CycleTime&) {}
   /// Bus-level work after the axes wrote (flush frames, step in-process mocks).
   virtual void end_cycle(const CycleTime&) {}
+  /// Once, after the last cycle of a run.
+  virtual TransportReport finish(const CycleTime&) { return {}; }
 };
 
 class TransportRegistry {
