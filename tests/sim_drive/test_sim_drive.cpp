@@ -98,13 +98,16 @@ TEST(SimDrive, HomingReferencesPosition) {
   c.plant.initial_position_inc = 777;
   Rig rig(c);
   rig.drive.request(DriveRequest::enable);
-  rig.cycles(5);
+  rig.cycles(5, hil::DriveCommand{hil::CommandMode::position, 777, 0, 0});
   EXPECT_FALSE(rig.drive.feedback().referenced);
   rig.drive.request(DriveRequest::home);
   int n = 0;
-  while (!rig.drive.feedback().referenced && n < 100) {
-    rig.cycle(hil::DriveCommand{hil::CommandMode::position, 777, 0, 0});
-    ++n;
+  for (; n < 100; ++n) {  // read and write apart: look at the image the motion core would see
+    hil::CycleTime t{rig.now, 1ms};
+    rig.drive.read(t);
+    if (rig.drive.feedback().referenced) break;
+    rig.drive.write(t, hil::DriveCommand{hil::CommandMode::position, 777, 0, 0});
+    rig.now += 1ms;
   }
   EXPECT_TRUE(rig.drive.feedback().referenced);
   EXPECT_NEAR(n, 51, 1) << "homing takes homing_time";
