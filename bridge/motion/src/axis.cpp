@@ -101,20 +101,23 @@ std::error_code Axis::reset() {
     return make_error_code(MotionFault::invalid_command);  // a bad configuration cannot be reset
   const auto& fb = drive_->feedback();
   if (drive_faulted(fb)) drive_->request(hil::DriveRequest::fault_reset);
-  status_.fault = {};
   if (fb.state == hil::DriveState::operation_enabled && !drive_faulted(fb)) {
     if (profile_active_) {
       status_.state = AxisState::stopping;  // the fault reaction's stop runs to its end
     } else {
-      hold_at_actual();
+      // A software-limit stop left the set-point exactly on the limit: keep it there. After a
+      // supervision or drive fault the set-point takes over the actual position (no jump).
+      if (status_.fault.code != make_error_code(MotionFault::software_limit)) hold_at_actual();
       supervisor_.hold();
       status_.state = AxisState::standstill;
     }
   } else {
+    hold_at_actual();
     profile_active_ = false;
     mode_ = Mode::hold;
     status_.state = AxisState::disabled;
   }
+  status_.fault = {};
   return {};
 }
 
@@ -344,7 +347,7 @@ void Axis::finish_profile() {
   if (done == Mode::velocity_to_limit) {
     raise(make_error_code(MotionFault::software_limit),
           fmt::format("axis '{}': {} software limit {:.6g} reached; axis stopped on the limit (reset, then move back)",
-                      config_.name, limit_target_ > 0 || limit_target_ == config_.soft_limit_max ? "positive" : "negative",
+                      config_.name, config_.soft_limit_max && limit_target_ == *config_.soft_limit_max ? "positive" : "negative",
                       limit_target_));
   }
 }
@@ -449,7 +452,6 @@ CycleResult Axis::update(const hil::CycleTime& cycle) {
     const double target_error = static_cast<double>(tgt - fb.position_inc) * upi;
     hil::Fault f = supervisor_.check(config_, fe, programmed_feed_, profile_active_, target_error, cycle.now);
     if (f) {
-      status_.state = AxisState::moving;  // let raise() record it
       raise(f.code, std::move(f.text));
       react_to_fault();
     }
