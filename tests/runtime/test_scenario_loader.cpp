@@ -206,7 +206,7 @@ TEST(ScenarioLoader, RejectsStructuralMistakes) {
        "    - {name: x, inc_per_unit: 1, limits: {velocity: 1, acceleration: 1}, drive: {transport: sim}}\n",
        "machine.axes[1].name", "defined twice"},
       {"machine:\n  axes:\n    - {name: x, inc_per_unit: 1, limits: {velocity: 1, acceleration: 1}, drive: {port: 3}}\n",
-       "machine.axes[0].drive", "missing key 'transport'"},
+       "machine.axes[0].drive.transport", "missing key 'transport'"},
       {"machine:\n  axes:\n    - {name: x, inc_per_unit: 1, modulo: 360, limits: {velocity: 1, acceleration: 1}, drive: {transport: sim}}\n",
        "machine.axes[0].modulo", "needs 'rotary: true'"},
       {"machine:\n  axes:\n    - {name: x, inc_per_unit: 1, limits: {velocity: 1, acceleration: .nan}, drive: {transport: sim}}\n",
