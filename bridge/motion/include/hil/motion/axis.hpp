@@ -61,7 +61,8 @@ private:
   void react_to_fault();
   void plan_stop(const Limits& limits, Mode after);
   void hold_at_actual();
-  void supervise(const hil::CycleTime& cycle, double actual_units);
+  void step_trajectory(const hil::CycleTime& cycle);
+  void finish_profile();
   [[nodiscard]] Limits effective(const std::optional<Limits>& limits) const;
   [[nodiscard]] Limits quick_stop_limits() const;
 
@@ -73,7 +74,11 @@ private:
   std::size_t profile_hint_ = 0;
   Mode mode_ = Mode::hold;
   bool profile_active_ = false;
-  double profile_time_ = 0.0;        ///< s since the profile was planned
+  hil::TimePoint profile_start_{};   ///< the update the profile was planned at (its t = 0)
+  Limits active_limits_{};           ///< limits of the active move (stop() brakes under them)
+  std::int64_t last_drive_cmd_inc_ = 0;  ///< command written last cycle (backlash included)
+  int home_cycles_ = 0;
+  bool home_seen_active_ = false;
   double cmd_p_ = 0.0, cmd_v_ = 0.0, cmd_a_ = 0.0;  ///< command state, units (unwrapped)
   std::int64_t cmd_inc_ = 0;         ///< commanded position without backlash
   std::int64_t target_inc_ = 0;      ///< last target (unwrapped), increments
@@ -84,9 +89,6 @@ private:
   double backlash_goal_ = 0.0;       ///< 0 after positive motion, -backlash after negative
   Supervisor supervisor_;
   hil::TimePoint enable_started_{};
-  bool enable_pending_ = false;
-  bool home_pending_ = false;
-  bool reset_pending_ = false;
   bool first_cycle_ = true;
   hil::TimePoint last_now_{};
 };

@@ -50,6 +50,8 @@ public:
   [[nodiscard]] double duration() const noexcept { return duration_; }
   [[nodiscard]] const State& start() const noexcept { return start_; }
   [[nodiscard]] const State& end() const noexcept { return end_; }
+  /// End state of the segments appended so far (before finish()).
+  [[nodiscard]] const State& current() const noexcept { return cur_; }
   [[nodiscard]] std::span<const Segment> segments() const noexcept { return {seg_.data(), n_}; }
   /// Largest |v| over the profile (segment ends and interior extrema).
   [[nodiscard]] double peak_velocity() const noexcept;

@@ -12,7 +12,6 @@ namespace hil::motion {
 class Supervisor {
 public:
   Supervisor() = default;
-  explicit Supervisor(const AxisConfig& config) noexcept : config_(&config) {}
 
   /// A new profile starts: in-position and standstill monitoring are disarmed.
   void start_move() noexcept;
@@ -23,16 +22,15 @@ public:
   /// the active move (units/s); `profile_running` while the set-point still moves;
   /// `target_error` = target - actual. Returns an empty Fault or the violation (MotionFault code,
   /// text naming the value, the window and its rule).
-  [[nodiscard]] hil::Fault check(double following_error, double feed, bool profile_running,
+  [[nodiscard]] hil::Fault check(const AxisConfig& config, double following_error, double feed, bool profile_running,
                                  double target_error, hil::TimePoint now);
 
   [[nodiscard]] bool in_position() const noexcept { return in_position_; }
   /// Following-error window in motion for programmed feed `feed`: the static window, or
   /// clamp(1.5 * feed / Kv, min_window, max_window) when dynamic.
-  [[nodiscard]] double motion_window(double feed) const noexcept;
+  [[nodiscard]] static double motion_window(const AxisConfig& config, double feed) noexcept;
 
 private:
-  const AxisConfig* config_ = nullptr;
   bool settling_ = false;      ///< profile done, waiting for the in-position window
   bool standstill_armed_ = false;
   bool in_position_ = false;
