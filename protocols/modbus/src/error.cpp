@@ -39,7 +39,20 @@ public:
   }
 };
 
+class DriveFaultCategory final : public std::error_category {
+public:
+  const char* name() const noexcept override { return "modbus-drive"; }
+  std::string message(int v) const override {
+    return fmt::format("drive fault code 0x{:04X} (see the drive manual / the profile's fault_texts)", v);
+  }
+};
+
 }  // namespace
+
+const std::error_category& drive_fault_category() noexcept {
+  static const DriveFaultCategory c;
+  return c;
+}
 
 const std::error_category& modbus_category() noexcept {
   static const ModbusCategory c;

@@ -50,3 +50,13 @@ inline std::error_code make_error_code(ModbusError e) noexcept { return {static_
 }  // namespace hil::modbus
 
 template <> struct std::is_error_code_enum<hil::modbus::ModbusError> : std::true_type {};
+
+namespace hil::modbus {
+/// Category "modbus-drive": the value is the drive's own fault-code register (CiA 402 error
+/// code 603Fh for cia402 profiles, the vendor's fault number otherwise). The profile's
+/// fault_texts give the text.
+const std::error_category& drive_fault_category() noexcept;
+inline std::error_code make_drive_fault_code(std::uint32_t code) noexcept {
+  return {static_cast<int>(code), drive_fault_category()};
+}
+}  // namespace hil::modbus
