@@ -106,7 +106,9 @@ void ModbusDrive::read(const CycleTime& cycle) {
   if (local_link_.error_seq != seen_error_seq_) {
     seen_error_seq_ = local_link_.error_seq;
     link_fault_ = local_link_.error;  // latch the newest error
+    link_reset_armed_ = false;
   }
+  clear_link_fault_if_reset();
   const auto& p = config_.profile;
   if (local_image_.seq == 0) {
     drive_state_ = DriveState::not_ready;
@@ -185,12 +187,10 @@ bool ModbusDrive::request(DriveRequest r) {
     case DriveRequest::disable: target_ = modbus::PowerTarget::disabled; return true;
     case DriveRequest::quick_stop: target_ = modbus::PowerTarget::quick_stop; return true;
     case DriveRequest::fault_reset:
-      // A link fault clears once the link has delivered an image after the error.
-      if (link_fault_ != modbus::ModbusError::none && local_link_.connected &&
-          local_image_.seq > local_link_.error_at_image_seq) {
-        link_fault_ = modbus::ModbusError::none;
-        feedback_.fault = {};
-      }
+      // A link fault clears when the link delivers an image after the error. Only a reset given
+      // while connected counts: a reset during an outage must not clear a later reconnect's fault.
+      link_reset_armed_ = link_fault_ != modbus::ModbusError::none && local_link_.connected;
+      clear_link_fault_if_reset();
       target_ = modbus::PowerTarget::disabled;  // a reset never re-enables by itself
       reset_pending_ = true;
       reset_start_seq_ = local_image_.seq;
@@ -198,6 +198,16 @@ bool ModbusDrive::request(DriveRequest r) {
     case DriveRequest::home: return false;
   }
   return false;
+}
+
+void ModbusDrive::clear_link_fault_if_reset() noexcept {
+  if (!link_reset_armed_ || link_fault_ == modbus::ModbusError::none) return;
+  if (local_link_.connected && local_image_.seq > local_link_.error_at_image_seq) {
+    link_fault_ = modbus::ModbusError::none;
+    link_reset_armed_ = false;
+    feedback_.fault = {};
+    feedback_.state = drive_state_;
+  }
 }
 
 bool ModbusDrive::exchange_sync(TimePoint now, std::chrono::milliseconds wait) {

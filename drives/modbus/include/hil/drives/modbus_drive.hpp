@@ -104,6 +104,7 @@ private:
   void worker();
   bool exchange_once(void* ctx, const std::vector<std::vector<std::uint16_t>>& command,
                      std::vector<std::vector<std::uint16_t>>& image) noexcept;
+  void clear_link_fault_if_reset() noexcept;
   [[nodiscard]] std::int64_t field_value(modbus::FieldRole role) const noexcept;
   void put_field(modbus::FieldRole role, std::int64_t raw) noexcept;
 
@@ -120,6 +121,7 @@ private:
   LinkState local_link_;
   std::uint64_t seen_error_seq_ = 0;
   modbus::ModbusError link_fault_ = modbus::ModbusError::none;  ///< latched
+  bool link_reset_armed_ = false;  ///< fault_reset given while connected; clears at the next fresh image
   modbus::PowerTarget target_ = modbus::PowerTarget::disabled;
   bool reset_pending_ = false;
   std::uint64_t reset_start_seq_ = 0;
