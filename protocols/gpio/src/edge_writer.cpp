@@ -91,6 +91,22 @@ void AsyncEdgeWriter::submit(std::span<const Edge> edges) {
   cv_.notify_one();
 }
 
+void AsyncEdgeWriter::output(std::span<const Edge> edges) noexcept {
+  if (edges.empty()) return;
+  try {
+    std::vector<Edge> batch(edges.begin(), edges.end());
+    for (auto& e : batch) e.t_ns += offset_ns_;
+    {
+      std::lock_guard lock(mutex_);
+      queue_.push_back(std::move(batch));
+    }
+    cv_.notify_one();
+  } catch (...) {
+    std::lock_guard lock(mutex_);
+    last_error_ = std::make_error_code(std::errc::not_enough_memory);
+  }
+}
+
 bool AsyncEdgeWriter::drain(Duration timeout) {
   std::unique_lock lock(mutex_);
   return idle_cv_.wait_for(lock, timeout, [this] { return queue_.empty() && !busy_; });

@@ -159,6 +159,11 @@ void StepPlanner::commit(const Candidate& c) noexcept {
   last_rise_ = c.rise;
   last_fall_ = c.rise + timing_.step_len_ns;
   last_edge_ = last_fall_;
+  // Done as soon as the last step is out (so moving() is exact without another plan() call).
+  const std::int64_t r = (target_ - pos_) * dir_ + backlash_pending_;
+  if (mode_ == PlannerMode::ramp ? (r <= 0 && last_idx_ <= 0) : (pos_ == target_ && backlash_pending_ == 0)) {
+    moving_ = false;
+  }
 }
 
 PlanStatus StepPlanner::plan(std::int64_t now_ns, std::int64_t horizon_ns, std::vector<gpio::Edge>& out) {

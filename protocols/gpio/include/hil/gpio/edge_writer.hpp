@@ -20,6 +20,7 @@
 
 #include "hil/core/clock.hpp"
 #include "hil/gpio/edge.hpp"
+#include "hil/gpio/edge_sink.hpp"
 #include "hil/gpio/line_bank.hpp"
 
 namespace hil::gpio {
@@ -72,15 +73,18 @@ private:
 
 /// The writer on its own thread, so the motion cycle only enqueues (non-blocking) batches.
 /// Thread: submit/stats/drain from any thread; the lines are touched only by the writer thread.
-class AsyncEdgeWriter {
+class AsyncEdgeWriter final : public EdgeSink {
 public:
   AsyncEdgeWriter(LineBank& lines, const SteadyClock& clock, EdgeWriterOptions options = {});
-  ~AsyncEdgeWriter();
+  ~AsyncEdgeWriter() override;
   AsyncEdgeWriter(const AsyncEdgeWriter&) = delete;
   AsyncEdgeWriter& operator=(const AsyncEdgeWriter&) = delete;
 
   /// Queue a batch (copied). Never blocks on the lines.
   void submit(std::span<const Edge> edges);
+  /// EdgeSink: submit with every time shifted by `offset_ns` (virtual-to-steady timeline).
+  void output(std::span<const Edge> edges) noexcept override;
+  void set_time_offset(std::int64_t offset_ns) noexcept { offset_ns_ = offset_ns; }
   /// Wait until every queued edge is out, at most `timeout`. Returns false on timeout.
   bool drain(Duration timeout);
   [[nodiscard]] EdgeWriterStats stats() const;
@@ -97,6 +101,7 @@ private:
   bool stop_ = false;
   EdgeWriterStats stats_;
   std::error_code last_error_;
+  std::int64_t offset_ns_ = 0;
   std::thread thread_;
 };
 
