@@ -258,7 +258,7 @@ void StepDirDrive::step_homing(std::int64_t now) {
       planner_.move_to(planner_.position() - rd * far_away, f_ss);
       return;
     case HomingPhase::leave_cam:
-      if (planner_.moving()) return;
+      if (planner_.moving() || planner_.target() != planner_.position()) return;  // single step still due
       if (!inputs_.cam) {
         if (cfg_.homing.sync && pattern_counter() != 0) {
           homing_ = HomingPhase::sync;
@@ -277,7 +277,7 @@ void StepDirDrive::step_homing(std::int64_t now) {
       planner_.move_to(planner_.position() + rd, f_ss);
       return;
     case HomingPhase::sync:
-      if (planner_.moving()) return;
+      if (planner_.moving() || planner_.target() != planner_.position()) return;
       if (pattern_counter() == 0) {
         finish_homing(true);
         return;
@@ -318,8 +318,8 @@ void StepDirDrive::write(const CycleTime& cycle, const DriveCommand& command) {
     const int about = target > pos ? 1 : (target < pos ? -1 : 0);
     if (about != 0 && about == lock_dir_) {
       target = pos;  // direction locked after a limit overrun
-    } else if (about != 0 && !planner_.moving()) {
-      check_limits(about);  // "about to move" toward an actuated switch
+    } else if (about != 0) {
+      check_limits(about);  // moving or about to move toward an actuated switch
       if (fb_.fault) target = pos;
     }
     if (planner_.mode() == PlannerMode::follow) {
