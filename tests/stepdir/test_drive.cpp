@@ -168,3 +168,20 @@ TEST(StepDirConfig, ErrorsNameKeyAndMdError) {
   EXPECT_NE(bad("transport: stepdir\nchip: gpiochip-none\nlines: {step: 0, dir: 1}\n").find("cannot open"),
             std::string::npos);
 }
+
+TEST(StepDirTransport, FinishReportFailsTheRunOnATimingViolation) {
+  DriveRig r(base);
+  ASSERT_TRUE(r.enable());
+  for (int i = 0; i < 10; ++i) r.cycle(i);
+  auto good = r.factory.finish(hil::CycleTime{r.clock.now(), r.period});
+  EXPECT_TRUE(good.ok);
+  ASSERT_FALSE(good.lines.empty());
+  EXPECT_NE(good.lines[0].find("timing rules held"), std::string::npos) << good.lines[0];
+  // A pulse far too short on the recorded stream (as a broken writer would produce).
+  const std::int64_t t = r.clock.now().time_since_epoch().count() + 10'000'000;
+  const std::vector<hil::gpio::Edge> bad = {{t, 0, true}, {t + 1'000, 0, false}};
+  r.axis().sink.output(bad);
+  auto rep = r.factory.finish(hil::CycleTime{r.clock.now(), r.period});
+  EXPECT_FALSE(rep.ok);
+  EXPECT_NE(rep.lines[0].find("pulse_width"), std::string::npos) << rep.lines[0];
+}

@@ -121,7 +121,10 @@ void StepDirDrive::read(const CycleTime& cycle) {
       cycle.period.count() > 0 ? static_cast<double>(pos - last_pos_) * 1e9 / static_cast<double>(cycle.period.count())
                                : 0.0;
   last_pos_ = pos;
-  fb_.homing_active = homing_ != HomingPhase::idle;
+  // A finished run still shows as active in the first image with the new position, so the motion
+  // core (holding at actual while homing) takes the new position before it supervises again.
+  fb_.homing_active = homing_ != HomingPhase::idle || homing_tail_;
+  homing_tail_ = false;
   if (fb_.fault) {
     fb_.state = DriveState::fault;
   } else {
@@ -187,6 +190,7 @@ void StepDirDrive::finish_homing(bool ok) {
     planner_.set_position(cfg_.homing.coordinate, cfg_.homing.direction);
     last_pos_ = cfg_.homing.coordinate;
     fb_.referenced = true;
+    homing_tail_ = true;
     if (lock_dir_ != 0) lock_dir_ = 0;  // passing the cam unlocks (IP247 §2.8)
   }
   homing_ = HomingPhase::idle;

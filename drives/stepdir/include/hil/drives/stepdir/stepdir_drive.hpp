@@ -101,6 +101,7 @@ private:
   std::vector<gpio::Edge> batch_;
 
   HomingPhase homing_ = HomingPhase::idle;
+  bool homing_tail_ = false;         ///< report homing_active for one more image after success
   bool homing_braking_ = false;      ///< waiting for the planner to stop before the next phase
   HomingPhase after_brake_ = HomingPhase::idle;
   std::int64_t single_steps_ = 0;
