@@ -173,6 +173,7 @@ TEST(StepDirTransport, FinishReportFailsTheRunOnATimingViolation) {
   DriveRig r(base);
   ASSERT_TRUE(r.enable());
   for (int i = 0; i < 10; ++i) r.cycle(i);
+  for (int i = 0; i < 5; ++i) r.cycle(9);
   auto good = r.factory.finish(hil::CycleTime{r.clock.now(), r.period});
   EXPECT_TRUE(good.ok);
   ASSERT_FALSE(good.lines.empty());
