@@ -27,7 +27,8 @@ bool restricted_cob(std::uint32_t id) noexcept {
 
 PdoEngine::PdoEngine(ObjectDictionary& od, FrameSink sink) : od_(od), sink_(std::move(sink)) {}
 
-SdoAbort PdoEngine::check_mapping(const ObjectDictionary& od, const std::vector<PdoMappingEntry>& m, bool receive) {
+SdoAbort PdoEngine::check_mapping(const ObjectDictionary& od, const std::vector<PdoMappingEntry>& m, bool receive,
+                                   bool check_access) {
   if (m.size() > 8) return SdoAbort::value_too_high;
   unsigned total = 0;
   for (const auto& e : m) {
@@ -41,17 +42,17 @@ SdoAbort PdoEngine::check_mapping(const ObjectDictionary& od, const std::vector<
     const auto* v = od.find(e.index, e.sub);
     if (v == nullptr) return od.has_object(e.index) ? SdoAbort::no_sub_index : SdoAbort::no_object;
     if (!v->pdo_mappable) return SdoAbort::not_mappable;
-    if (receive ? !writable(v->access) : !readable(v->access)) return SdoAbort::not_mappable;
+    if (check_access && (receive ? !writable(v->access) : !readable(v->access))) return SdoAbort::not_mappable;
     if (data_type_size(v->type) * 8 != e.bits) return SdoAbort::not_mappable;
   }
   if (total > 64) return SdoAbort::pdo_length;
   return SdoAbort::none;
 }
 
-bool PdoEngine::build(Pdo& p, bool receive) {
+bool PdoEngine::build(Pdo& p, bool receive, bool check_access) {
   p.slots.clear();
   p.length = 0;
-  if (check_mapping(od_, p.cfg.mapping, receive) != SdoAbort::none) {
+  if (check_mapping(od_, p.cfg.mapping, receive, check_access) != SdoAbort::none) {
     p.cfg.cob_id |= pdo_cob_invalid;  // an inconsistent mapping never goes on the bus
     return false;
   }
@@ -162,21 +163,21 @@ void PdoEngine::install_validators() {
 }
 
 SdoAbort PdoEngine::add_rpdo(const PdoConfig& cfg) {
-  const auto a = check_mapping(od_, cfg.mapping, true);
+  const auto a = check_mapping(od_, cfg.mapping, true, false);
   if (a != SdoAbort::none) return a;
   Pdo p;
   p.cfg = cfg;
-  build(p, true);
+  build(p, true, false);
   rpdos_.push_back(std::move(p));
   return SdoAbort::none;
 }
 
 SdoAbort PdoEngine::add_tpdo(const PdoConfig& cfg) {
-  const auto a = check_mapping(od_, cfg.mapping, false);
+  const auto a = check_mapping(od_, cfg.mapping, false, false);
   if (a != SdoAbort::none) return a;
   Pdo p;
   p.cfg = cfg;
-  build(p, false);
+  build(p, false, false);
   tpdos_.push_back(std::move(p));
   return SdoAbort::none;
 }
@@ -245,7 +246,7 @@ bool PdoEngine::on_frame(const can::Frame& f, TimePoint now) {
   return false;
 }
 
-void PdoEngine::on_sync(std::optional<std::uint8_t> counter, TimePoint now) {
+void PdoEngine::apply_sync_rpdos(TimePoint now) {
   ensure_loaded();
   if (!active_) return;
   for (auto& p : rpdos_) {
@@ -254,6 +255,11 @@ void PdoEngine::on_sync(std::optional<std::uint8_t> counter, TimePoint now) {
       apply(p, std::span<const std::uint8_t>(p.pending.data(), p.length), now);
     }
   }
+}
+
+void PdoEngine::send_sync_tpdos(std::optional<std::uint8_t> counter, TimePoint now) {
+  ensure_loaded();
+  if (!active_) return;
   for (auto& p : tpdos_) {
     if (!valid(p)) continue;
     const auto tt = p.cfg.transmission_type;

@@ -86,8 +86,9 @@ bool Slave::on_frame(const can::Frame& f, TimePoint now) {
   }
   if (state_ == NmtState::stopped || state_ == NmtState::initialising) return false;
   if (auto s = parse_sync(f, sync_cob_)) {
+    pdo_.apply_sync_rpdos(now);
     if (on_sync) on_sync(s->counter, now);
-    pdo_.on_sync(s->counter, now);
+    pdo_.send_sync_tpdos(s->counter, now);
     return true;
   }
   if (sdo_.on_frame(f, now)) {

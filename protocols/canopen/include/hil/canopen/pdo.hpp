@@ -75,7 +75,14 @@ public:
   bool on_frame(const can::Frame& f, TimePoint now);
   /// A SYNC was received (slave) or sent (master): synchronous TPDOs go out, synchronous RPDO
   /// data buffered since the previous SYNC is written to the OD.
-  void on_sync(std::optional<std::uint8_t> counter, TimePoint now);
+  void on_sync(std::optional<std::uint8_t> counter, TimePoint now) {
+    apply_sync_rpdos(now);
+    send_sync_tpdos(counter, now);
+  }
+  /// The two halves of on_sync(), for a device that runs its application in between
+  /// (RPDO set-points in, application step, TPDO actual values out).
+  void apply_sync_rpdos(TimePoint now);
+  void send_sync_tpdos(std::optional<std::uint8_t> counter, TimePoint now);
   /// Event-driven TPDOs (change of a mapped value, event timer, inhibit) and RPDO deadlines.
   void step(TimePoint now);
   /// Application event for TPDO `n` (0-based): sent at the next step (event types) or next SYNC (type 0).
@@ -87,7 +94,9 @@ public:
   [[nodiscard]] std::size_t rpdo_count() const noexcept { return rpdos_.size(); }
 
   /// Check a mapping against `od` (CiA 301 rules); `receive` = RPDO (objects must be writable).
-  [[nodiscard]] static SdoAbort check_mapping(const ObjectDictionary& od, const std::vector<PdoMappingEntry>& m, bool receive);
+  /// `check_access` false: a master's image of a remote node (directions are mirrored there).
+  [[nodiscard]] static SdoAbort check_mapping(const ObjectDictionary& od, const std::vector<PdoMappingEntry>& m, bool receive,
+                                              bool check_access = true);
 
 private:
   struct Slot {
@@ -114,7 +123,7 @@ private:
   };
   [[nodiscard]] bool valid(const Pdo& p) const noexcept { return (p.cfg.cob_id & pdo_cob_invalid) == 0; }
   [[nodiscard]] std::uint32_t can_id(const Pdo& p) const noexcept { return p.cfg.cob_id & 0x1FFFFFFF; }
-  bool build(Pdo& p, bool receive);
+  bool build(Pdo& p, bool receive, bool check_access = true);
   void send_tpdo(Pdo& p, TimePoint now);
   void apply(Pdo& p, std::span<const std::uint8_t> data, TimePoint now);
   void ensure_loaded();
