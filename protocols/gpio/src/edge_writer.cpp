@@ -128,7 +128,8 @@ void AsyncEdgeWriter::run() {
     {
       std::unique_lock lock(mutex_);
       cv_.wait(lock, [this] { return stop_ || !queue_.empty(); });
-      if (queue_.empty()) return;  // stop requested and nothing left
+      // Destruction does not wait for a backlog (finish()/drain() reports one before that).
+      if (stop_) return;
       batch = std::move(queue_.front());
       queue_.pop_front();
       busy_ = true;

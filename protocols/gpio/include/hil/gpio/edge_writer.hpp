@@ -72,6 +72,7 @@ private:
 };
 
 /// The writer on its own thread, so the motion cycle only enqueues (non-blocking) batches.
+/// Call drain() before destruction: the destructor stops after the batch in progress.
 /// Thread: submit/stats/drain from any thread; the lines are touched only by the writer thread.
 class AsyncEdgeWriter final : public EdgeSink {
 public:
