@@ -80,6 +80,14 @@ TEST(GpioSim, OutputsShowInSimulatorAndPullsDriveInputs) {
   auto e = linux_gpiod::GpiodLines::open(chip->name, {bad});
   ASSERT_FALSE(e);
   EXPECT_NE(e.error().message.find("out of range"), std::string::npos);
+  LineSpec named{"limit", std::nullopt, "hil-no-such-line", LineDirection::input, false, Bias::pull_up, false};
+  auto n = linux_gpiod::GpiodLines::open(chip->name, {named});
+  ASSERT_FALSE(n);
+  EXPECT_NE(n.error().message.find("not found"), std::string::npos) << n.error().message;
+  // The same line busy in a second request: a clear error, not a crash.
+  auto busy = linux_gpiod::GpiodLines::open(chip->name, {out});
+  ASSERT_FALSE(busy);
+  EXPECT_NE(busy.error().message.find("request failed"), std::string::npos) << busy.error().message;
 }
 
 TEST(GpioSim, EdgeWriterOutputsEveryEdgeAndMeasuresItsTiming) {
