@@ -58,7 +58,7 @@ public:
       timed_out_ = true;
       return CycleControl::stop;
     }
-    if (scenario_.duration) return t + c.period > *scenario_.duration ? CycleControl::stop : CycleControl::proceed;
+    if (scenario_.duration) return t + c.period >= *scenario_.duration ? CycleControl::stop : CycleControl::proceed;
     if (status == Program::Status::done && at_rest(machine_) && t >= monitor_.latest_expectation_time())
       return CycleControl::stop;
     return CycleControl::proceed;
