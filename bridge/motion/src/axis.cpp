@@ -23,6 +23,10 @@ bool drive_faulted(const hil::DriveFeedback& fb) {
          static_cast<bool>(fb.fault);
 }
 
+Limits upper(const Limits& a, const Limits& b) {
+  return Limits{std::max(a.velocity, b.velocity), std::max(a.acceleration, b.acceleration), std::max(a.jerk, b.jerk)};
+}
+
 long long to_ms(hil::Duration d) { return std::chrono::duration_cast<std::chrono::milliseconds>(d).count(); }
 
 }  // namespace
@@ -97,20 +101,23 @@ std::error_code Axis::reset() {
     return make_error_code(MotionFault::invalid_command);  // a bad configuration cannot be reset
   const auto& fb = drive_->feedback();
   if (drive_faulted(fb)) drive_->request(hil::DriveRequest::fault_reset);
-  status_.fault = {};
   if (fb.state == hil::DriveState::operation_enabled && !drive_faulted(fb)) {
     if (profile_active_) {
       status_.state = AxisState::stopping;  // the fault reaction's stop runs to its end
     } else {
-      hold_at_actual();
+      // A software-limit stop left the set-point exactly on the limit: keep it there. After a
+      // supervision or drive fault the set-point takes over the actual position (no jump).
+      if (status_.fault.code != make_error_code(MotionFault::software_limit)) hold_at_actual();
       supervisor_.hold();
       status_.state = AxisState::standstill;
     }
   } else {
+    hold_at_actual();
     profile_active_ = false;
     mode_ = Mode::hold;
     status_.state = AxisState::disabled;
   }
+  status_.fault = {};
   return {};
 }
 
@@ -132,12 +139,13 @@ std::error_code Axis::home() {
 
 std::error_code Axis::start_position(std::int64_t target_inc, const Limits& limits) {
   const State from{cmd_p_, cmd_v_, cmd_a_, 0.0};
+  const Limits entry = upper(active_limits_, limits);
   if (!config_.rotary && (config_.soft_limit_min || config_.soft_limit_max)) {
-    const double sp = stop_position(from, limits);
+    const double sp = stop_position(from, limits, entry);
     if ((config_.soft_limit_max && sp > *config_.soft_limit_max) || (config_.soft_limit_min && sp < *config_.soft_limit_min))
       return make_error_code(MotionFault::software_limit);
   }
-  plan_position(from, scaling_.to_units(target_inc), limits, profile_);
+  plan_position(from, scaling_.to_units(target_inc), limits, entry, profile_);
   target_inc_ = target_inc;
   active_limits_ = limits;
   mode_ = Mode::position;
@@ -195,21 +203,22 @@ std::error_code Axis::move_velocity(double velocity, std::optional<Limits> limit
     return make_error_code(MotionFault::invalid_command);
   if (velocity == 0.0) return stop();
   const State from{cmd_p_, cmd_v_, cmd_a_, 0.0};
+  const Limits entry = upper(active_limits_, lim);
   const std::optional<double> limit =
       config_.rotary ? std::nullopt : (velocity > 0 ? config_.soft_limit_max : config_.soft_limit_min);
   if (limit) {
     // Dynamic software limit (WF 725/726 MD 11/13): plan the stop to land exactly on the limit.
     const bool beyond = velocity > 0 ? cmd_p_ >= *limit : cmd_p_ <= *limit;
-    const double sp = stop_position(from, lim);
+    const double sp = stop_position(from, lim, entry);
     const bool cannot_stop = velocity > 0 ? sp > *limit : sp < *limit;
     if (beyond || cannot_stop) return make_error_code(MotionFault::software_limit);
     lim.velocity = std::fabs(velocity);
-    plan_position(from, *limit, lim, profile_);
+    plan_position(from, *limit, lim, entry, profile_);
     mode_ = Mode::velocity_to_limit;
     limit_target_ = *limit;
     target_inc_ = scaling_.to_inc(*limit);
   } else {
-    plan_velocity(from, velocity, lim, profile_);
+    plan_velocity(from, velocity, lim, entry, profile_);
     mode_ = Mode::velocity;
   }
   active_limits_ = effective(limits);
@@ -232,7 +241,7 @@ std::error_code Axis::jog(int direction) {
 
 void Axis::plan_stop(const Limits& limits, Mode after) {
   const State from{cmd_p_, cmd_v_, cmd_a_, 0.0};
-  plan_velocity(from, 0.0, limits, profile_);
+  plan_velocity(from, 0.0, limits, upper(active_limits_, limits), profile_);
   mode_ = after;
   profile_active_ = true;
   profile_start_ = last_now_;
@@ -282,6 +291,12 @@ void Axis::raise(std::error_code code, std::string text) {
 }
 
 void Axis::react_to_fault() {
+  if (cmd_v_ == 0.0 && cmd_a_ == 0.0 && config_.reaction != FaultReaction::disable) {
+    profile_active_ = false;  // already at rest: hold the set-point
+    mode_ = Mode::hold;
+    status_.busy = false;
+    return;
+  }
   switch (config_.reaction) {
     case FaultReaction::quick_stop: plan_stop(quick_stop_limits(), Mode::stopping); break;
     case FaultReaction::stop: plan_stop(active_limits_, Mode::stopping); break;
@@ -302,6 +317,7 @@ void Axis::hold_at_actual() {
   cmd_a_ = 0.0;
   target_inc_ = cmd_inc_;
   relative_carry_inc_ = 0.0;
+  last_drive_cmd_inc_ = fb.position_inc;  // the set-point is the actual: no following error
   status_.busy = false;
 }
 
@@ -331,7 +347,7 @@ void Axis::finish_profile() {
   if (done == Mode::velocity_to_limit) {
     raise(make_error_code(MotionFault::software_limit),
           fmt::format("axis '{}': {} software limit {:.6g} reached; axis stopped on the limit (reset, then move back)",
-                      config_.name, limit_target_ > 0 || limit_target_ == config_.soft_limit_max ? "positive" : "negative",
+                      config_.name, config_.soft_limit_max && limit_target_ == *config_.soft_limit_max ? "positive" : "negative",
                       limit_target_));
   }
 }
@@ -436,7 +452,6 @@ CycleResult Axis::update(const hil::CycleTime& cycle) {
     const double target_error = static_cast<double>(tgt - fb.position_inc) * upi;
     hil::Fault f = supervisor_.check(config_, fe, programmed_feed_, profile_active_, target_error, cycle.now);
     if (f) {
-      status_.state = AxisState::moving;  // let raise() record it
       raise(f.code, std::move(f.text));
       react_to_fault();
     }

@@ -31,7 +31,11 @@ void Profile::append(double duration, double jerk) noexcept {
 }
 
 void Profile::append_accel(double duration, double accel) noexcept {
-  if (!(duration > 0.0) || n_ == max_segments) return;
+  if (!(duration > 0.0)) {
+    cur_.a = accel;  // a zero-length step only sets the acceleration
+    return;
+  }
+  if (n_ == max_segments) return;
   seg_[n_++] = Segment{duration_, duration, cur_.p, cur_.v, accel, 0.0};
   cur_ = integrate(cur_.p, cur_.v, accel, 0.0, duration);
   duration_ += duration;

@@ -23,29 +23,20 @@ namespace hil::motion {
 using detail::append_ramp;
 using detail::plan_ramp;
 
-double stop_position(const State& from, const Limits& limits) noexcept {
-  return from.p + plan_ramp(from.v, from.a, 0.0, limits).distance;
-}
+namespace {
 
-void plan_velocity(const State& from, double velocity, const Limits& limits, Profile& out) noexcept {
-  const double v1 = std::clamp(velocity, -limits.velocity, limits.velocity);
-  out.reset(from);
-  append_ramp(plan_ramp(from.v, from.a, v1, limits), out);
-  out.finish(State{out.current().p, v1, 0.0, 0.0});
-}
-
-void plan_position(const State& from, double target, const Limits& limits, Profile& out) noexcept {
+// Appends the move from out.current() to rest at `target` under `limits`.
+void append_position(Profile& out, double target, const Limits& limits) noexcept {
+  const State from = out.current();
   if (from.v == 0.0 && from.a == 0.0) {
-    plan_rest_to_rest(from.p, target, limits, out);
+    detail::append_rest_to_rest(out, target, limits);
     return;
   }
-  out.reset(from);
   const detail::Ramp brake = plan_ramp(from.v, from.a, 0.0, limits);
   const double p_stop = from.p + brake.distance;
   const double gap = target - p_stop;
   if (std::fabs(gap) <= 1e-12 * std::max(1.0, std::fabs(target))) {
     append_ramp(brake, out);
-    out.finish(State{target, 0.0, 0.0, 0.0});
     return;
   }
   const double dir = gap > 0 ? 1.0 : -1.0;
@@ -62,7 +53,6 @@ void plan_position(const State& from, double target, const Limits& limits, Profi
   if (dlo > dn) {
     append_ramp(brake, out);
     detail::append_rest_to_rest(out, target, limits);
-    out.finish(State{target, 0.0, 0.0, 0.0});
     return;
   }
   double vc = vmax;
@@ -88,6 +78,57 @@ void plan_position(const State& from, double target, const Limits& limits, Profi
     if (cruise > 0.0) out.append_accel(cruise, 0.0);
   }
   append_ramp(plan_ramp(dir * vc, 0.0, 0.0, limits), out);
+}
+
+bool outside(const State& s, const Limits& l) noexcept {
+  constexpr double tol = 1e-12;
+  if (std::fabs(s.a) > l.acceleration * (1 + tol)) return true;
+  const double v_stop = l.jerk_limited() ? s.v + s.a * std::fabs(s.a) / (2.0 * l.jerk) : s.v;
+  return std::fabs(v_stop) > l.velocity * (1 + tol) && std::fabs(v_stop) > std::fabs(s.v);
+}
+
+// Brings `from` inside `limits` using `entry`: a to zero, velocity clamped into the new limit.
+void append_entry(Profile& out, const Limits& limits, const Limits& entry) noexcept {
+  const State s = out.current();
+  if (!outside(s, limits)) return;
+  const double v_stop = entry.jerk_limited() ? s.v + s.a * std::fabs(s.a) / (2.0 * entry.jerk) : s.v;
+  append_ramp(plan_ramp(s.v, s.a, std::clamp(v_stop, -limits.velocity, limits.velocity), entry), out);
+  out.append_accel(0.0, 0.0);
+}
+
+}  // namespace
+
+double stop_position(const State& from, const Limits& limits) noexcept {
+  return from.p + plan_ramp(from.v, from.a, 0.0, limits).distance;
+}
+
+double stop_position(const State& from, const Limits& limits, const Limits& entry) noexcept {
+  Profile p;
+  plan_velocity(from, 0.0, limits, entry, p);
+  return p.end().p;
+}
+
+void plan_velocity(const State& from, double velocity, const Limits& limits, Profile& out) noexcept {
+  plan_velocity(from, velocity, limits, limits, out);
+}
+
+void plan_velocity(const State& from, double velocity, const Limits& limits, const Limits& entry, Profile& out) noexcept {
+  const double v1 = std::clamp(velocity, -limits.velocity, limits.velocity);
+  out.reset(from);
+  append_entry(out, limits, entry);
+  const State s = out.current();
+  append_ramp(plan_ramp(s.v, s.a, v1, limits), out);
+  out.finish(State{out.current().p, v1, 0.0, 0.0});
+}
+
+void plan_position(const State& from, double target, const Limits& limits, Profile& out) noexcept {
+  plan_position(from, target, limits, limits, out);
+}
+
+void plan_position(const State& from, double target, const Limits& limits, const Limits& entry, Profile& out) noexcept {
+  out.reset(from);
+  append_entry(out, limits, entry);
+  append_position(out, target, limits);
   out.finish(State{target, 0.0, 0.0, 0.0});
 }
 

@@ -25,6 +25,15 @@ void plan_position(const State& from, double target, const Limits& limits, Profi
 /// Reach `velocity` (signed) with zero acceleration from any state, then cruise on.
 void plan_velocity(const State& from, double velocity, const Limits& limits, Profile& out) noexcept;
 
+/// Re-planning with *lower* limits than the ones `from` was reached under: when `from` lies
+/// outside `limits` (|a| above the new acceleration, or zeroing a under the new jerk would pass
+/// the new velocity), first bring a to zero under `entry` (the higher limits the state was
+/// planned with), velocity clamped into the new limit, then continue under `limits`.
+void plan_position(const State& from, double target, const Limits& limits, const Limits& entry, Profile& out) noexcept;
+void plan_velocity(const State& from, double velocity, const Limits& limits, const Limits& entry, Profile& out) noexcept;
+/// Where a stop under `limits` (entered under `entry`) comes to rest.
+[[nodiscard]] double stop_position(const State& from, const Limits& limits, const Limits& entry) noexcept;
+
 /// Position where a stop from `from` under `limits` comes to rest.
 [[nodiscard]] double stop_position(const State& from, const Limits& limits) noexcept;
 
