@@ -3,6 +3,8 @@
 // pass and fail (with the value and the miss in the message), program failures, transports.
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <map>
 #include <regex>
 
 #include "hil/runtime/machine.hpp"
@@ -224,4 +226,53 @@ TEST(Runner, BuildErrorsNameTheDriveBlock) {
       "      drive: {transport: sim, kv: -3}\n"), hil::testing::sim_registry(), RunOptions{});
   ASSERT_FALSE(factory_error.has_value());
   EXPECT_EQ(factory_error.error().line, 6);
+}
+
+namespace {
+/// Records the first scenario time each axis moved.
+class FirstMotion final : public RunObserver {
+public:
+  void on_cycle(hil::Duration t, const Machine& m) noexcept override {
+    for (const auto& a : m.axes())
+      if (!first.contains(a.spec->name) && std::abs(a.axis->status().command_velocity) > 0.0) first[a.spec->name] = t;
+  }
+  std::map<std::string, hil::Duration> first;
+};
+}  // namespace
+
+TEST(Runner, AtDelaysAStepParallelStartsTogetherNonBlockingGoesOn) {
+  const std::string machine =
+      "machine:\n"
+      "  axes:\n"
+      "    - {name: a, inc_per_unit: 1000, limits: {velocity: 100, acceleration: 1000}, drive: {transport: sim, kv: 80, feedforward: 1.0}}\n"
+      "    - {name: b, inc_per_unit: 1000, limits: {velocity: 100, acceleration: 1000}, drive: {transport: sim, kv: 80, feedforward: 1.0}}\n"
+      "    - {name: c, inc_per_unit: 1000, limits: {velocity: 100, acceleration: 1000}, drive: {transport: sim, kv: 80, feedforward: 1.0}}\n";
+  auto s = parse_scenario(machine +
+                              "program:\n"
+                              "  - enable: all\n"
+                              "  - parallel:\n"
+                              "      - move_absolute: {axis: a, position: 10}\n"
+                              "      - move_absolute: {axis: b, position: 20}\n"
+                              "    at: 300ms\n"
+                              "  - move_absolute: {axis: c, position: 5}\n"
+                              "    blocking: false\n"
+                              "  - move_relative: {axis: a, distance: 1}\n",
+                          "t.yaml");
+  ASSERT_TRUE(s.has_value()) << s.error().describe();
+  FirstMotion fm;
+  RunOptions o;
+  o.observers.push_back(&fm);
+  auto r = run_scenario(*s, hil::testing::sim_registry(), o);
+  ASSERT_TRUE(r.has_value());
+  for (const auto& f : r->failures) ADD_FAILURE() << f;
+  ASSERT_EQ(fm.first.size(), 3u);
+  // Commanded in the cycle at 300 ms, moving from the next update on; a and b in the same cycle.
+  EXPECT_EQ(fm.first["a"], 301ms);
+  EXPECT_EQ(fm.first["b"], 301ms);
+  // c starts when the parallel block completed; the relative move of a starts one cycle later
+  // without waiting for c (blocking: false), so c is still moving then.
+  EXPECT_GT(fm.first["c"], 400ms);
+  EXPECT_NEAR(r->axes[0].final_position, 11.0, 0.01);
+  EXPECT_NEAR(r->axes[1].final_position, 20.0, 0.01);
+  EXPECT_NEAR(r->axes[2].final_position, 5.0, 0.01);
 }
