@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 // Runner end to end on virtual time: cycle order, the demo's final positions, expectations that
 // pass and fail (with the value and the miss in the message), program failures, transports.
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -275,4 +276,40 @@ TEST(Runner, AtDelaysAStepParallelStartsTogetherNonBlockingGoesOn) {
   EXPECT_NEAR(r->axes[0].final_position, 11.0, 0.01);
   EXPECT_NEAR(r->axes[1].final_position, 20.0, 0.01);
   EXPECT_NEAR(r->axes[2].final_position, 5.0, 0.01);
+}
+
+namespace {
+class EnvProbe final : public hil::testing::SimFactory {
+public:
+  explicit EnvProbe(std::vector<std::string>& seen) : seen_(seen) {}
+  std::expected<hil::DrivePtr, hil::ConfigError> make_drive(const std::string& axis, const YAML::Node& node,
+                                                            hil::RunEnvironment& env) override {
+    seen_.push_back(fmt::format("{} virtual={} verify={} period={} file={} io={}", axis, env.virtual_time,
+                                env.verify_steps, env.period.count(), env.source_file, env.io != nullptr));
+    YAML::Node plain = YAML::Clone(node);
+    plain["transport"] = "sim";
+    return SimFactory::make_drive(axis, plain, env);
+  }
+
+private:
+  std::vector<std::string>& seen_;
+};
+}  // namespace
+
+TEST(Runner, TransportsSeeTheRunEnvironment) {
+  std::vector<std::string> seen;
+  hil::TransportRegistry reg;
+  reg.add("probe", [&seen] { return std::make_unique<EnvProbe>(seen); });
+  const Scenario s = load(
+      "period: 500us\nduration: 1ms\n"
+      "machine:\n"
+      "  axes:\n"
+      "    - {name: a, inc_per_unit: 1000, limits: {velocity: 10, acceleration: 100}, drive: {transport: probe}}\n");
+  RunOptions o;
+  o.verify_steps = true;
+  auto r = run_scenario(s, reg, o);
+  ASSERT_TRUE(r.has_value());
+  EXPECT_EQ(r->scheduler.cycles, 2u);
+  ASSERT_EQ(seen.size(), 1u);
+  EXPECT_EQ(seen[0], "a virtual=true verify=true period=500000 file=t.yaml io=false");
 }
