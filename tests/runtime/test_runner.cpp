@@ -313,3 +313,22 @@ TEST(Runner, TransportsSeeTheRunEnvironment) {
   ASSERT_EQ(seen.size(), 1u);
   EXPECT_EQ(seen[0], "a virtual=true verify=true period=500000 file=t.yaml io=false");
 }
+
+TEST(Runner, RealTimeSmokeRun) {
+  // ~60 ms of real time on the Asio scheduler: same cycle code, real-time statistics filled in.
+  const Scenario s = load(one_axis + "duration: 60ms\nprogram:\n  - enable: x\n  - move_relative: {axis: x, distance: 0.5}\n"
+                                     "    blocking: false\n");
+  RunOptions o;
+  o.virtual_time = false;
+  auto r = run_scenario(s, hil::testing::sim_registry(), o);
+  ASSERT_TRUE(r.has_value());
+  for (const auto& f : r->failures) ADD_FAILURE() << f;
+  EXPECT_FALSE(r->scheduler.virtual_time);
+  // The run ends with the first cycle at or past 59 ms (cycles after an overrun skip ahead on the grid).
+  EXPECT_GE(r->scheduler.cycles + r->scheduler.skipped_cycles, 60u);
+  EXPECT_GE(r->simulated, 59ms);
+  EXPECT_LE(r->simulated, 59ms + 1ms * static_cast<long>(r->scheduler.skipped_cycles));
+  EXPECT_EQ(r->scheduler.wake_latency.count(), r->scheduler.cycles);
+  EXPECT_GE(r->scheduler.wall, 59ms);
+  EXPECT_GT(r->axes[0].final_position, 0.0);
+}
