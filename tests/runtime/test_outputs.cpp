@@ -3,6 +3,7 @@
 #include <expat.h>
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -226,4 +227,27 @@ TEST(JUnit, StructureCountsAndMessages) {
   collect(broken, "error", errors);
   ASSERT_EQ(errors.size(), 1u);
   EXPECT_EQ(errors[0]->attrs.at("type"), "ConfigError");
+}
+
+TEST(SvgPlot, RotaryPositionBreaksAtTheWrap) {
+  PlotData d;
+  d.title = "wrap";
+  PlotSeries s;
+  s.axis = "c";
+  s.units = "deg";
+  s.rotary = true;
+  for (int i = 0; i < 100; ++i) {  // 300 -> 359 then 0 -> 40 deg
+    const double p = std::fmod(300.0 + i, 360.0);
+    s.t.push_back(i * 0.01);
+    s.position.push_back(p);
+    s.command.push_back(p);
+    s.velocity.push_back(100.0);
+    s.following_error.push_back(0.0);
+  }
+  d.axes.push_back(s);
+  const XmlParse p = parse_xml(render_svg(d));
+  ASSERT_TRUE(p.ok) << p.error;
+  std::vector<const Element*> polylines;
+  collect(p.root, "polyline", polylines);
+  EXPECT_EQ(polylines.size(), 6u);  // actual and command in two pieces each, velocity, following error
 }
