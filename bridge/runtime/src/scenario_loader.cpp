@@ -399,10 +399,10 @@ private:
       e = MaxFollowingErrorExpectation{x.as_positive("a following error in units")};
     }
     for (const auto& a : axes) {
-      Expectation x{a, e, SourceRef{f.line(), f.path()}};
-      if (auto* p = std::get_if<PositionExpectation>(&x.kind); p && p->tolerance <= 0.0)
+      Expectation one{a, e, SourceRef{f.line(), f.path()}};
+      if (auto* p = std::get_if<PositionExpectation>(&one.kind); p && p->tolerance <= 0.0)
         p->tolerance = find(a)->in_position_window;  // the loader defaults it to > 0
-      out.push_back(std::move(x));
+      out.push_back(std::move(one));
     }
   }
 
