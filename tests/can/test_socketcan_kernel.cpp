@@ -245,7 +245,7 @@ TEST_F(KernelCan, PythonCanSocketcanIsAnIndependentPeer) {
   for (std::size_t i = 0; i < frames.size(); ++i) {
     ASSERT_FALSE(ch->send(frames[i]));
     // Python under QEMU TCG is slow (tens of seconds for its first recv): generous bound.
-    ASSERT_TRUE(run_until([&] { return got.size() == i + 1; }, std::chrono::seconds(90))) << py.output();
+    ASSERT_TRUE(run_until([&] { return got.size() >= i + 1; }, std::chrono::seconds(90))) << py.output();
     can::Frame expected = frames[i];
     expected.id += 1;
     if (expected.rtr) {
