@@ -16,8 +16,14 @@
 
 #include <asio/io_context.hpp>
 
+#include <asio/executor_work_guard.hpp>
+#include <thread>
+
 #include "hil/can/candump.hpp"
 #include "hil/can/linux/socketcan_channel.hpp"
+#include "hil/can/socketcand_channel.hpp"
+#include "hil/can/socketcand_server.hpp"
+#include "hub_fixture.hpp"
 #include "subprocess.hpp"
 
 namespace can = hil::can;
@@ -261,6 +267,54 @@ TEST_F(KernelCan, PythonCanSocketcanIsAnIndependentPeer) {
   EXPECT_EQ(got.back(), can::make_frame(0x7FF, {'P', 'Y'}));
   EXPECT_EQ(py.wait(std::chrono::seconds(30)), 0) << py.output();
   EXPECT_NE(py.output().find("RX 701#R ext=0"), std::string::npos) << py.output();
+}
+
+TEST(KernelCanBridge, SocketcandHubBridgesVcan0) {
+  REQUIRE_VCAN0();
+  // `hilbridge can hub --bridge vcan0` in-process: each socketcand client gets its own raw socket.
+  asio::io_context io;
+  hil::SteadyClock clock;
+  auto work = asio::make_work_guard(io);
+  can::socketcand::Server server(io.get_executor(), clock,
+                                 [&](std::string_view name, const std::string&)
+                                     -> std::expected<std::unique_ptr<can::Channel>, std::error_code> {
+                                   if (name != kIf) return std::unexpected(std::make_error_code(std::errc::no_such_device));
+                                   auto ch = SocketCanChannel::open(io.get_executor(), clock, kIf);
+                                   if (!ch) return std::unexpected(ch.error());
+                                   return std::unique_ptr<can::Channel>(std::move(*ch));
+                                 });
+  ASSERT_FALSE(server.listen({asio::ip::make_address("127.0.0.1"), 0}));
+  can::test::Inbox local_rx, client_rx;
+  auto local = SocketCanChannel::open(io.get_executor(), clock, kIf);
+  ASSERT_TRUE(local);
+  (*local)->set_receive_handler(local_rx.handler());
+  std::thread runner([&] { io.run(); });
+  std::string diag;
+  auto client = can::socketcand::SocketcandChannel::connect(io.get_executor(), clock, "127.0.0.1",
+                                                            server.local_endpoint().port(), kIf, {}, &diag);
+  ASSERT_TRUE(client) << diag;
+  (*client)->set_receive_handler(client_rx.handler());
+  ASSERT_FALSE((*client)->send(can::make_frame(0x601, {0x40, 0x18, 0x10, 0x01, 0, 0, 0, 0})));
+  auto got = local_rx.wait_for(1, std::chrono::seconds(10));
+  ASSERT_EQ(got.size(), 1u);
+  EXPECT_EQ(got[0], can::make_frame(0x601, {0x40, 0x18, 0x10, 0x01, 0, 0, 0, 0}));
+  std::promise<std::error_code> sent;
+  asio::post(io, [&] { sent.set_value((*local)->send(can::make_extended_frame(0x18FF0001, std::vector<std::uint8_t>{0xAA}))); });
+  EXPECT_FALSE(sent.get_future().get());
+  auto back = client_rx.wait_for(1, std::chrono::seconds(10));
+  ASSERT_EQ(back.size(), 1u);
+  EXPECT_EQ(back[0], can::make_extended_frame(0x18FF0001, std::vector<std::uint8_t>{0xAA}));
+  std::promise<void> done;
+  asio::post(io, [&] {
+    client->reset();
+    local->reset();
+    server.close();
+    done.set_value();
+  });
+  done.get_future().wait();
+  work.reset();
+  io.stop();
+  runner.join();
 }
 
 }  // namespace
