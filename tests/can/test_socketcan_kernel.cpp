@@ -9,6 +9,7 @@
 #include <linux/can/raw.h>
 #include <net/if.h>
 #include <sys/socket.h>
+#include <sys/utsname.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -167,6 +168,75 @@ TEST_F(KernelCan, FloodIsBoundedAndAccountedFor) {
       << "received " << received << " overruns " << rx->stats().rx_overruns << " sent " << st.channel.tx_frames;
   RecordProperty("eagain", static_cast<int>(st.eagain));
   RecordProperty("enobufs", static_cast<int>(st.enobufs));
+}
+
+/// Make vcan1 slow: a token-bucket qdisc (64 kbit/s, 8 frames of queue) so the kernel answers
+/// ENOBUFS like a real controller with a full txqueuelen. sch_tbf is a module in Debian's kernel;
+/// under tests/vm/run-in-kernel.sh it is loaded from the harness's module cache.
+std::optional<std::string> make_vcan1_slow() {
+  if (::access("/usr/sbin/tc", X_OK) != 0) return "tc (iproute2) is not installed";
+  auto tbf = [] {
+    Subprocess tc({"/usr/sbin/tc", "qdisc", "replace", "dev", "vcan1", "root", "tbf", "rate", "64kbit", "burst", "64",
+                   "limit", "128"});
+    return tc.wait() == 0;
+  };
+  if (tbf()) return std::nullopt;
+  utsname u{};
+  ::uname(&u);
+  const char* cache_env = std::getenv("HIL_VM_CACHE");
+  const std::string cache = cache_env ? cache_env : "/var/cache/hilbridge-vm";
+  const std::string ko = cache + "/" + u.release + "/lib/modules/" + u.release + "/kernel/net/sched/sch_tbf.ko";
+  if (::access(ko.c_str(), R_OK) == 0) {
+    Subprocess insmod({"/usr/sbin/insmod", ko});
+    (void)insmod.wait();
+    if (tbf()) return std::nullopt;
+  }
+  return "cannot install a tbf qdisc on vcan1 (needs root and sch_tbf)";
+}
+
+TEST_F(KernelCan, EnobufsFromAFullInterfaceQueueIsRetriedNotSpun) {
+  if (::if_nametoindex("vcan1") == 0) GTEST_SKIP() << "vcan1 does not exist (run inside tests/vm/run-in-kernel.sh)";
+  if (auto why = make_vcan1_slow()) GTEST_SKIP() << *why;
+  struct Restore {
+    ~Restore() {
+      Subprocess tc({"/usr/sbin/tc", "qdisc", "del", "dev", "vcan1", "root"});
+      (void)tc.wait();
+    }
+  } restore;
+  auto open1 = [&](SocketCanOptions o) {
+    std::string diag;
+    auto ch = SocketCanChannel::open(io.get_executor(), clock, "vcan1", std::move(o), &diag);
+    EXPECT_TRUE(ch.has_value()) << diag;
+    return ch ? std::move(*ch) : nullptr;
+  };
+  SocketCanOptions tx_opts;
+  tx_opts.tx_queue_capacity = 64;
+  auto tx = open1(tx_opts);
+  auto rx = open1({});
+  ASSERT_TRUE(tx && rx);
+  std::vector<int> order;
+  rx->set_receive_handler([&](const can::Frame& f, hil::TimePoint) { order.push_back(f.data[0] | (f.data[1] << 8)); });
+  std::uint64_t accepted = 0, refused = 0;
+  for (int i = 0; i < 400; ++i) {
+    const auto ec = tx->send(can::make_frame(0x321, {static_cast<std::uint8_t>(accepted), static_cast<std::uint8_t>(accepted >> 8)}));
+    if (!ec)
+      ++accepted;
+    else if (ec == std::errc::no_buffer_space)
+      ++refused;
+    else
+      FAIL() << ec.message();
+  }
+  EXPECT_GT(refused, 0u) << "the bounded user-space queue must refuse a flood";
+  ASSERT_TRUE(run_until([&] { return tx->tx_queued() == 0 && order.size() == accepted; }, std::chrono::seconds(20)))
+      << "queued " << tx->tx_queued() << " received " << order.size() << " of " << accepted;
+  const auto st = tx->socketcan_stats();
+  EXPECT_GT(st.enobufs, 0u) << "the tbf qdisc should have answered ENOBUFS";
+  EXPECT_LT(st.enobufs, 2000u) << "retries are paced by the back-off timer, not spun";
+  EXPECT_EQ(st.channel.tx_frames, accepted);
+  EXPECT_EQ(st.channel.tx_dropped, refused);
+  for (std::size_t i = 0; i < order.size(); ++i) ASSERT_EQ(order[i], static_cast<int>(i)) << "order broken at " << i;
+  RecordProperty("enobufs", static_cast<int>(st.enobufs));
+  RecordProperty("eagain", static_cast<int>(st.eagain));
 }
 
 TEST_F(KernelCan, TwoProcessesOnOneInterface) {
