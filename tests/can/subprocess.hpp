@@ -125,7 +125,7 @@ private:
 inline bool python_has(const std::string& module) {
   if (::access("/usr/bin/python3", X_OK) != 0) return false;
   Subprocess p({"/usr/bin/python3", "-c", "import " + module});
-  return p.started() && p.wait() == 0;
+  return p.started() && p.wait(std::chrono::seconds(90)) == 0;  // slow under QEMU TCG
 }
 
 }  // namespace hil::can::test

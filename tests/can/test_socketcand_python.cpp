@@ -32,7 +32,7 @@ TEST(SocketcandPython, PythonCanExchangesFramesWithOurHub) {
   Subprocess py({"/usr/bin/python3", std::string(HIL_TEST_SOURCE_DIR) + "/socketcand_peer.py", "127.0.0.1",
                  std::to_string(hub.port()), "can0", std::to_string(frames.size())});
   ASSERT_TRUE(py.started());
-  ASSERT_TRUE(py.wait_for_line("READY")) << py.output();
+  ASSERT_TRUE(py.wait_for_line("READY", std::chrono::seconds(60))) << py.output();
   // One frame at a time: python-can 4.1 loses a frame when several arrive split across reads.
   for (std::size_t i = 0; i < frames.size(); ++i) {
     hub.run([&] { EXPECT_FALSE(local->send(frames[i])); });
