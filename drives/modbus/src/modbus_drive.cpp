@@ -107,6 +107,7 @@ void ModbusDrive::read(const CycleTime& cycle) {
     seen_error_seq_ = local_link_.error_seq;
     link_fault_ = local_link_.error;  // latch the newest error
     link_reset_armed_ = false;
+    target_ = modbus::PowerTarget::disabled;  // a faulted axis is switched off; re-enable after the reset
   }
   clear_link_fault_if_reset();
   const auto& p = config_.profile;
@@ -165,7 +166,11 @@ void ModbusDrive::write(const CycleTime& /*cycle*/, const DriveCommand& command)
     }
     if (n >= 22) reset_pending_ = false;
   }
-  const auto cw = modbus::make_control_word(p, drive_state_, target_, reset_high);
+  // While a link fault is latched the drive is told to switch off (it may still be powered on
+  // the far side after an outage); the control word gets there as soon as the link is back.
+  const auto cw = link_fault_ != modbus::ModbusError::none
+                      ? modbus::make_control_word(p, drive_state_, modbus::PowerTarget::disabled, false)
+                      : modbus::make_control_word(p, drive_state_, target_, reset_high);
   put_field(FieldRole::control_word, cw);
   const bool velocity = command.mode == CommandMode::velocity && capabilities().velocity_mode;
   put_field(FieldRole::mode, velocity ? p.mode_velocity : p.mode_position);
