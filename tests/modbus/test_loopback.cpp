@@ -2,6 +2,7 @@
 // Our drive against our server over loopback TCP: enable, position and velocity following with
 // both profiles (FC 23; FC 4 + FC 16 with low-word-first values and scaling), drive faults.
 #include <cmath>
+#include <thread>
 
 #include "loopback_fixture.hpp"
 
@@ -96,6 +97,40 @@ TEST(ModbusLoopback, VendorFaultNumberAndText) {
   lb.server->inject(PlantFault::following_blowup, false);
   lb.drive->request(DriveRequest::fault_reset);
   ASSERT_TRUE(lb.cycle_until([&] { return lb.fb().state == DriveState::switch_on_disabled; }, 10));
+}
+
+// Real-time mode as `hilbridge run` uses it: the worker free-runs every poll period, the server
+// steps its plant on its own timer, the motion thread only copies images. Waits are bounded.
+TEST(ModbusLoopback, FreeRunningOnRealTime) {
+  auto profile = shipped_profile("cia402.yaml");
+  mocks::ModbusServerConfig sc;
+  sc.auto_step = milliseconds(1);
+  mocks::ModbusDriveServer server(mocks::DriveDevice(profile), sc);
+  ASSERT_FALSE(server.start());
+  SteadyClock clock;
+  drives::ModbusDriveConfig c;
+  c.profile = profile;
+  c.port = server.port();
+  c.poll_period = milliseconds(1);
+  drives::ModbusDrive drive(c, clock);
+  DriveCommand cmd;
+  auto run_until = [&](auto pred) {
+    const auto deadline = clock.now() + std::chrono::seconds(10);
+    while (clock.now() < deadline) {
+      const CycleTime t{clock.now(), milliseconds(1)};
+      drive.read(t);
+      drive.write(t, cmd);
+      if (pred()) return true;
+      std::this_thread::yield();
+    }
+    return false;
+  };
+  drive.request(DriveRequest::enable);
+  ASSERT_TRUE(run_until([&] { return drive.feedback().state == DriveState::operation_enabled; }));
+  cmd.position_inc = 1000;
+  ASSERT_TRUE(run_until([&] { return std::abs(drive.feedback().position_inc - 1000) <= 2; }));
+  EXPECT_LT(drive.feedback().age, std::chrono::milliseconds(500));  // fresh, not a frozen image
+  EXPECT_GT(drive.link_stats().exchanges, 5u);
 }
 
 TEST(ModbusLoopback, HomingIsRefusedNotFaked) {
