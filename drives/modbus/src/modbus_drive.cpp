@@ -217,10 +217,24 @@ void ModbusDrive::clear_link_fault_if_reset() noexcept {
 
 bool ModbusDrive::exchange_sync(TimePoint now, std::chrono::milliseconds wait) {
   if (!config_.lockstep) return false;
-  std::unique_lock lock(mutex_);
-  trigger_now_ = now;
-  const std::uint64_t want = ++trigger_seq_;
+  exchange_start(now);
+  return exchange_wait(wait);
+}
+
+void ModbusDrive::exchange_start(TimePoint now) {
+  if (!config_.lockstep) return;
+  {
+    std::lock_guard lock(mutex_);
+    trigger_now_ = now;
+    ++trigger_seq_;
+  }
   cv_.notify_all();
+}
+
+bool ModbusDrive::exchange_wait(std::chrono::milliseconds wait) {
+  if (!config_.lockstep) return false;
+  std::unique_lock lock(mutex_);
+  const std::uint64_t want = trigger_seq_;
   return cv_.wait_for(lock, wait, [&] { return done_seq_ >= want || stop_; }) && done_seq_ >= want;
 }
 
