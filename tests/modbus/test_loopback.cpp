@@ -133,6 +133,49 @@ TEST(ModbusLoopback, FreeRunningOnRealTime) {
   EXPECT_GT(drive.link_stats().exchanges, 5u);
 }
 
+// A small drive with 16-bit registers only, written one register per request (FC 6), feedback
+// read with FC 3, positions scaled 4 increments per register unit.
+TEST(ModbusLoopback, Fc6ProfileWith16BitScaledValues) {
+  auto profile = modbus::parse_profile(R"(name: tiny
+state_machine: vendor
+function_codes: {read: 3, write: 6}
+bits: {enable: 0, fault_reset: 7, ready: 0, enabled: 1, fault: 3}
+registers:
+  control_word:    {address: 40}
+  target_position: {address: 41, type: s16, scale: 4}
+  status_word:     {address: 50}
+  actual_position: {address: 51, type: s16, scale: 4}
+)", "tiny.yaml");
+  ASSERT_TRUE(profile) << profile.error().describe();
+  mocks::ModbusDriveServer server(mocks::DriveDevice(*profile), {});
+  ASSERT_FALSE(server.start());
+  VirtualClock clock;
+  drives::ModbusDriveConfig c;
+  c.profile = *profile;
+  c.port = server.port();
+  c.lockstep = true;
+  drives::ModbusDrive drive(c, clock);
+  EXPECT_FALSE(drive.capabilities().velocity_mode);  // no mode / target velocity registers
+  DriveCommand cmd;
+  auto cycle = [&] {
+    clock.advance(milliseconds(1));
+    server.step(milliseconds(1));
+    ASSERT_TRUE(drive.exchange_sync(clock.now()));
+    drive.read({clock.now(), milliseconds(1)});
+    drive.write({clock.now(), milliseconds(1)}, cmd);
+  };
+  drive.request(DriveRequest::enable);
+  for (int i = 0; i < 5; ++i) cycle();
+  ASSERT_EQ(drive.feedback().state, DriveState::operation_enabled);
+  cmd.position_inc = -4000;  // register value -1000
+  for (int i = 0; i < 400; ++i) cycle();
+  EXPECT_EQ(drive.feedback().position_inc, -4000);
+  const auto raw = server.with_device([](mocks::DriveDevice& d) { return d.table().get(modbus::RegisterSpace::holding, 41); });
+  EXPECT_EQ(static_cast<std::int16_t>(raw), -1000);
+  EXPECT_EQ(server.stats().requests, 3 * drive.link_stats().exchanges);  // 2 x FC 6 + 1 x FC 3
+  EXPECT_EQ(drive.link_stats().errors, 0u);
+}
+
 TEST(ModbusLoopback, HomingIsRefusedNotFaked) {
   Loopback lb("cia402.yaml");
   EXPECT_FALSE(lb.drive->capabilities().homing);
