@@ -275,8 +275,15 @@ void ModbusDrive::worker() {
     modbus_set_slave(ctx.get(), config_.unit_id);
     modbus_set_error_recovery(ctx.get(), MODBUS_ERROR_RECOVERY_NONE);
   }
-  std::vector<std::vector<std::uint16_t>> command = shared_command_;
-  std::vector<std::vector<std::uint16_t>> image = shared_image_.blocks;
+  // Worker-local buffers sized like the shared ones (copied under the lock: the motion thread
+  // may already be writing commands).
+  std::vector<std::vector<std::uint16_t>> command;
+  std::vector<std::vector<std::uint16_t>> image;
+  {
+    std::lock_guard lock(mutex_);
+    command = shared_command_;
+    image = shared_image_.blocks;
+  }
   bool connected = false;
   TimePoint next_attempt{};
   Duration backoff = config_.backoff_min;
