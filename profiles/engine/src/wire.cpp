@@ -43,9 +43,11 @@ bool is_io_text(std::string_view t) {
 std::expected<std::int64_t, std::string> raw_of(const FieldSpec& f, const FieldValue& v) {
   const auto* d = std::get_if<Decimal>(&v);
   if (!d) return std::unexpected(fmt::format("{}: '{}' is not a number", f.name, std::get<std::string>(v)));
-  auto raw = make_fixed_point(*d, f.fixed);
+  // The word width is checked by each encoding; the scaling itself is done in 64 bits.
+  const FixedPointFormat wide{TwosComplementFormat{64, true}, f.fixed.lsb_num, f.fixed.lsb_den};
+  auto raw = make_fixed_point(*d, wide);
   if (!raw) return std::unexpected(fmt::format("{}: {}", f.name, raw.error().message));
-  auto back = parse_fixed_point(*raw, f.fixed);
+  auto back = parse_fixed_point(*raw, wide);
   if (!back || *back != *d)
     return std::unexpected(fmt::format("{}: {} is not a multiple of the unit step", f.name, d->to_string()));
   return *raw;
