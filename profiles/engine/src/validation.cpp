@@ -46,9 +46,16 @@ std::string field_label(const ParamVariant& v, const FieldSpec& f) { return v.fi
 
 Scope::Scope(const Profile& profile, const ParameterSet* set, const Settings& settings, std::optional<std::int64_t> instance,
              std::string instance_key)
-    : profile_(&profile), set_(set), settings_(&settings), instance_(instance), instance_key_(std::move(instance_key)) {}
+    : profile_(&profile), set_(set), settings_(std::make_shared<const Settings>(settings)), instance_(instance),
+      instance_key_(std::move(instance_key)) {}
 
-Scope Scope::with_instance(std::int64_t v, std::string key) const { return Scope(*profile_, set_, *settings_, v, std::move(key)); }
+Scope Scope::with_instance(std::int64_t v, std::string key) const {
+  Scope s(*this);
+  s.instance_ = v;
+  s.instance_key_ = std::move(key);
+  s.depth_ = 0;
+  return s;
+}
 
 Expression::Lookup Scope::as_lookup() const {
   return [this](std::string_view n) { return lookup(n); };

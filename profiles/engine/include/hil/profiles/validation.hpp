@@ -6,6 +6,7 @@
 // violations are reported (never only the first), each with parameter, value and rule.
 
 #include <map>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -31,7 +32,7 @@ public:
 private:
   const Profile* profile_;
   const ParameterSet* set_;
-  const Settings* settings_;
+  std::shared_ptr<const Settings> settings_;  // owned copy: a Scope may outlive the caller's map
   std::optional<std::int64_t> instance_;
   std::string instance_key_;
   mutable int depth_ = 0;  // guards against settings defined through each other
