@@ -280,6 +280,10 @@ public:
     ParamSpec p;
     p.id = str(n["id"], key + ".id", true);
     p.pattern = str(n["pattern"], key + ".pattern");
+    if (const auto& al = n["aliases"]; al) {
+      if (!al.IsSequence()) fail(al, key + ".aliases", "expected a list of names");
+      for (std::size_t i = 0; i < al.size(); ++i) p.aliases.push_back(str(al[i], key + ".aliases"));
+    }
     p.group = str(n["group"], key + ".group");
     p.source = str(n["source"], key + ".source");
     if (n["number"]) p.number = static_cast<int>(integer(n["number"], key + ".number"));

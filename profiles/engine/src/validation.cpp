@@ -232,7 +232,9 @@ std::vector<Problem> validate(const Profile& profile, const ParameterSet& set, c
                      fmt::format("{} does not exist for this configuration", e.ref.id())});
       continue;
     }
-    if (v->protection == Protection::read_only || v->protection == Protection::system) {
+    // read-only data (service data, versions) is never written; `system` data may be carried in a
+    // complete image (IP247 header words, WF MD 50) and is not an error.
+    if (v->protection == Protection::read_only) {
       out.push_back({e.line, e.ref.id(), "", e.text, std::string("protection ") + std::string(to_string(v->protection)),
                      fmt::format("{} ({}) cannot be written", e.ref.id(), v->name)});
     }

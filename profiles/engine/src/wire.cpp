@@ -278,7 +278,9 @@ std::expected<WireImage, std::string> encode_value(const Profile& p, const Param
           img.words.push_back(static_cast<std::uint16_t>(*w));
         }
         if (!img.text.empty()) img.text += p.wire.separator;
-        img.text += wide ? hex_word_text(*w, 8) : fmt::format("{:0{}X}", *w, byte ? 2 : 4);
+        // bytes are shown in their word position (DL 07 = "0700") so the text decodes back
+        const std::uint64_t shown = enc == Encoding::byte_l ? (*w << 8) : *w;
+        img.text += wide ? hex_word_text(*w, 8) : fmt::format("{:04X}", shown);
         break;
       }
     }

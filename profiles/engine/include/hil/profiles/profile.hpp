@@ -114,6 +114,7 @@ struct ParamVariant {
 struct ParamSpec {
   std::string id;                ///< template id: "Ax06", "MD11", "MD204*", "B002"
   std::string pattern;           ///< concrete id pattern with "{axis}" ("A{axis}06"); "" = id
+  std::vector<std::string> aliases;  ///< further names resolve() accepts ("fmax" for IP247 "DW5")
   std::string instance_key;      ///< "axis" when instanced
   std::vector<std::int64_t> instances;  ///< values of instance_key
   int number = 0;                ///< number inside its group
