@@ -216,6 +216,7 @@ public:
         f.bits.fields.push_back(std::move(d));
       }
     }
+    if (n["binary"]) f.binary_text = n["binary"].as<bool>(false);
     if (const std::string e = str(n["encoding"], key + ".encoding"); !e.empty()) {
       f.encoding = parse_encoding(e);
       if (!f.encoding) fail(n["encoding"], key + ".encoding", "expected text, bcd_binary, KF, KH, KY, KD, DL, DR or fixed");

@@ -107,6 +107,11 @@ std::expected<FieldValue, std::string> parse_field_input(const FieldSpec& f, std
       return FieldValue{Decimal{static_cast<std::int64_t>(*v), 0}};
     }
     case FieldType::bits: {
+      if (f.binary_text && text.size() == f.bits.bits && text.find_first_not_of("01") == std::string_view::npos) {
+        std::uint64_t w = 0;
+        for (char c : text) w = (w << 1) | static_cast<std::uint64_t>(c - '0');
+        return FieldValue{Decimal{static_cast<std::int64_t>(w), 0}};
+      }
       if (auto d = parse_decimal(text); d) {
         if (d->scale != 0 || d->units < 0) return std::unexpected(fmt::format("'{}': a bit field is a non-negative integer", text));
         if (auto b = parse_bit_field(static_cast<std::uint64_t>(d->units), f.bits); !b) return std::unexpected(b.error().message);
@@ -179,6 +184,8 @@ std::string value_text(const ParamVariant& v, const ParamValue& value) {
       if (f.type == FieldType::hex)
         if (const auto* d = std::get_if<Decimal>(&value[i])) t = fmt::format("{:0{}X}", d->units, f.hex_digits);
       if (f.type == FieldType::reserved && t.empty()) continue;
+      if (f.type == FieldType::bits && f.binary_text)
+        if (auto b = make_field_text(f, value[i])) t = *b;
     }
     if (!s.empty()) s += ' ';
     s += t;
@@ -204,6 +211,13 @@ std::expected<std::string, std::string> make_field_text(const FieldSpec& f, cons
     default: {
       const auto* d = std::get_if<Decimal>(&v);
       if (!d) return std::unexpected(fmt::format("{}: expected a number", f.name));
+      if (f.type == FieldType::bits && f.binary_text) {
+        if (d->scale != 0 || d->units < 0 || (f.bits.bits < 63 && d->units >= (std::int64_t{1} << f.bits.bits)))
+          return std::unexpected(fmt::format("{}: {} does not fit {} bits", f.name, d->to_string(), f.bits.bits));
+        std::string b;
+        for (int i = static_cast<int>(f.bits.bits) - 1; i >= 0; --i) b += ((d->units >> i) & 1) ? '1' : '0';
+        return b;
+      }
       auto t = make_decimal_text(*d, f.text);
       if (!t) return std::unexpected(fmt::format("{}: {}", f.name, t.error().message));
       return *t;
@@ -216,6 +230,13 @@ std::expected<FieldValue, std::string> parse_field_text(const FieldSpec& f, std:
     case FieldType::io_address:
     case FieldType::reserved:
     case FieldType::hex: return parse_field_input(f, text);
+    case FieldType::bits:
+      if (f.binary_text) {
+        if (text.size() != f.bits.bits || text.find_first_not_of("01") != std::string_view::npos)
+          return std::unexpected(fmt::format("{}: '{}' is not {} binary digits", f.name, text, f.bits.bits));
+        return parse_field_input(f, text);
+      }
+      [[fallthrough]];
     default: {
       auto d = parse_decimal_text(text, f.text);
       if (!d) return std::unexpected(fmt::format("{}: {}", f.name, d.error().message));

@@ -93,6 +93,7 @@ struct FieldSpec {
   std::vector<StepRule> steps;
   std::vector<Choice> choices;
   BitFieldFormat bits;
+  bool binary_text = false;      ///< bits: text form is bits.bits binary digits, MSB first ("00100010")
   std::optional<Encoding> encoding;  ///< overrides the profile's wire encoding
   FixedPointFormat fixed;        ///< Encoding::fixed
   int word = -1;                 ///< word-image devices: data word offset of this field
