@@ -129,8 +129,11 @@ TEST(CanopenEndToEnd, EightNodesBootMoveInCspAndRecoverFromAFault) {
   EXPECT_NE(fault.text.find("Continuous over-current"), std::string::npos) << fault.text;
   EXPECT_EQ(m.drives[3]->feedback().state, DriveState::operation_enabled);
   m.drives[2]->request(DriveRequest::fault_reset);
-  m.run(20ms);
+  m.run(5ms);
+  EXPECT_EQ(m.drives[2]->feedback().state, DriveState::not_ready) << "reset acknowledged, not yet confirmed";
+  m.run(250ms);
   EXPECT_EQ(m.drives[2]->feedback().state, DriveState::fault) << "reset is refused while the cause persists";
+  EXPECT_NE(m.drives[2]->feedback().fault.text.find("refused"), std::string::npos);
   m.nodes[2]->inject_fault("overcurrent", false, m.clock.now());
   m.drives[2]->request(DriveRequest::fault_reset);
   ASSERT_TRUE(m.run_until([&] { return m.drives[2]->feedback().state == DriveState::switch_on_disabled; }, 50ms));

@@ -78,18 +78,37 @@ void Cia402Drive::read(const CycleTime& cycle) {
     return;
   }
   if (!booted_ || !last_feedback_) {
+    // Booting (SDO configuration in progress): not ready, and no data is not stale data.
     feedback_.state = DriveState::not_ready;
+    feedback_.age = Duration::zero();
     return;
   }
   statusword_ = static_cast<std::uint16_t>(img.get_int(k_sw, 0));
   feedback_.position_inc = img.get_int(k_actual_pos, 0);
   feedback_.velocity_inc_per_s = static_cast<double>(img.get_int(k_actual_vel, 0));
   const auto state = decode_state(statusword_);
+  raw_state_ = state;
   if (heartbeat_lost_) {
     feedback_.state = DriveState::fault;
     return;
   }
   feedback_.state = state;
+  const bool faulted = state == DriveState::fault || state == DriveState::fault_reaction_active;
+  if (reset_pending_) {
+    if (!reset_deadline_) reset_deadline_ = cycle.now + options_.reset_timeout;
+    if (!faulted) {
+      reset_pending_ = false;
+    } else if (cycle.now < *reset_deadline_) {
+      feedback_.state = DriveState::not_ready;  // acknowledged, the drive has not confirmed yet
+      feedback_.fault = {};
+      return;
+    } else {
+      reset_pending_ = false;
+      const auto code = static_cast<std::uint16_t>(img.get_int(k_error, 0));
+      set_fault(make_cia402_error(code), fmt::format("{} (node {}): fault reset refused, the cause persists", describe(code), node_));
+      return;
+    }
+  }
   if (state == DriveState::fault || state == DriveState::fault_reaction_active) {
     auto code = static_cast<std::uint16_t>(img.get_int(k_error, 0));
     if (code == 0) code = emcy_code_;
@@ -123,7 +142,7 @@ void Cia402Drive::read(const CycleTime& cycle) {
 
 void Cia402Drive::write(const CycleTime& cycle, const DriveCommand& command) {
   auto& img = network_.master().image(node_);
-  const auto state = feedback_.state;
+  const auto state = raw_state_;
   std::uint16_t cwv = controlword_toward(state, goal_, controlword_);
   if (heartbeat_lost_) cwv = cw::cmd_disable_voltage;
   Mode mode = command.mode == CommandMode::velocity ? Mode::cyclic_sync_velocity : Mode::cyclic_sync_position;
@@ -158,6 +177,8 @@ bool Cia402Drive::request(DriveRequest r) {
     case DriveRequest::disable: goal_ = DriveState::switch_on_disabled; return true;
     case DriveRequest::quick_stop: goal_ = DriveState::quick_stop_active; return true;
     case DriveRequest::fault_reset:
+      reset_pending_ = true;
+      reset_deadline_.reset();
       heartbeat_lost_ = false;
       emcy_code_ = 0;
       feedback_.fault = {};

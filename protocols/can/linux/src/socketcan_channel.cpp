@@ -130,9 +130,25 @@ struct SocketCanChannel::Impl : std::enable_shared_from_this<SocketCanChannel::I
     }
   }
 
+  /// Caller holds `mu` and runs on the executor.
   void arm_locked(bool enobufs) {
     if (waiting) return;
     waiting = true;
+    start_wait(enobufs);
+  }
+
+  /// From send() on any thread: the descriptor and timer may only be touched on the executor.
+  void arm_from_any_thread_locked(bool enobufs) {
+    if (waiting) return;
+    waiting = true;
+    asio::post(desc.get_executor(), [self = shared_from_this(), enobufs] {
+      std::lock_guard lock(self->mu);
+      if (self->closed) return;
+      self->start_wait(enobufs);
+    });
+  }
+
+  void start_wait(bool enobufs) {
     auto self = shared_from_this();
     if (!enobufs) {
       desc.async_wait(asio::posix::stream_descriptor::wait_write, [self](const std::error_code& ec) { self->on_retry(ec); });
@@ -319,7 +335,7 @@ std::error_code SocketCanChannel::send(const Frame& frame) {
         const bool enobufs = r == Impl::WriteResult::retry_later;
         impl_->queue.push_back(k);
         impl_->stats.tx_queue_high_water = std::max<std::uint64_t>(impl_->stats.tx_queue_high_water, 1);
-        impl_->arm_locked(enobufs);
+        impl_->arm_from_any_thread_locked(enobufs);
         return {};
       }
     }

@@ -279,4 +279,9 @@ std::string SocketcandChannel::last_server_error() const {
 
 bool SocketcandChannel::connected() const noexcept { return !impl_->is_closed(); }
 
+std::size_t SocketcandChannel::tx_pending_bytes() const {
+  std::lock_guard lock(impl_->mu);
+  return impl_->pending.size() + (impl_->writing ? impl_->outbox.size() + 1 : 0);
+}
+
 }  // namespace hil::can::socketcand

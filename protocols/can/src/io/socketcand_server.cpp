@@ -97,7 +97,9 @@ private:
       auto ch = shared_->opener(open->bus, peer_);
       if (!ch) {
         ++shared_->stats.bus_open_failures;
-        reply_error("could not open bus");  // the daemon's words; it then closes the connection
+        std::string out;
+        format_error_text(out, "could not open bus");  // the daemon's words; it then closes the connection
+        write(out);
         close_after_write_ = true;
         return;
       }

@@ -20,6 +20,10 @@ struct DriveOptions {
   bool homing = true;                     ///< accepts DriveRequest::home (mode 6 with the node's 0x6098 method)
   Duration homing_timeout{std::chrono::seconds(30)};
   Duration stale_after{std::chrono::milliseconds(50)};  ///< feedback older than this counts as lost
+  /// After request(fault_reset) the drive reports not_ready (no fault) while it walks the
+  /// fault-reset edge, for at most this long; a fault that is still there afterwards is reported
+  /// again ("fault reset refused").
+  Duration reset_timeout{std::chrono::milliseconds(200)};
 };
 
 class Cia402Drive final : public Drive {
@@ -63,6 +67,9 @@ private:
   bool homing_started_ = false;
   TimePoint homing_deadline_{};
   std::optional<TimePoint> last_feedback_;
+  DriveState raw_state_ = DriveState::not_ready;  ///< from the statusword, before reset masking
+  bool reset_pending_ = false;
+  std::optional<TimePoint> reset_deadline_;
 };
 
 }  // namespace hil::cia402

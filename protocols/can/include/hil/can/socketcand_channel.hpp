@@ -45,6 +45,8 @@ public:
   /// Text of the last `< error ... >` the server sent (empty if none).
   [[nodiscard]] std::string last_server_error() const;
   [[nodiscard]] bool connected() const noexcept;
+  /// Bytes accepted by send() and not yet handed to the kernel (0 = flushed).
+  [[nodiscard]] std::size_t tx_pending_bytes() const;
 
   struct Impl;
 

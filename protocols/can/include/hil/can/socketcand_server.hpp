@@ -35,7 +35,7 @@ struct ServerOptions {
   std::size_t max_clients = 32;
   std::size_t max_output_bytes = 1u << 20;  ///< per client; frames beyond are dropped and counted
   /// Receive time (bus clock) -> wire timestamp. Default: wall clock (offset taken at construction).
-  std::function<Timestamp(TimePoint)> to_wire_time;
+  std::function<Timestamp(TimePoint)> to_wire_time{};
 };
 
 struct ServerStats {
