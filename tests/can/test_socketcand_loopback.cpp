@@ -208,6 +208,24 @@ TEST(SocketcandLoopback, SurvivesGarbageAndClientsVanishingMidElement) {
   hub.run([&] { local.reset(); });
 }
 
+TEST(SocketcandLoopback, JoinGraceHoldsFramesBackRightAfterRawMode) {
+  sc::ServerOptions options;
+  options.raw_mode_grace = std::chrono::hours(1);
+  Hub hub(options);
+  auto local = hub.run([&] { return hub.bus.attach("local"); });
+  Inbox rx;
+  auto a = connect(hub);
+  ASSERT_TRUE(a);
+  a->set_receive_handler(rx.handler());
+  hub.run([&] { EXPECT_FALSE(local->send(can::make_frame(0x80, {}))); });
+  // Bounded wait for the bus to deliver; nothing may reach the client.
+  for (int i = 0; i < 200 && hub.run([&] { return hub.server->stats().dropped_during_grace; }) == 0; ++i) {
+  }
+  EXPECT_EQ(hub.run([&] { return hub.server->stats().dropped_during_grace; }), 1u);
+  EXPECT_TRUE(rx.snapshot().empty());
+  hub.run([&] { local.reset(); });
+}
+
 TEST(SocketcandLoopback, ClientSeesServerDisconnectAsNetworkDown) {
   auto hub = std::make_unique<Hub>();
   auto a = connect(*hub);
