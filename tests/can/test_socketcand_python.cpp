@@ -63,11 +63,11 @@ int connect_python_while_busy(std::chrono::milliseconds grace) {
   options.raw_mode_grace = grace;
   Hub hub(options);
   auto local = hub.run([&] { return hub.bus.attach("sync-producer"); });
-  asio::steady_timer timer(hub.io);
+  auto timer = hub.run([&] { return std::make_unique<asio::steady_timer>(hub.io); });
   std::function<void()> tick = [&] {
     (void)local->send(can::make_frame(0x080, {}));
-    timer.expires_after(std::chrono::microseconds(200));
-    timer.async_wait([&](const std::error_code& ec) {
+    timer->expires_after(std::chrono::microseconds(200));
+    timer->async_wait([&](const std::error_code& ec) {
       if (!ec) tick();
     });
   };
@@ -82,7 +82,7 @@ int connect_python_while_busy(std::chrono::milliseconds grace) {
                  "sys.exit(0 if m is not None and m.arbitration_id == 0x80 else 3)\n"});
   const int rc = py.wait(std::chrono::seconds(60));
   hub.run([&] {
-    timer.cancel();
+    timer.reset();  // I/O objects are destroyed on their executor
     local.reset();
   });
   return rc;
