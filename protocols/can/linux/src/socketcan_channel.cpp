@@ -79,8 +79,10 @@ struct SocketCanChannel::Impl : std::enable_shared_from_this<SocketCanChannel::I
   const Clock& clock;
   SocketCanOptions options;
   int raw_fd;
-  ReceiveHandler handler;                       // executor only
-  std::function<void(BusState)> state_handler;  // executor only
+  // Held while a handler runs (see SocketcandChannel): destruction from any thread is safe.
+  std::recursive_mutex handler_mu;
+  ReceiveHandler handler;
+  std::function<void(BusState)> state_handler;
 
   mutable std::mutex mu;  // guards the fields below
   std::deque<can_frame> queue;
@@ -227,6 +229,7 @@ struct SocketCanChannel::Impl : std::enable_shared_from_this<SocketCanChannel::I
           ++stats.channel.rx_frames;
         }
       }
+      std::lock_guard hl(handler_mu);
       if (new_state && state_handler) state_handler(*new_state);
       if (f.error && !options.deliver_error_frames) continue;
       if (handler) handler(f, clock.now());
@@ -240,9 +243,9 @@ struct SocketCanChannel::Impl : std::enable_shared_from_this<SocketCanChannel::I
     return closed;
   }
 
+  /// Executor only (the descriptor and timer belong to it).
   void close() {
     std::lock_guard lock(mu);
-    if (closed) return;
     closed = true;
     queue.clear();
     std::error_code ec;
@@ -311,9 +314,17 @@ SocketCanChannel::SocketCanChannel(std::shared_ptr<Impl> impl, std::string name)
     : impl_(std::move(impl)), name_(std::move(name)) {}
 
 SocketCanChannel::~SocketCanChannel() {
-  impl_->handler = nullptr;
-  impl_->state_handler = nullptr;
-  impl_->close();
+  {
+    std::lock_guard hl(impl_->handler_mu);
+    impl_->handler = nullptr;
+    impl_->state_handler = nullptr;
+  }
+  {
+    std::lock_guard lock(impl_->mu);
+    impl_->closed = true;  // no more sends; the queue is dropped
+    impl_->queue.clear();
+  }
+  asio::post(impl_->desc.get_executor(), [impl = impl_] { impl->close(); });
 }
 
 std::error_code SocketCanChannel::send(const Frame& frame) {
@@ -349,8 +360,14 @@ std::error_code SocketCanChannel::send(const Frame& frame) {
   return {};
 }
 
-void SocketCanChannel::set_receive_handler(ReceiveHandler handler) { impl_->handler = std::move(handler); }
-void SocketCanChannel::set_state_handler(std::function<void(BusState)> handler) { impl_->state_handler = std::move(handler); }
+void SocketCanChannel::set_receive_handler(ReceiveHandler handler) {
+  std::lock_guard hl(impl_->handler_mu);
+  impl_->handler = std::move(handler);
+}
+void SocketCanChannel::set_state_handler(std::function<void(BusState)> handler) {
+  std::lock_guard hl(impl_->handler_mu);
+  impl_->state_handler = std::move(handler);
+}
 
 ChannelStats SocketCanChannel::stats() const noexcept {
   std::lock_guard lock(impl_->mu);
