@@ -50,6 +50,14 @@ bool profile_step(double& pos, double& vel, double target, double vmax, double a
 
 }  // namespace
 
+can::FilterSet predefined_filters(canopen::NodeId node) {
+  can::FilterSet f;
+  f.filters = {can::Filter::exact(0x000), can::Filter::exact(0x080), can::Filter::exact(0x600u + node),
+               can::Filter::exact(0x700u + node)};
+  for (std::uint32_t base : {0x200u, 0x300u, 0x400u, 0x500u}) f.filters.push_back(can::Filter::exact(base + node));
+  return f;
+}
+
 Cia402Node::Cia402Node(can::Channel& channel, Cia402NodeOptions options)
     : channel_(channel), options_(options),
       slave_(load_od(options.node), options.node, [this](const can::Frame& f) { (void)channel_.send(f); }, options.sdo),
