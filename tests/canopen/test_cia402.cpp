@@ -220,3 +220,19 @@ TEST_F(NodeBench, FaultInjectionOverSdoObjects) {
   EXPECT_EQ(node.state(), DriveState::fault);
   EXPECT_EQ(node.od().get_int(0x603F, 0), 0x4310);
 }
+
+TEST_F(NodeBench, LosingTheMastersHeartbeatStopsTheDrive) {
+  sdo_write(0x1016, 1, 0x007F0032);  // monitor node 127 (the master), 50 ms
+  send({0x05}, 0x77F);
+  enable(8);
+  for (int i = 0; i < 10; ++i) {
+    send({0x05}, 0x77F);
+    run(20ms);
+  }
+  EXPECT_EQ(node.state(), DriveState::operation_enabled) << "heartbeats keep coming";
+  run(60ms);
+  EXPECT_NE(node.state(), DriveState::operation_enabled);
+  run(30ms);
+  EXPECT_EQ(node.state(), DriveState::fault);
+  EXPECT_EQ(node.od().get_int(0x603F, 0), 0x8130);
+}

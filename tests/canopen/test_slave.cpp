@@ -145,3 +145,13 @@ TEST_F(SlaveFixture, RpdoWritesMappedObjectsAndLengthErrorsRaiseEmcy) {
   EXPECT_EQ(slave->od().get_int(0x607A, 0), 1000);
   EXPECT_EQ(slave->od().get_int(0x6040, 0), 0x001F);
 }
+
+TEST_F(SlaveFixture, HeartbeatConsumerOfTheMasterRaisesEmcy8130) {
+  rec.take();
+  EXPECT_EQ(send({"604#2316100164007F00"}), Strings{"584#6016100100000000"}) << "0x1016:1 = node 127, 100 ms";
+  EXPECT_TRUE(step(500ms).empty()) << "no heartbeat seen yet: no monitoring";
+  send({"77F#05"});
+  EXPECT_TRUE(step(100ms).empty());
+  EXPECT_EQ(step(2ms), Strings{"084#3081100000000000"}) << "EMCY 0x8130, error register: communication";
+  EXPECT_TRUE(step(500ms).empty()) << "once per loss";
+}

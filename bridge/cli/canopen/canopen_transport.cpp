@@ -146,7 +146,9 @@ public:
       for (auto r : {plant("kv", o.plant.kv_per_s), plant("max_velocity", o.plant.max_velocity_inc_per_s),
                      plant("velocity_lag", o.plant.velocity_lag_s), plant("feedforward", o.plant.velocity_feedforward)})
         if (!r) return std::unexpected(r.error());
-      bus.node_channels.push_back(bus.vbus->attach(fmt::format("node{}", nid)));
+      can::ParticipantOptions po;
+      po.filters = mocks::predefined_filters(static_cast<canopen::NodeId>(nid));  // like the node's CAN controller
+      bus.node_channels.push_back(bus.vbus->attach(fmt::format("node{}", nid), po));
       bus.nodes.push_back(std::make_unique<mocks::Cia402Node>(*bus.node_channels.back(), o));
       sim = bus.nodes.back().get();
     }

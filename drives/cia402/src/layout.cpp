@@ -41,6 +41,10 @@ canopen::NodeConfig make_axis_node_config(const canopen::DeviceDescription& eds,
   c.configuration = eds.parameter_values;
   const auto hb_ms = std::chrono::duration_cast<std::chrono::milliseconds>(o.heartbeat_producer).count();
   c.configuration.push_back({0x1017, 0, le(static_cast<std::uint64_t>(hb_ms), 2)});
+  if (o.master_node != 0) {
+    const auto ms = std::chrono::duration_cast<std::chrono::milliseconds>(o.master_heartbeat_timeout).count();
+    c.configuration.push_back({0x1016, 1, le((std::uint64_t{o.master_node} << 16) | (static_cast<std::uint64_t>(ms) & 0xFFFF), 4)});
+  }
   const std::vector<PdoMappingEntry> rpdo1{{0x6040, 0, 16}, {0x6060, 0, 8}};
   const std::vector<PdoMappingEntry> rpdo2{{0x607A, 0, 32}, {0x60FF, 0, 32}};
   const std::vector<PdoMappingEntry> tpdo1{{0x6041, 0, 16}, {0x6061, 0, 8}, {0x603F, 0, 16}};

@@ -50,12 +50,31 @@ bool profile_step(double& pos, double& vel, double target, double vmax, double a
 
 }  // namespace
 
+can::FilterSet predefined_filters(canopen::NodeId node) {
+  can::FilterSet f;
+  f.filters = {can::Filter::exact(0x000), can::Filter::exact(0x080), can::Filter::exact(0x600u + node),
+               can::Filter::exact(0x700u + node)};
+  for (std::uint32_t base : {0x200u, 0x300u, 0x400u, 0x500u}) f.filters.push_back(can::Filter::exact(base + node));
+  return f;
+}
+
 Cia402Node::Cia402Node(can::Channel& channel, Cia402NodeOptions options)
     : channel_(channel), options_(options),
       slave_(load_od(options.node), options.node, [this](const can::Frame& f) { (void)channel_.send(f); }, options.sdo),
       plant_(options.plant) {
   channel_.set_receive_handler([this](const can::Frame& f, TimePoint t) { on_frame(f, t); });
   slave_.on_sync = [this](std::optional<std::uint8_t>, TimePoint now) { on_sync(now); };
+  slave_.on_heartbeat = [this](canopen::NodeId, canopen::HeartbeatEvent e, TimePoint now) {
+    // Lost master: a drive that is powered stops (CiA 402 fault reaction, error 0x8130).
+    if (e == canopen::HeartbeatEvent::timeout && state_ != DriveState::fault && state_ != DriveState::fault_reaction_active &&
+        state_ != DriveState::switch_on_disabled && state_ != DriveState::not_ready) {
+      state_ = DriveState::fault_reaction_active;
+      fault_code_ = 0x8130;
+      fault_since_ = now;
+      ++stats_.faults;
+      slave_.od().set_int(0x603F, 0, 0x8130);
+    }
+  };
   slave_.on_reset = [this](bool application) {
     if (application) {
       state_ = DriveState::not_ready;

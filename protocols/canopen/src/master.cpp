@@ -60,7 +60,10 @@ void Master::add_node(NodeConfig config) {
   n.sdo = std::make_unique<SdoClient>(id, sink_, options_.sdo);
   n.image = std::make_unique<ObjectDictionary>(std::move(config.image));
   n.pdo = std::make_unique<PdoEngine>(*n.image, sink_);
-  for (const auto& p : config.rx_pdos) n.pdo->add_rpdo(p);
+  for (const auto& p : config.rx_pdos) {
+    n.pdo->add_rpdo(p);
+    pdo_owner_[p.cob_id & 0x1FFFFFFF] = id;
+  }
   for (const auto& p : config.tx_pdos) n.pdo->add_tpdo(p);
   n.pdo->set_rpdo_handler([this, id](std::uint32_t, TimePoint now) {
     auto& st = nodes_.at(id).status;
@@ -222,8 +225,10 @@ bool Master::on_frame(const can::Frame& f, TimePoint now) {
     }
     return false;
   }
-  for (auto& [nid, n] : nodes_)
-    if (n.pdo->on_frame(f, now)) return true;
+  if (auto it = pdo_owner_.find(id); it != pdo_owner_.end()) {
+    auto n = nodes_.find(it->second);
+    return n != nodes_.end() && n->second.pdo->on_frame(f, now);
+  }
   return false;
 }
 

@@ -22,20 +22,43 @@ std::int64_t Variable::as_int() const noexcept {
 }
 std::uint64_t Variable::as_uint() const noexcept { return static_cast<std::uint64_t>(as_int()); }
 
+ObjectDictionary::ObjectDictionary(const ObjectDictionary& other)
+    : vars_(other.vars_), validators_(other.validators_), observers_(other.observers_), max_value_size_(other.max_value_size_) {
+  rebuild_index();
+}
+
+ObjectDictionary& ObjectDictionary::operator=(const ObjectDictionary& other) {
+  if (this != &other) {
+    vars_ = other.vars_;
+    validators_ = other.validators_;
+    observers_ = other.observers_;
+    max_value_size_ = other.max_value_size_;
+    rebuild_index();
+  }
+  return *this;
+}
+
+void ObjectDictionary::rebuild_index() {
+  index_.clear();
+  index_.reserve(vars_.size());
+  for (auto& [key, v] : vars_) index_[key] = &v;
+}
+
 Variable& ObjectDictionary::add(Variable v) {
   if (const auto n = data_type_size(v.type); n != 0) v.value.resize(n, 0);
   const auto key = v.key();
   auto [it, inserted] = vars_.insert_or_assign(key, std::move(v));
+  index_[key] = &it->second;
   return it->second;
 }
 
 Variable* ObjectDictionary::find(std::uint16_t index, std::uint8_t sub) noexcept {
-  auto it = vars_.find((std::uint32_t{index} << 8) | sub);
-  return it == vars_.end() ? nullptr : &it->second;
+  auto it = index_.find((std::uint32_t{index} << 8) | sub);
+  return it == index_.end() ? nullptr : it->second;
 }
 const Variable* ObjectDictionary::find(std::uint16_t index, std::uint8_t sub) const noexcept {
-  auto it = vars_.find((std::uint32_t{index} << 8) | sub);
-  return it == vars_.end() ? nullptr : &it->second;
+  auto it = index_.find((std::uint32_t{index} << 8) | sub);
+  return it == index_.end() ? nullptr : it->second;
 }
 
 bool ObjectDictionary::has_object(std::uint16_t index) const noexcept {

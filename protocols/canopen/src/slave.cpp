@@ -5,8 +5,13 @@ namespace hil::canopen {
 
 Slave::Slave(ObjectDictionary od, NodeId node, FrameSink sink, SdoServerOptions sdo)
     : defaults_(od), od_(std::move(od)), node_(node), sink_(std::move(sink)), sdo_(od_, node, sink_, sdo),
-      pdo_(od_, sink_), heartbeat_(node, sink_), emcy_(node, sink_) {
-  for (const std::uint16_t idx : {std::uint16_t{0x1005}, std::uint16_t{0x1014}, std::uint16_t{0x1015}, std::uint16_t{0x1017}})
+      pdo_(od_, sink_), heartbeat_(node, sink_), emcy_(node, sink_),
+      consumer_([this](NodeId id, HeartbeatEvent e, NmtState) {
+        if (e == HeartbeatEvent::timeout) raise_emcy(emcy_code::heartbeat, error_register::communication, {}, last_now_);
+        if (on_heartbeat) on_heartbeat(id, e, last_now_);
+      }) {
+  for (const std::uint16_t idx : {std::uint16_t{0x1005}, std::uint16_t{0x1014}, std::uint16_t{0x1015}, std::uint16_t{0x1016},
+                                  std::uint16_t{0x1017}})
     od_.add_observer(idx, [this](const Variable&) { comm_dirty_ = true; });
   pdo_.set_error_handler([this](std::uint16_t code, std::uint32_t) {
     raise_emcy(code, error_register::communication, {}, last_now_);
@@ -25,6 +30,9 @@ void Slave::apply_comm_parameters(TimePoint now) {
   sync_cob_ = od_.find(0x1005, 0) ? static_cast<std::uint32_t>(od_.get_int(0x1005, 0)) & 0x7FF : cob_sync;
   heartbeat_.set_period(std::chrono::milliseconds(od_.get_int(0x1017, 0)), now);
   emcy_.set_inhibit(std::chrono::microseconds(100 * od_.get_int(0x1015, 0)));
+  for (NodeId id = 1; id <= 127; ++id) consumer_.set_consumer(id, Duration::zero());
+  for (std::uint8_t sub = 1; sub < 128 && od_.find(0x1016, sub) != nullptr; ++sub)
+    consumer_.set_consumer_entry(static_cast<std::uint32_t>(od_.get_int(0x1016, sub)));
 }
 
 void Slave::start(TimePoint now) {
@@ -77,6 +85,7 @@ bool Slave::on_frame(const can::Frame& f, TimePoint now) {
     }
     return true;
   }
+  if (consumer_.on_frame(f, now)) return true;
   if (f.rtr && f.id == cob_heartbeat_base + node_) {  // node guarding request
     if (!hb_muted_) {
       sink_(make_guard_response(node_, state_, guard_toggle_));
@@ -103,6 +112,7 @@ void Slave::step(TimePoint now) {
   if (comm_dirty_) apply_comm_parameters(now);
   if (state_ == NmtState::initialising) return;
   heartbeat_.step(now, state_);
+  consumer_.step(now);
   sdo_.step(now);
   emcy_.step(now);
   pdo_.step(now);

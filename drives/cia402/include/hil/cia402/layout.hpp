@@ -21,6 +21,8 @@ struct AxisOptions {
   Duration heartbeat_producer{std::chrono::milliseconds(20)};  ///< written to the node's 0x1017
   Duration heartbeat_consumer{std::chrono::milliseconds(60)};  ///< master-side supervision (0 = off)
   bool check_identity = true;  ///< compare 0x1000 / 0x1018:1..3 with the EDS
+  canopen::NodeId master_node = 0;  ///< the master's node-ID when it produces a heartbeat (0 = node does not monitor it)
+  Duration master_heartbeat_timeout{std::chrono::milliseconds(100)};  ///< node's consumer time 0x1016:1
 };
 
 /// Node configuration for `Master::add_node` from the node's EDS/DCF: identity expectations,

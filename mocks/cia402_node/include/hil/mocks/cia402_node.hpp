@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "hil/can/channel.hpp"
+#include "hil/can/filter.hpp"
 #include "hil/canopen/eds.hpp"
 #include "hil/canopen/slave.hpp"
 #include "hil/cia402/cia402.hpp"
@@ -24,6 +25,11 @@ namespace hil::mocks {
 
 /// The EDS text the simulated node is built from (profiles/canopen/hil_cia402_drive.eds).
 [[nodiscard]] std::string_view cia402_node_eds() noexcept;
+
+/// Acceptance filter of a node on the predefined connection set (CiA 301 §7.3.5): NMT, SYNC,
+/// its SDO request, its guarding RTR and its four RPDOs at 0x200/0x300/0x400/0x500 + id. Like a
+/// CAN controller's hardware filter: apply it only while the RPDO COB-IDs stay predefined.
+[[nodiscard]] can::FilterSet predefined_filters(canopen::NodeId node);
 
 struct Cia402NodeOptions {
   canopen::NodeId node = 1;

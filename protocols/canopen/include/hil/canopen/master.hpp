@@ -18,6 +18,7 @@
 #include <optional>
 #include <string>
 #include <system_error>
+#include <unordered_map>
 #include <vector>
 
 #include "hil/canopen/eds.hpp"
@@ -139,6 +140,7 @@ private:
   FrameSink sink_;
   MasterOptions options_;
   std::map<NodeId, Node> nodes_;
+  std::unordered_map<std::uint32_t, NodeId> pdo_owner_;  ///< received PDO COB-ID -> node
   HeartbeatConsumer heartbeat_;
   std::optional<HeartbeatProducer> producer_;
   SyncProducer sync_;

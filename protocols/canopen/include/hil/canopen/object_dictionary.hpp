@@ -15,6 +15,7 @@
 #include <optional>
 #include <span>
 #include <string>
+#include <unordered_map>
 #include <vector>
 
 #include "hil/canopen/data_type.hpp"
@@ -50,6 +51,12 @@ public:
   /// Told after a value changed through write() or write_mapped().
   using Observer = std::function<void(const Variable& var)>;
 
+  ObjectDictionary() = default;
+  ObjectDictionary(const ObjectDictionary& other);
+  ObjectDictionary& operator=(const ObjectDictionary& other);
+  ObjectDictionary(ObjectDictionary&&) noexcept = default;
+  ObjectDictionary& operator=(ObjectDictionary&&) noexcept = default;
+
   /// Add (or replace) a sub-object. Fixed-size values are resized to the type's size.
   Variable& add(Variable v);
   [[nodiscard]] Variable* find(std::uint16_t index, std::uint8_t sub) noexcept;
@@ -81,7 +88,9 @@ public:
 
 private:
   void notify(const Variable& v) const;
+  void rebuild_index();
   std::map<std::uint32_t, Variable> vars_;
+  std::unordered_map<std::uint32_t, Variable*> index_;  ///< O(1) find() on the cyclic path
   std::map<std::uint16_t, Validator> validators_;
   std::map<std::uint16_t, std::vector<Observer>> observers_;
   std::size_t max_value_size_ = 64 * 1024;

@@ -44,6 +44,9 @@ public:
   std::function<void(std::optional<std::uint8_t> counter, TimePoint now)> on_sync;
   std::function<void(NmtState state)> on_state;
   std::function<void(bool application)> on_reset;  ///< true: reset node, false: reset communication
+  /// Heartbeat consumer (0x1016) events about the monitored nodes (usually the master). On a
+  /// timeout the slave has already raised EMCY 0x8130.
+  std::function<void(NodeId node, HeartbeatEvent event, TimePoint now)> on_heartbeat;
 
   /// Fault injection: stop heartbeats / guarding answers (the node keeps running).
   void set_heartbeat_muted(bool m) noexcept {
@@ -64,6 +67,7 @@ private:
   PdoEngine pdo_;
   HeartbeatProducer heartbeat_;
   EmcyProducer emcy_;
+  HeartbeatConsumer consumer_;
   NmtState state_ = NmtState::initialising;
   std::uint32_t sync_cob_ = cob_sync;
   bool guard_toggle_ = false;
