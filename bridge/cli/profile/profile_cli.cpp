@@ -139,14 +139,16 @@ void run_show(Context& ctx, const Options& o) {
   }
   auto ref = p->resolve(o.param);
   if (!ref) {
-    // an error code of one of the catalogues?
+    // an error code of one or more catalogues?
+    bool found = false;
     for (const auto& c : p->catalogues)
       if (auto code = c->parse_code(o.param); code && c->find(*code)) {
         const auto* e = c->find(*code);
-        fmt::print("{} {} ({}): {}\n  cause: {}\n  remedy: {}\n  reaction: {}; acknowledge: {}\n", c->id(), e->code_text, c->category().name(),
-                   e->text, e->cause, e->remedy, hp::to_string(e->reaction), e->acknowledge);
-        return;
+        fmt::print("{} {} ({}): {}{}\n  cause: {}\n  remedy: {}\n  reaction: {}; acknowledge: {}\n", c->id(), e->code_text, c->category().name(),
+                   e->text, e->text_de.empty() ? "" : " [" + e->text_de + "]", e->cause, e->remedy, hp::to_string(e->reaction), e->acknowledge);
+        found = true;
       }
+    if (found) return;
     fmt::print(stderr, "error: {} has no parameter or error code '{}'\n", p->device, o.param);
     ctx.exit_code = 2;
     return;
