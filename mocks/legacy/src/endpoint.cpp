@@ -48,7 +48,7 @@ void EndpointHost::send(const std::string& bytes) {
   (void)stream_.write(std::span(p, bytes.size()), std::chrono::seconds(5));
 }
 
-void EndpointHost::step(Duration max_wait) {
+std::error_code EndpointHost::step(Duration max_wait) {
   std::array<std::uint8_t, 1024> buf{};
   Duration wait = max_wait;
   {
@@ -68,6 +68,7 @@ void EndpointHost::step(Duration max_wait) {
   }
   send(out);
   if (r.size == 0 && pending_save_) (void)persist();
+  return r.error;
 }
 
 void EndpointHost::run() {

@@ -46,8 +46,9 @@ public:
 
   /// Serve until stop(). Persists state whenever the line is quiet after changes.
   void run();
-  /// One step: wait at most `max_wait` for bytes, handle them, write the reply.
-  void step(Duration max_wait);
+  /// One step: wait at most `max_wait` for bytes, handle them, write the reply. Returns the
+  /// line's error (LineError::closed when a TCP client went away).
+  std::error_code step(Duration max_wait);
   void stop() noexcept { stop_ = true; }
   /// Run `fn` on the endpoint under the host's lock (mode changes while serving).
   void with_endpoint(const std::function<void(Endpoint&)>& fn);

@@ -1,0 +1,29 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+// Validation of ELG tape data, IP247 MD images and WF 725/726 machine data against the device
+// profiles (profiles/devices/*.yaml through hil::profiles). The profiles are the single source
+// of parameter definitions; these adapters only translate between wire images and the profile.
+
+#include <cstdint>
+#include <expected>
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "hil/serial/tape/elg_tape.hpp"
+
+namespace hil::serial {
+
+/// ELG datum check: empty = valid, else what is wrong (MD/SD number unknown, value out of range).
+using ElgCheck = std::function<std::optional<std::string>(tape::ElgSectionKind, int number, const std::string& value)>;
+/// IP247 MD image check: empty = valid, else the problems (each with the MD error number).
+using Ip247Check = std::function<std::vector<std::string>(const std::vector<std::uint16_t>& md_db)>;
+/// WF 725/726 MD check: empty = valid, else the problem.
+using Wf725Check = std::function<std::optional<std::string>(int md, std::uint32_t value)>;
+
+[[nodiscard]] std::expected<ElgCheck, std::string> load_elg_check();
+[[nodiscard]] std::expected<Ip247Check, std::string> load_ip247_check();
+[[nodiscard]] std::expected<Wf725Check, std::string> load_wf725_check();
+
+}  // namespace hil::serial
