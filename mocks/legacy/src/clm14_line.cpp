@@ -30,10 +30,7 @@ std::string Clm14Line::on_bytes(std::span<const std::uint8_t> data, TimePoint) {
     ++lines_;
     if (line_corrupt_) {
       line_corrupt_ = false;
-      // Answer as the addressed station would: replace the line by one that fails the
-      // format check, keeping lead and station so only the addressed station replies.
-      const std::string bad = line.size() >= 2 ? std::string{line[0], line[1], '\x01'} : std::string("\x01\x01");
-      for (auto& s : stations_) out += s->on_line(bad);
+      for (auto& s : stations_) out += s->on_damaged_line(line);
       continue;
     }
     for (auto& s : stations_) out += s->on_line(line);

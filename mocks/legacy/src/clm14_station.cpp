@@ -137,6 +137,11 @@ void Clm14Station::validate_parameters() {
   }
 }
 
+std::string Clm14Station::on_damaged_line(std::string_view line) {
+  if (line.size() >= 2 && station_ > 0 && line[1] != station_char_) return {};
+  return error(code(SerialError::format_error));
+}
+
 std::string Clm14Station::on_line(std::string_view line) {
   if (line.empty()) return {};
   bool addressed = true;
@@ -152,8 +157,10 @@ std::string Clm14Station::on_line(std::string_view line) {
     }
   }
   if (!addressed) return {};  // another station's telegram: silent
+  // '!' commands always need the checksum; the RS-485 poll ":s" never carries one.
   const bool command = line[0] == '!';
-  auto parsed = serial::clm14::parse_telegram(line, command || checksum_required());
+  const bool poll = line[0] == ':';
+  auto parsed = serial::clm14::parse_telegram(line, !poll && (command || checksum_required()));
   if (!parsed) return broadcast ? std::string{} : error(static_cast<int>(parsed.error().code));
   const Telegram& t = *parsed;
   std::string out;
@@ -198,7 +205,7 @@ std::string Clm14Station::on_program(const Telegram& t) {
 
 std::string Clm14Station::on_parameter(const Telegram& t) {
   // "K B002 019200 0 1 8 1" (one space after K; the number is block xx + item yy)
-  std::string_view rest = t.body.substr(1);
+  std::string_view rest = std::string_view(t.body).substr(1);
   if (!rest.empty() && rest.front() == ' ') rest.remove_prefix(1);
   if (rest.size() < 4) return error(code(SerialError::format_error));
   const std::string_view block = rest.substr(0, 2);
@@ -219,7 +226,7 @@ std::string Clm14Station::on_parameter(const Telegram& t) {
 }
 
 std::string Clm14Station::on_variable(const Telegram& t) {
-  const std::string_view num = t.body.substr(1, 3);
+  const std::string_view num = std::string_view(t.body).substr(1, 3);
   if (num.size() != 3 || !all_digits(num)) return error(code(SerialError::wrong_variable_number));
   const int n = to_int(num);
   if (t.lead == '?') return reply('V', fmt::format("{:03d} {} ", n, variables_[static_cast<std::size_t>(n)]));
@@ -232,7 +239,7 @@ std::string Clm14Station::on_variable(const Telegram& t) {
 }
 
 std::string Clm14Station::on_logic(const Telegram& t) {
-  std::string_view rest = t.body.substr(1);
+  std::string_view rest = std::string_view(t.body).substr(1);
   if (!rest.empty() && rest.front() == ' ') rest.remove_prefix(1);
   const std::string_view num = rest.substr(0, 4);
   if (num.size() != 4 || !all_digits(num)) return error(code(SerialError::block_number_wrong));
@@ -247,7 +254,7 @@ std::string Clm14Station::on_logic(const Telegram& t) {
 }
 
 std::string Clm14Station::on_status(const Telegram& t) {
-  std::string_view rest = t.body.substr(1);
+  std::string_view rest = std::string_view(t.body).substr(1);
   while (!rest.empty() && rest.front() == ' ') rest.remove_prefix(1);
   const std::string_view num = rest.substr(0, 2);
   if (num.size() != 2 || !all_digits(num)) return error(code(SerialError::wrong_status_number));

@@ -133,7 +133,7 @@ std::string configure(int fd, const LineFormat& f, bool pty) {
   }
   // XON/XOFF is handled in SerialStream (configurable, parity-carrying bytes), not by IXON.
   t.c_iflag &= ~static_cast<tcflag_t>(IXON | IXOFF | IXANY);
-  t.c_cc[VMIN] = 0;
+  t.c_cc[VMIN] = 1;  // with VMIN = 0 poll() reports a tty readable while it is empty
   t.c_cc[VTIME] = 0;
   if (::tcsetattr(fd, TCSANOW, &t) != 0) return fmt::format("tcsetattr failed: {}", errno_code().message());
   if (!pty) {

@@ -38,6 +38,10 @@ public:
   /// (wrong station, broadcast, or nothing to confirm).
   [[nodiscard]] std::string on_line(std::string_view line);
 
+  /// A line that arrived with a character error (parity, framing, overrun): the addressed
+  /// station answers "RS Format Error" (02), others stay silent.
+  [[nodiscard]] std::string on_damaged_line(std::string_view line);
+
   /// Change the mode inputs. Leaving Parameter mode validates every parameter (fault 02 and
   /// status 60 name the first invalid one).
   void set_mode(ClmMode m);

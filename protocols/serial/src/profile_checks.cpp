@@ -1,0 +1,105 @@
+// SPDX-License-Identifier: MIT
+#include "hil/serial/profile_checks.hpp"
+
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+
+#include <set>
+
+#include "hil/profiles/loader.hpp"
+#include "hil/profiles/validation.hpp"
+#include "hil/profiles/wire.hpp"
+
+namespace hil::serial {
+
+namespace pf = hil::profiles;
+
+namespace {
+
+std::expected<std::shared_ptr<const pf::Profile>, std::string> find_first(std::initializer_list<std::string_view> names) {
+  std::string why;
+  for (auto n : names) {
+    auto p = pf::find_profile(n);
+    if (p) return *p;
+    why = p.error().describe();
+  }
+  return std::unexpected(fmt::format("no device profile {} found ({})", fmt::join(names, " / "), why));
+}
+
+/// Decode `wire` for `ref` and check every field; empty = fine.
+std::vector<std::string> check_wire(const pf::Profile& p, const pf::ParamRef& ref, std::string_view wire) {
+  const pf::Settings settings;
+  const pf::Scope scope(p, nullptr, settings, ref.instance, ref.spec->instance_key);
+  const auto* v = pf::select_variant(ref, scope);
+  if (v == nullptr) return {fmt::format("{} does not apply to this device variant", ref.id())};
+  auto value = pf::decode_wire(p, *v, wire);
+  if (!value) return {fmt::format("{} = {}: {}", ref.id(), wire, value.error())};
+  std::vector<std::string> out;
+  for (std::size_t i = 0; i < v->fields.size() && i < value->size(); ++i)
+    for (const auto& prob : pf::check_field(ref, v->fields[i], (*value)[i], scope)) out.push_back(prob.describe());
+  return out;
+}
+
+}  // namespace
+
+std::expected<ElgCheck, std::string> load_elg_check() {
+  auto p = find_first({"sinumerik-elg", "elg"});
+  if (!p) return std::unexpected(p.error());
+  return ElgCheck([prof = *p](tape::ElgSectionKind k, int number, const std::string& value) -> std::optional<std::string> {
+    const std::string id = fmt::format("{}{}", k == tape::ElgSectionKind::machine_data ? "MD" : "SD", number);
+    auto ref = prof->resolve(id);
+    if (!ref) return fmt::format("{} is not a {} of the ELG", id, k == tape::ElgSectionKind::machine_data ? "machine datum" : "setting datum");
+    auto problems = check_wire(*prof, *ref, value);
+    if (problems.empty()) return std::nullopt;
+    return fmt::format("{}", fmt::join(problems, "; "));
+  });
+}
+
+std::expected<Ip247Check, std::string> load_ip247_check() {
+  auto p = find_first({"ip247"});
+  if (!p) return std::unexpected(p.error());
+  return Ip247Check([prof = *p](const std::vector<std::uint16_t>& w) {
+    std::vector<std::string> out;
+    for (const auto& ref : prof->all_refs()) {
+      const pf::Settings settings;
+      const pf::Scope scope(*prof, nullptr, settings, ref.instance, ref.spec->instance_key);
+      const auto* v = pf::select_variant(ref, scope);
+      if (v == nullptr) continue;
+      std::set<int> words;
+      for (const auto& f : v->fields) {
+        if (f.word < 0) continue;
+        const auto enc = f.encoding.value_or(prof->wire.encoding);
+        words.insert(f.word);
+        if (enc == pf::Encoding::kd) words.insert(f.word + 1);
+      }
+      if (words.empty()) continue;
+      std::string text;
+      bool inside = true;
+      for (int i : words) {
+        if (i < 0 || static_cast<std::size_t>(i) >= w.size()) inside = false;
+        else text += fmt::format("{}{:04X}", text.empty() ? "" : " ", w[static_cast<std::size_t>(i)]);
+      }
+      if (!inside) {
+        out.push_back(fmt::format("{}: image too short for its data words", ref.id()));
+        continue;
+      }
+      auto problems = check_wire(*prof, ref, text);
+      out.insert(out.end(), problems.begin(), problems.end());
+    }
+    return out;
+  });
+}
+
+std::expected<Wf725Check, std::string> load_wf725_check() {
+  auto p = find_first({"wf725-726", "wf725"});
+  if (!p) return std::unexpected(p.error());
+  return Wf725Check([prof = *p](int md, std::uint32_t value) -> std::optional<std::string> {
+    auto ref = prof->resolve(fmt::format("MD{}", md));
+    if (!ref) return fmt::format("MD{} is not a machine datum of the WF 725/726 (MD1..MD50)", md);
+    auto problems = check_wire(*prof, *ref, fmt::format("HEX {:04X} {:04X}", value >> 16, value & 0xFFFF));
+    if (problems.empty()) return std::nullopt;
+    return fmt::format("{}", fmt::join(problems, "; "));
+  });
+}
+
+}  // namespace hil::serial
