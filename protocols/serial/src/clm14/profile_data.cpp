@@ -31,6 +31,12 @@ public:
   explicit ProfileData(std::shared_ptr<const pf::Profile> p) : p_(std::move(p)) {
     settings_["hardware_axes"] = pf::ExprValue{4.0L};
     defaults_ = pf::default_set(*p_, settings_);
+    for (const auto& r : p_->all_refs()) {
+      const auto* e = defaults_.find(r.id());
+      const auto* v = variant(r);
+      if (e == nullptr || v == nullptr) continue;
+      if (auto img = pf::encode_value(*p_, *v, e->value)) default_text_[r.id()] = img->text;
+    }
   }
 
   std::vector<std::string> parameter_numbers(int axes) const override {
@@ -51,11 +57,8 @@ public:
   std::string parameter_default(std::string_view number) const override {
     const auto ref = p_->resolve(number);
     if (!ref) return {};
-    const auto* e = defaults_.find(ref->id());
-    const auto* v = variant(*ref);
-    if (e == nullptr || v == nullptr) return {};
-    auto img = pf::encode_value(*p_, *v, e->value);
-    return img ? img->text : std::string{};
+    const auto it = default_text_.find(ref->id());
+    return it == default_text_.end() ? std::string{} : it->second;
   }
 
   std::expected<std::string, FieldRejection> check_parameter(std::string_view number, std::string_view data) const override {
@@ -114,6 +117,7 @@ private:
   std::shared_ptr<const pf::Profile> p_;
   pf::Settings settings_;
   pf::ParameterSet defaults_;
+  std::map<std::string, std::string, std::less<>> default_text_;
 };
 
 }  // namespace
