@@ -216,6 +216,7 @@ public:
         f.bits.fields.push_back(std::move(d));
       }
     }
+    if (n["binary"]) f.binary_text = n["binary"].as<bool>(false);
     if (const std::string e = str(n["encoding"], key + ".encoding"); !e.empty()) {
       f.encoding = parse_encoding(e);
       if (!f.encoding) fail(n["encoding"], key + ".encoding", "expected text, bcd_binary, KF, KH, KY, KD, DL, DR or fixed");
@@ -280,6 +281,10 @@ public:
     ParamSpec p;
     p.id = str(n["id"], key + ".id", true);
     p.pattern = str(n["pattern"], key + ".pattern");
+    if (const auto& al = n["aliases"]; al) {
+      if (!al.IsSequence()) fail(al, key + ".aliases", "expected a list of names");
+      for (std::size_t i = 0; i < al.size(); ++i) p.aliases.push_back(str(al[i], key + ".aliases"));
+    }
     p.group = str(n["group"], key + ".group");
     p.source = str(n["source"], key + ".source");
     if (n["number"]) p.number = static_cast<int>(integer(n["number"], key + ".number"));
@@ -412,6 +417,10 @@ public:
           else if (!s.empty()) fail(b["sign"], "wire.bcd.sign", "expected none, bit31 or nibble");
         }
         if (w["binary_bits"]) p.wire.binary_bits = static_cast<int>(integer(w["binary_bits"], "wire.binary_bits"));
+        if (const auto o = str(w["word_order"], "wire.word_order"); !o.empty()) {
+          if (o != "high_first" && o != "low_first") fail(w["word_order"], "wire.word_order", "expected high_first or low_first");
+          p.wire.low_word_first = o == "low_first";
+        }
       }
     } else if (doc["device"] && str(doc["device"], "device") != p.device) {
       fail(doc["device"], "device", fmt::format("included file belongs to '{}', not '{}'", str(doc["device"], "device"), p.device));

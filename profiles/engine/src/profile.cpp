@@ -80,6 +80,7 @@ void Profile::index() {
   for (const auto& p : parameters) {
     if (p.instances.empty()) {
       index_.emplace(normalise_id(p.id), ParamRef{&p, std::nullopt});
+      for (const auto& a : p.aliases) index_.emplace(normalise_id(a), ParamRef{&p, std::nullopt});
     } else {
       for (auto i : p.instances) index_.emplace(normalise_id(p.concrete_id(i)), ParamRef{&p, i});
     }

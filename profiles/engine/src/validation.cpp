@@ -84,11 +84,18 @@ std::optional<ExprValue> Scope::lookup(std::string_view name) const {
   }
   auto ref = profile_->resolve(id);
   if (!ref) {
-    for (const auto& p : profile_->parameters)
-      if (!p.instances.empty() && normalise_id(p.id) == normalise_id(id) && instance_) {
+    // a template id ("Ax06", "MD204*") or its pattern without the placeholder ("MD204") names the
+    // parameter of the instance in scope
+    for (const auto& p : profile_->parameters) {
+      if (p.instances.empty() || !instance_) continue;
+      std::string bare = p.pattern;
+      if (const auto at = bare.find('{'); at != std::string::npos) bare.erase(at, bare.find('}', at) - at + 1);
+      const auto key = normalise_id(id);
+      if (normalise_id(p.id) == key || normalise_id(bare) == key) {
         ref = ParamRef{&p, *instance_};
         break;
       }
+    }
   }
   if (!ref) return std::nullopt;
   ++depth_;
@@ -96,19 +103,36 @@ std::optional<ExprValue> Scope::lookup(std::string_view name) const {
   --depth_;
   if (!v) v = &ref->spec->variants.front();
   std::size_t idx = 0;
+  const BitDef* bit = nullptr;  // "<id>.<bit group>" of a bit-field parameter
   if (!field.empty()) {
     bool found = false;
-    for (std::size_t i = 0; i < v->fields.size(); ++i)
+    for (std::size_t i = 0; i < v->fields.size() && !found; ++i) {
       if (v->fields[i].name == field) {
         idx = i;
         found = true;
+      } else if (v->fields[i].type == FieldType::bits) {
+        for (const auto& b : v->fields[i].bits.fields)
+          if (b.name == field) {
+            idx = i;
+            bit = &b;
+            found = true;
+          }
       }
+    }
     if (!found) return std::nullopt;
   }
+  const auto extract = [bit](ExprValue value) -> ExprValue {
+    if (!bit) return value;
+    const auto* d = std::get_if<long double>(&value);
+    if (!d || *d < 0) return value;
+    const auto w = static_cast<unsigned long long>(*d);
+    const unsigned long long mask = bit->width >= 64 ? ~0ULL : ((1ULL << bit->width) - 1);
+    return static_cast<long double>((w >> bit->first) & mask);
+  };
   if (set_) {
-    if (const auto* e = set_->find(ref->id()); e && idx < e->value.size()) return to_expr(e->value[idx]);
+    if (const auto* e = set_->find(ref->id()); e && idx < e->value.size()) return extract(to_expr(e->value[idx]));
   }
-  if (idx < v->fields.size() && v->fields[idx].default_value) return to_expr(*v->fields[idx].default_value);
+  if (idx < v->fields.size() && v->fields[idx].default_value) return extract(to_expr(*v->fields[idx].default_value));
   return std::nullopt;
 }
 
@@ -232,7 +256,9 @@ std::vector<Problem> validate(const Profile& profile, const ParameterSet& set, c
                      fmt::format("{} does not exist for this configuration", e.ref.id())});
       continue;
     }
-    if (v->protection == Protection::read_only || v->protection == Protection::system) {
+    // read-only data (service data, versions) is never written; `system` data may be carried in a
+    // complete image (IP247 header words, WF MD 50) and is not an error.
+    if (v->protection == Protection::read_only) {
       out.push_back({e.line, e.ref.id(), "", e.text, std::string("protection ") + std::string(to_string(v->protection)),
                      fmt::format("{} ({}) cannot be written", e.ref.id(), v->name)});
     }
@@ -281,11 +307,15 @@ std::vector<Problem> validate(const Profile& profile, const ParameterSet& set, c
         std::string shown = id;
         if (inst) {
           if (auto ref = profile.resolve(id.substr(0, id.find('.'))); !ref) {
-            for (const auto& p : profile.parameters)
-              if (!p.instances.empty() && normalise_id(p.id) == normalise_id(id.substr(0, id.find('.')))) {
+            for (const auto& p : profile.parameters) {
+              std::string bare = p.pattern;
+              if (const auto at = bare.find('{'); at != std::string::npos) bare.erase(at, bare.find('}', at) - at + 1);
+              const auto key = normalise_id(id.substr(0, id.find('.')));
+              if (!p.instances.empty() && (normalise_id(p.id) == key || normalise_id(bare) == key)) {
                 shown = p.concrete_id(*inst) + (id.find('.') != std::string::npos ? id.substr(id.find('.')) : "");
                 if (const auto* e = set.find(p.concrete_id(*inst)); e && !line) line = e->line;
               }
+            }
           }
         }
         if (auto ref = profile.resolve(id.substr(0, id.find('.')))) {

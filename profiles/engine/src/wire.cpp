@@ -107,6 +107,11 @@ std::expected<FieldValue, std::string> parse_field_input(const FieldSpec& f, std
       return FieldValue{Decimal{static_cast<std::int64_t>(*v), 0}};
     }
     case FieldType::bits: {
+      if (f.binary_text && text.size() == f.bits.bits && text.find_first_not_of("01") == std::string_view::npos) {
+        std::uint64_t w = 0;
+        for (char c : text) w = (w << 1) | static_cast<std::uint64_t>(c - '0');
+        return FieldValue{Decimal{static_cast<std::int64_t>(w), 0}};
+      }
       if (auto d = parse_decimal(text); d) {
         if (d->scale != 0 || d->units < 0) return std::unexpected(fmt::format("'{}': a bit field is a non-negative integer", text));
         if (auto b = parse_bit_field(static_cast<std::uint64_t>(d->units), f.bits); !b) return std::unexpected(b.error().message);
@@ -179,6 +184,8 @@ std::string value_text(const ParamVariant& v, const ParamValue& value) {
       if (f.type == FieldType::hex)
         if (const auto* d = std::get_if<Decimal>(&value[i])) t = fmt::format("{:0{}X}", d->units, f.hex_digits);
       if (f.type == FieldType::reserved && t.empty()) continue;
+      if (f.type == FieldType::bits && f.binary_text)
+        if (auto b = make_field_text(f, value[i])) t = *b;
     }
     if (!s.empty()) s += ' ';
     s += t;
@@ -204,6 +211,13 @@ std::expected<std::string, std::string> make_field_text(const FieldSpec& f, cons
     default: {
       const auto* d = std::get_if<Decimal>(&v);
       if (!d) return std::unexpected(fmt::format("{}: expected a number", f.name));
+      if (f.type == FieldType::bits && f.binary_text) {
+        if (d->scale != 0 || d->units < 0 || (f.bits.bits < 63 && d->units >= (std::int64_t{1} << f.bits.bits)))
+          return std::unexpected(fmt::format("{}: {} does not fit {} bits", f.name, d->to_string(), f.bits.bits));
+        std::string b;
+        for (int i = static_cast<int>(f.bits.bits) - 1; i >= 0; --i) b += ((d->units >> i) & 1) ? '1' : '0';
+        return b;
+      }
       auto t = make_decimal_text(*d, f.text);
       if (!t) return std::unexpected(fmt::format("{}: {}", f.name, t.error().message));
       return *t;
@@ -216,6 +230,13 @@ std::expected<FieldValue, std::string> parse_field_text(const FieldSpec& f, std:
     case FieldType::io_address:
     case FieldType::reserved:
     case FieldType::hex: return parse_field_input(f, text);
+    case FieldType::bits:
+      if (f.binary_text) {
+        if (text.size() != f.bits.bits || text.find_first_not_of("01") != std::string_view::npos)
+          return std::unexpected(fmt::format("{}: '{}' is not {} binary digits", f.name, text, f.bits.bits));
+        return parse_field_input(f, text);
+      }
+      [[fallthrough]];
     default: {
       auto d = parse_decimal_text(text, f.text);
       if (!d) return std::unexpected(fmt::format("{}: {}", f.name, d.error().message));
@@ -269,7 +290,10 @@ std::expected<WireImage, std::string> encode_value(const Profile& p, const Param
         if (enc == Encoding::kh || enc == Encoding::ky) tf.is_signed = false;
         auto w = make_twos_complement(*raw, tf);
         if (!w) return std::unexpected(fmt::format("{}: {}", f.name, w.error().message));
-        if (wide) {
+        if (wide && p.wire.low_word_first) {
+          img.words.push_back(static_cast<std::uint16_t>(*w & 0xFFFFu));
+          img.words.push_back(static_cast<std::uint16_t>(*w >> 16));
+        } else if (wide) {
           img.words.push_back(static_cast<std::uint16_t>(*w >> 16));
           img.words.push_back(static_cast<std::uint16_t>(*w & 0xFFFFu));
         } else if (enc == Encoding::byte_l) {
@@ -278,7 +302,12 @@ std::expected<WireImage, std::string> encode_value(const Profile& p, const Param
           img.words.push_back(static_cast<std::uint16_t>(*w));
         }
         if (!img.text.empty()) img.text += p.wire.separator;
-        img.text += wide ? hex_word_text(*w, 8) : fmt::format("{:0{}X}", *w, byte ? 2 : 4);
+        // bytes are shown in their word position (DL 07 = "0700") so the text decodes back
+        const std::uint64_t shown = enc == Encoding::byte_l ? (*w << 8) : *w;
+        if (wide && p.wire.low_word_first)
+          img.text += fmt::format("{:04X} {:04X}", *w & 0xFFFFu, (*w >> 16) & 0xFFFFu);
+        else
+          img.text += wide ? hex_word_text(*w, 8) : fmt::format("{:04X}", shown);
         break;
       }
     }
@@ -348,7 +377,9 @@ std::expected<ParamValue, std::string> decode_wire(const Profile& p, const Param
     const bool wide = enc == Encoding::kd || (enc == Encoding::fixed && f.fixed.word.bits == 32);
     const std::size_t need = wide ? 2 : 1;
     if (wi + need > words.size()) return std::unexpected(fmt::format("field '{}' needs {} more word(s)", f.name, need));
-    std::uint64_t w = wide ? (std::uint64_t{words[wi]} << 16) | words[wi + 1] : words[wi];
+    std::uint64_t w = !wide ? words[wi]
+                      : p.wire.low_word_first ? (std::uint64_t{words[wi + 1]} << 16) | words[wi]
+                                              : (std::uint64_t{words[wi]} << 16) | words[wi + 1];
     wi += need;
     TwosComplementFormat tf{wide ? 32 : 16, enc == Encoding::kf || enc == Encoding::kd || (enc == Encoding::fixed && f.fixed.word.is_signed)};
     if (enc == Encoding::byte_l) {

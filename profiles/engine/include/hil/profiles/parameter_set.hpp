@@ -24,6 +24,7 @@
 
 #include "hil/profiles/field_value.hpp"
 #include "hil/profiles/profile.hpp"
+#include "hil/profiles/settings.hpp"
 
 namespace hil::profiles {
 
@@ -66,6 +67,11 @@ public:
   virtual ~ParameterSetParser() = default;
   /// Pure: text in, set + problems out. Never throws, never stops at the first problem.
   [[nodiscard]] virtual ParseResult parse(std::string_view text) const = 0;
+  /// As parse(text), honouring format options among `settings` (SINUMERIK block_parity).
+  [[nodiscard]] virtual ParseResult parse(std::string_view text, const Settings& settings) const {
+    (void)settings;
+    return parse(text);
+  }
   /// The device's own text for `set` (parse(write(s)) reproduces s).
   [[nodiscard]] virtual std::string write(const ParameterSet& set) const = 0;
   [[nodiscard]] virtual std::string_view format_name() const noexcept = 0;

@@ -93,6 +93,7 @@ struct FieldSpec {
   std::vector<StepRule> steps;
   std::vector<Choice> choices;
   BitFieldFormat bits;
+  bool binary_text = false;      ///< bits: text form is bits.bits binary digits, MSB first ("00100010")
   std::optional<Encoding> encoding;  ///< overrides the profile's wire encoding
   FixedPointFormat fixed;        ///< Encoding::fixed
   int word = -1;                 ///< word-image devices: data word offset of this field
@@ -114,6 +115,7 @@ struct ParamVariant {
 struct ParamSpec {
   std::string id;                ///< template id: "Ax06", "MD11", "MD204*", "B002"
   std::string pattern;           ///< concrete id pattern with "{axis}" ("A{axis}06"); "" = id
+  std::vector<std::string> aliases;  ///< further names resolve() accepts ("fmax" for IP247 "DW5")
   std::string instance_key;      ///< "axis" when instanced
   std::vector<std::int64_t> instances;  ///< values of instance_key
   int number = 0;                ///< number inside its group
@@ -166,6 +168,7 @@ struct WireSpec {
   std::string separator = " ";   ///< between text fields
   BcdFormat bcd{8, BcdSign::bit31};
   int binary_bits = 32;
+  bool low_word_first = false;   ///< 32-bit values: low word at the lower address (AMKASYN DD)
 };
 
 class Profile {

@@ -12,12 +12,10 @@
 
 #include "hil/profiles/parameter_set.hpp"
 #include "hil/profiles/profile.hpp"
+#include "hil/profiles/settings.hpp"
 
 namespace hil::profiles {
 
-/// Settings given by the user (module variant, resolution when not derivable, …); names per
-/// Profile::settings. Values not given come from `from` expressions or defaults.
-using Settings = std::map<std::string, ExprValue, std::less<>>;
 
 /// Value of a name as the rules see it: settings, "<id>" / "<id>.<field>" of the set (or the
 /// default when absent), instance key. `instance` resolves template ids ("Ax06" → "A106").
