@@ -4,9 +4,9 @@
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
-#include <set>
 
 #include "hil/profiles/loader.hpp"
+#include "hil/profiles/parameter_set.hpp"
 #include "hil/profiles/validation.hpp"
 #include "hil/profiles/wire.hpp"
 
@@ -58,34 +58,17 @@ std::expected<ElgCheck, std::string> load_elg_check() {
 std::expected<Ip247Check, std::string> load_ip247_check() {
   auto p = find_first({"ip247"});
   if (!p) return std::unexpected(p.error());
-  return Ip247Check([prof = *p](const std::vector<std::uint16_t>& w) {
+  std::shared_ptr<const pf::ParameterSetParser> parser = pf::make_parameter_set_parser(*p);
+  if (!parser) return std::unexpected(std::string("ip247 profile has no S5 DB parser"));
+  // The profile's own S5 DB parser reads the image word by word; validate() then applies every
+  // field range and cross-field MD check with its MD error number.
+  return Ip247Check([prof = *p, parser](const std::vector<std::uint16_t>& w) {
+    std::string listing;
+    for (std::size_t i = 0; i < w.size(); ++i) listing += fmt::format("{}: KH = {:04X}\n", i, w[i]);
+    auto parsed = parser->parse(listing);
     std::vector<std::string> out;
-    for (const auto& ref : prof->all_refs()) {
-      const pf::Settings settings;
-      const pf::Scope scope(*prof, nullptr, settings, ref.instance, ref.spec->instance_key);
-      const auto* v = pf::select_variant(ref, scope);
-      if (v == nullptr) continue;
-      std::set<int> words;
-      for (const auto& f : v->fields) {
-        if (f.word < 0) continue;
-        const auto enc = f.encoding.value_or(prof->wire.encoding);
-        words.insert(f.word);
-        if (enc == pf::Encoding::kd) words.insert(f.word + 1);
-      }
-      if (words.empty()) continue;
-      std::string text;
-      bool inside = true;
-      for (int i : words) {
-        if (i < 0 || static_cast<std::size_t>(i) >= w.size()) inside = false;
-        else text += fmt::format("{}{:04X}", text.empty() ? "" : " ", w[static_cast<std::size_t>(i)]);
-      }
-      if (!inside) {
-        out.push_back(fmt::format("{}: image too short for its data words", ref.id()));
-        continue;
-      }
-      auto problems = check_wire(*prof, ref, text);
-      out.insert(out.end(), problems.begin(), problems.end());
-    }
+    for (const auto& prob : parsed.problems) out.push_back(prob.describe());
+    for (const auto& prob : pf::validate(*prof, parsed.set)) out.push_back(prob.describe());
     return out;
   });
 }
