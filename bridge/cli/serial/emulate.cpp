@@ -6,6 +6,7 @@
 
 #include <fmt/format.h>
 
+#include <cstdio>
 #include <cstdlib>
 #include <mutex>
 #include <optional>
@@ -121,6 +122,19 @@ int serve(mocks::legacy::Endpoint& endpoint, const EmulateOptions& o, const std:
     if (cmd.empty()) continue;
     if (cmd == "quit" || cmd == "exit") break;
     std::string reply;
+    if (cmd.starts_with("drop ")) {
+      // Fault injection for tests: "drop AFTER COUNT" stops answering after AFTER replies.
+      int after = 0, count = 0;
+      if (std::sscanf(cmd.c_str(), "drop %d %d", &after, &count) != 2 || after < 0 || count < 0) {
+        fmt::print("error: usage: drop AFTER COUNT\n");
+      } else {
+        std::lock_guard lock(endpoint_mutex);
+        if (host) host->drop_replies(after, count);
+        fmt::print("{}\n", host ? "ok " + cmd : std::string("error: no line yet"));
+      }
+      std::fflush(stdout);
+      continue;
+    }
     {
       std::lock_guard lock(endpoint_mutex);
       if (host) host->with_endpoint([&](mocks::legacy::Endpoint& e) { reply = on_command(e, cmd); });

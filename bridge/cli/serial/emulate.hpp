@@ -26,7 +26,9 @@ void add_emulate_options(CLI::App& cmd, EmulateOptions& o);
 
 /// Serve `endpoint` on the line `o` describes until SIGINT/SIGTERM. Prints the pty path or TCP
 /// port on stdout (first line), then reads commands from stdin and hands them to `on_command`
-/// (which returns a reply line, or an error text starting with "error:").
+/// (which returns a reply line, or an error text starting with "error:"). "drop AFTER COUNT"
+/// (fault injection: stop answering after AFTER replies for COUNT replies) and "quit" are
+/// handled here for every device.
 int serve(mocks::legacy::Endpoint& endpoint, const EmulateOptions& o, const std::filesystem::path& state,
           const std::function<std::string(mocks::legacy::Endpoint&, const std::string&)>& on_command);
 

@@ -40,7 +40,9 @@ EndpointHost::EndpointHost(Endpoint& endpoint, serial::ByteStream& stream, const
 
 void EndpointHost::send(const std::string& bytes) {
   if (bytes.empty()) return;
-  if (drop_replies_ > 0) {
+  if (drop_after_ > 0) {
+    --drop_after_;
+  } else if (drop_replies_ > 0) {
     --drop_replies_;
     return;
   }

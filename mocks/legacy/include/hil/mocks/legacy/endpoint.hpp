@@ -55,8 +55,12 @@ public:
   /// Save now if dirty. Returns the error of the last save.
   std::error_code persist();
 
-  /// Fault injection: drop the next `n` replies (a station that does not answer).
-  void drop_replies(int n) { drop_replies_ = n; }
+  /// Fault injection: after `after` more replies, drop the next `count` (a station or line
+  /// that stops answering). Thread-safe.
+  void drop_replies(int after, int count) {
+    drop_after_ = after;
+    drop_replies_ = count;
+  }
 
 private:
   void send(const std::string& bytes);
@@ -68,6 +72,7 @@ private:
   std::mutex mutex_;
   std::atomic<bool> stop_{false};
   std::atomic<int> drop_replies_{0};
+  std::atomic<int> drop_after_{0};
   bool pending_save_ = false;
 };
 
