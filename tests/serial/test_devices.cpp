@@ -73,6 +73,21 @@ TEST(Examples, ElgTapeAndIp247ImageValidate) {
   EXPECT_FALSE((*ip)(bad).empty());
 }
 
+TEST(Examples, Wf725DefaultImageValidatesAndAChangedMdIsChecked) {
+  auto dbs = s5::parse_db_listing(read("examples/serial/wf725-md-defaults.s5db"), "wf");
+  ASSERT_TRUE(dbs);
+  auto check = load_wf725_check();
+  ASSERT_TRUE(check) << check.error();
+  const auto problems = (*check)((*dbs)[0].words);
+  EXPECT_TRUE(problems.empty()) << problems.front();
+  auto defaults = load_wf725_default_image();
+  ASSERT_TRUE(defaults);
+  EXPECT_EQ(*defaults, (*dbs)[0].words);
+  auto bad = (*dbs)[0].words;
+  bad[2 * 49 - 1] = 0;  // MD49 basic resolution 0: not a defined choice
+  EXPECT_FALSE((*check)(bad).empty());
+}
+
 TEST(ClmProfileRoundTrip, EveryParameterOfFourAxesThroughClientAndEmulator) {
   hil::VirtualClock clock;
   auto mem = make_memory_line(&clock);

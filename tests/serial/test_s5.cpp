@@ -255,7 +255,10 @@ TEST(Ip247Endpoint, StateSurvivesSaveAndLoad) {
 }
 
 TEST(Wf725Endpoint, DataCodesAndMdArea) {
-  S5Fixture f(hil::mocks::legacy::make_wf725_policy([](int md, std::uint32_t v) { return md == 34 && v == 0 ? 121 : 0; }));
+  // The check stands in for the profile: MD34 (pulse check, DW 66/67) must not be 0.
+  S5Fixture f(hil::mocks::legacy::make_wf725_policy([](const std::vector<std::uint16_t>& w) { return w[66] != 0 || w[67] != 0; }));
+  f.ep->store()[1] = std::vector<std::uint16_t>(100, 0);
+  f.ep->store()[1][67] = 4000;
   Rk512Client c(*f.client_stream, f.clock);
   // MD11 = -24537 um binary FFFF A027 (wf725 vectors), written at DW 20/21.
   ASSERT_TRUE(c.send_db(1, 20, {0xFFFF, 0xA027}));
@@ -266,6 +269,7 @@ TEST(Wf725Endpoint, DataCodesAndMdArea) {
   EXPECT_EQ(c.fetch_db(0x77, 0, 2).error().code, Rk512Error::header_error);  // unknown code (WF 113)
   EXPECT_TRUE(c.fetch_db(0x03, 0, 2));                                       // speed in rpm
   EXPECT_EQ(c.send_db(1, 66, {0, 0}).error().code, Rk512Error::image_rejected);  // MD34 = 0
+  EXPECT_EQ(f.ep->store()[1][67], 4000) << "a rejected write changes nothing";
   EXPECT_EQ(c.send_db(1, 100, {0, 0}).error().code, Rk512Error::target_too_small);  // MD51 (WF 121)
 }
 

@@ -168,9 +168,13 @@ void register_emulators(Context& ctx) {
           ctx.exit_code = 2;
           return;
         }
-        policy = lg::make_wf725_policy([c = *check](int md, std::uint32_t v) { return c(md, v) ? 121 : 0; });
+        policy = lg::make_wf725_policy([c = *check](const std::vector<std::uint16_t>& w) { return c(w).empty(); });
       }
       lg::S5BlockEndpoint ep(std::move(policy));
+      if (dev == "wf725") {
+        // A fresh module holds the profile's default machine data (data code 1).
+        if (auto img = hil::serial::load_wf725_default_image()) ep.store()[1] = *img;
+      }
       const auto state = resolve_state(*so, dev);
       if (auto text = read_file(state))
         if (auto r = ep.load_state(*text); !r) fmt::print(stderr, "warning: {}\n", r.error());

@@ -137,10 +137,7 @@ int s5_upload(const TransferOptions& o) {
         problems.push_back(fmt::format("{}: DB{}: the WF machine data are data code 1 with 100 words (MD1..MD50)", o.file, img.db));
         continue;
       }
-      for (int md = 1; md <= 50; ++md) {
-        const std::uint32_t v = (std::uint32_t{img.words[static_cast<std::size_t>(2 * md - 2)]} << 16) | img.words[static_cast<std::size_t>(2 * md - 1)];
-        if (auto why = (*check)(md, v)) problems.push_back(fmt::format("{}: MD{}: {}", o.file, md, *why));
-      }
+      for (const auto& why : (*check)(img.words)) problems.push_back(fmt::format("{}: {}", o.file, why));
     }
   }
   if (!problems.empty()) {

@@ -148,21 +148,18 @@ private:
 
 class Wf725Policy final : public DbPolicy {
 public:
-  explicit Wf725Policy(std::function<int(int, std::uint32_t)> c) : check_(std::move(c)) {}
+  explicit Wf725Policy(std::function<bool(const std::vector<std::uint16_t>&)> c) : check_(std::move(c)) {}
   std::string name() const override { return "wf725"; }
 
   Rk512Error on_write(DbStore& store, std::uint8_t code, std::uint8_t dw, const std::vector<std::uint16_t>& w) override {
     if (code != 1) return Rk512Error::header_error;  // only the MD area is writable (112/113 otherwise)
     if ((dw % 2) != 0 || (w.size() % 2) != 0) return Rk512Error::wrong_identifier;
     if (std::size_t{dw} + w.size() > 100) return Rk512Error::target_too_small;  // MD number > 50: WF error 121
-    auto& md = store[1];
+    std::vector<std::uint16_t> md = store.contains(1) ? store.at(1) : std::vector<std::uint16_t>(100, 0);
     md.resize(100, 0);
-    for (std::size_t i = 0; i < w.size(); i += 2) {
-      const int number = static_cast<int>((dw + i) / 2 + 1);
-      const std::uint32_t v = (std::uint32_t{w[i]} << 16) | w[i + 1];
-      if (check_ && check_(number, v) != 0) return Rk512Error::image_rejected;
-    }
     std::copy(w.begin(), w.end(), md.begin() + dw);
+    if (check_ && !check_(md)) return Rk512Error::image_rejected;  // nothing stored (WF 121 / MD errors)
+    store[1] = std::move(md);
     return Rk512Error::ok;
   }
 
@@ -186,13 +183,13 @@ public:
   }
 
 private:
-  std::function<int(int, std::uint32_t)> check_;
+  std::function<bool(const std::vector<std::uint16_t>&)> check_;
 };
 
 }  // namespace
 
 std::unique_ptr<DbPolicy> make_ip247_policy(ImageCheck md_check) { return std::make_unique<Ip247Policy>(std::move(md_check)); }
-std::unique_ptr<DbPolicy> make_wf725_policy(std::function<int(int, std::uint32_t)> md_check) {
+std::unique_ptr<DbPolicy> make_wf725_policy(std::function<bool(const std::vector<std::uint16_t>&)> md_check) {
   return std::make_unique<Wf725Policy>(std::move(md_check));
 }
 

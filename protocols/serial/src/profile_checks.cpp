@@ -76,13 +76,51 @@ std::expected<Ip247Check, std::string> load_ip247_check() {
 std::expected<Wf725Check, std::string> load_wf725_check() {
   auto p = find_first({"wf725-726", "wf725"});
   if (!p) return std::unexpected(p.error());
-  return Wf725Check([prof = *p](int md, std::uint32_t value) -> std::optional<std::string> {
-    auto ref = prof->resolve(fmt::format("MD{}", md));
-    if (!ref) return fmt::format("MD{} is not a machine datum of the WF 725/726 (MD1..MD50)", md);
-    auto problems = check_wire(*prof, *ref, fmt::format("HEX {:04X} {:04X}", value >> 16, value & 0xFFFF));
-    if (problems.empty()) return std::nullopt;
-    return fmt::format("{}", fmt::join(problems, "; "));
+  std::shared_ptr<const pf::ParameterSetParser> parser = pf::make_parameter_set_parser(*p);
+  if (!parser) return std::unexpected(std::string("wf725-726 profile has no MD parser"));
+  return Wf725Check([prof = *p, parser](const std::vector<std::uint16_t>& w) {
+    std::vector<std::string> out;
+    if (w.size() != 100) return std::vector<std::string>{"the MD image has 100 words (MD1..MD50, 2 words each)"};
+    const pf::Settings settings;
+    std::string text;
+    for (int md = 1; md <= 50; ++md) {
+      const std::uint16_t hi = w[static_cast<std::size_t>(2 * md - 2)];
+      const std::uint16_t lo = w[static_cast<std::size_t>(2 * md - 1)];
+      auto ref = prof->resolve(fmt::format("MD{}", md));
+      const pf::Scope scope(*prof, nullptr, settings, ref ? ref->instance : std::nullopt, ref ? ref->spec->instance_key : "");
+      if (!ref || pf::select_variant(*ref, scope) == nullptr) {
+        // An MD this module variant does not use must stay 0.
+        if (hi != 0 || lo != 0) out.push_back(fmt::format("MD{} is not used by this module variant but holds {:04X} {:04X}", md, hi, lo));
+        continue;
+      }
+      text += fmt::format("MD {} HEX {:04X} {:04X}\n", md, hi, lo);
+    }
+    auto parsed = parser->parse(text);
+    for (const auto& prob : parsed.problems) out.push_back(prob.describe());
+    for (const auto& prob : pf::validate(*prof, parsed.set)) out.push_back(prob.describe());
+    return out;
   });
+}
+
+std::expected<std::vector<std::uint16_t>, std::string> load_wf725_default_image() {
+  auto p = find_first({"wf725-726", "wf725"});
+  if (!p) return std::unexpected(p.error());
+  const pf::Settings settings;
+  const auto defaults = pf::default_set(**p, settings);
+  std::vector<std::uint16_t> words(100, 0);
+  for (int md = 1; md <= 50; ++md) {
+    auto ref = (*p)->resolve(fmt::format("MD{}", md));
+    if (!ref) continue;
+    const auto* e = defaults.find(ref->id());
+    const pf::Scope scope(**p, &defaults, settings, ref->instance, ref->spec->instance_key);
+    const auto* v = pf::select_variant(*ref, scope);
+    if (e == nullptr || v == nullptr) continue;
+    auto img = pf::encode_value(**p, *v, e->value);
+    if (!img || !img->binary) continue;
+    words[static_cast<std::size_t>(2 * md - 2)] = static_cast<std::uint16_t>(*img->binary >> 16);
+    words[static_cast<std::size_t>(2 * md - 1)] = static_cast<std::uint16_t>(*img->binary & 0xFFFF);
+  }
+  return words;
 }
 
 }  // namespace hil::serial

@@ -43,9 +43,10 @@ using ImageCheck = std::function<int(std::uint8_t db, const std::vector<std::uin
 /// mapping of job 21/23). A rejected MD image is refused with 10 and nothing is stored.
 [[nodiscard]] std::unique_ptr<DbPolicy> make_ip247_policy(ImageCheck md_check);
 /// WF 725/726: the DB number is the data code (digest wf725-726.md §6.4); data code 1 holds the
-/// 50 machine data as 100 words (32-bit, high word first), writable by area; other known codes
-/// are read-only status values; 0 and unknown codes are refused (WF errors 112/113 via 0C).
-[[nodiscard]] std::unique_ptr<DbPolicy> make_wf725_policy(std::function<int(int md, std::uint32_t value)> md_check);
+/// 50 machine data as 100 words (32-bit, high word first), writable by area (the resulting
+/// image is checked as a whole); other known codes are read-only status values; 0 and unknown
+/// codes are refused (WF errors 112/113 via 0C).
+[[nodiscard]] std::unique_ptr<DbPolicy> make_wf725_policy(std::function<bool(const std::vector<std::uint16_t>& md_words)> md_image_ok);
 
 struct S5EndpointOptions {
   serial::s5::ProcedureOptions procedure{.high_priority = false};  ///< the module yields to the PC
