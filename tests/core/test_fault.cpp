@@ -28,3 +28,12 @@ TEST(DriveState, Names) {
   EXPECT_EQ(hil::to_string(hil::DriveState::operation_enabled), "operation_enabled");
   EXPECT_EQ(hil::to_string(hil::DriveRequest::fault_reset), "fault_reset");
 }
+
+TEST(Fault, LargeCodesPrintInHexAsTheSpecsWriteThem) {
+  hil::Fault f{std::error_code(0x2310, hil::plant_category()), "over-current"};
+  EXPECT_EQ(f.describe(), "plant:0x2310 over-current");
+  hil::Fault g{std::error_code(0x06020000, hil::plant_category()), "no object"};
+  EXPECT_EQ(g.describe(), "plant:0x06020000 no object");
+  hil::Fault h{std::error_code(255, hil::plant_category()), "x"};
+  EXPECT_EQ(h.describe(), "plant:255 x");
+}

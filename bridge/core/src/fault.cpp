@@ -56,7 +56,12 @@ const std::error_category& plant_category() noexcept {
 
 std::string Fault::describe() const {
   if (!code) return "no fault";
-  std::string s = fmt::format("{}:{}", code.category().name(), code.value());
+  // Spec codes above a byte are hexadecimal in their specs (CiA 402 0x2310, SDO abort
+  // 0x06020000, Modbus link errors 0x102); small ones (exception codes, error numbers) decimal.
+  const auto v = static_cast<unsigned>(code.value());
+  std::string s = v < 0x100     ? fmt::format("{}:{}", code.category().name(), code.value())
+                  : v <= 0xFFFF ? fmt::format("{}:0x{:04X}", code.category().name(), v)
+                                : fmt::format("{}:0x{:08X}", code.category().name(), v);
   if (!text.empty()) return s + " " + text;
   return s + " " + code.message();
 }

@@ -14,7 +14,8 @@ struct Fault {
   std::string text;      ///< what happened, where, and what to do
 
   [[nodiscard]] explicit operator bool() const noexcept { return static_cast<bool>(code); }
-  /// "cia402:0x7305 Incremental encoder 1 broken (node 5): check the encoder cable"
+  /// "cia402:0x7305 Incremental encoder 1 broken (node 5): check the encoder cable"; codes below
+  /// 256 print in decimal ("modbus:2", "motion:1"), larger ones in hex as their specs write them.
   [[nodiscard]] std::string describe() const;
 };
 
