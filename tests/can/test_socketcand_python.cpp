@@ -64,7 +64,9 @@ int connect_python_while_busy(std::chrono::milliseconds grace) {
   Hub hub(options);
   auto local = hub.run([&] { return hub.bus.attach("sync-producer"); });
   auto timer = hub.run([&] { return std::make_unique<asio::steady_timer>(hub.io); });
+  bool stop = false;  // io thread only
   std::function<void()> tick = [&] {
+    if (stop) return;
     (void)local->send(can::make_frame(0x080, {}));
     timer->expires_after(std::chrono::microseconds(200));
     timer->async_wait([&](const std::error_code& ec) {
@@ -82,9 +84,11 @@ int connect_python_while_busy(std::chrono::milliseconds grace) {
                  "sys.exit(0 if m is not None and m.arbitration_id == 0x80 else 3)\n"});
   const int rc = py.wait(std::chrono::seconds(60));
   hub.run([&] {
+    stop = true;
     timer.reset();  // I/O objects are destroyed on their executor
     local.reset();
   });
+  hub.run([] {});  // the cancelled wait's handler ran before this: nothing refers to our locals now
   return rc;
 }
 
