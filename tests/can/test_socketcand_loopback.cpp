@@ -5,6 +5,8 @@
 #include <gtest/gtest.h>
 
 #include <array>
+#include <atomic>
+#include <thread>
 
 #include <asio/connect.hpp>
 #include <asio/read.hpp>
@@ -205,6 +207,44 @@ TEST(SocketcandLoopback, SurvivesGarbageAndClientsVanishingMidElement) {
   EXPECT_EQ(stats.accepted, 2u);
   EXPECT_EQ(stats.active, 1u);
   EXPECT_EQ(hub.run([&] { return hub.bus.participant_count(); }), 2u);
+  hub.run([&] { local.reset(); });
+}
+
+TEST(SocketcandLoopback, JoinGraceHoldsFramesBackRightAfterRawMode) {
+  sc::ServerOptions options;
+  options.raw_mode_grace = std::chrono::hours(1);
+  Hub hub(options);
+  auto local = hub.run([&] { return hub.bus.attach("local"); });
+  Inbox rx;
+  auto a = connect(hub);
+  ASSERT_TRUE(a);
+  a->set_receive_handler(rx.handler());
+  hub.run([&] { EXPECT_FALSE(local->send(can::make_frame(0x80, {}))); });
+  // Bounded wait for the bus to deliver; nothing may reach the client.
+  for (int i = 0; i < 200 && hub.run([&] { return hub.server->stats().dropped_during_grace; }) == 0; ++i) {
+  }
+  EXPECT_EQ(hub.run([&] { return hub.server->stats().dropped_during_grace; }), 1u);
+  EXPECT_TRUE(rx.snapshot().empty());
+  hub.run([&] { local.reset(); });
+}
+
+TEST(SocketcandLoopback, ClientMayBeDestroyedFromAnotherThreadWhileFramesArrive) {
+  Hub hub;
+  auto local = hub.run([&] { return hub.bus.attach("local"); });
+  for (int round = 0; round < 5; ++round) {
+    auto a = connect(hub);
+    ASSERT_TRUE(a);
+    std::atomic<int> seen{0};
+    a->set_receive_handler([&seen](const can::Frame&, hil::TimePoint) { ++seen; });
+    hub.run([&] {
+      for (int i = 0; i < 2000; ++i) (void)local->send(can::make_frame(0x181, {static_cast<std::uint8_t>(i)}));
+    });
+    while (seen.load() == 0) std::this_thread::yield();  // bounded by the ctest timeout
+    a.reset();  // test thread, while the io thread is delivering
+    const int after = seen.load();
+    hub.run([] {});  // let the io thread run any handler that was still queued
+    EXPECT_EQ(seen.load(), after) << "no handler may run after the destructor returned";
+  }
   hub.run([&] { local.reset(); });
 }
 

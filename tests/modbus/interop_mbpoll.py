@@ -19,7 +19,8 @@ def mbpoll(port, *args):
 
 def main():
     if not shutil.which("mbpoll"):
-        sys.exit("mbpoll not installed (apt install mbpoll)")
+        print("SKIP: mbpoll not installed (apt install mbpoll)")
+        sys.exit(77)
     hilbridge = sys.argv[1]
     c = Checks()
     with Emulator(hilbridge, "cia402") as emu:

@@ -9,7 +9,12 @@ import threading
 import time
 
 import pymodbus_compat  # noqa: F401  (before pymodbus)
-from pymodbus.client import ModbusTcpClient
+
+try:
+    from pymodbus.client import ModbusTcpClient
+except ImportError:
+    print("SKIP: python3-pymodbus is not installed for /usr/bin/python3 (apt install python3-pymodbus)")
+    sys.exit(77)
 
 from emulator import Checks, Emulator
 

@@ -152,6 +152,23 @@ TEST(ModbusFaults, MalformedClientsDoNotDisturbOthers) {
   EXPECT_EQ(lb.server->stats().malformed, 2u);
 }
 
+TEST(ModbusFaults, StalledPartialFrameIsClosedAndSlotsAreLimited) {
+  mocks::ModbusServerConfig config;
+  config.frame_timeout = milliseconds(300);
+  config.max_connections = 2;
+  mocks::ModbusDriveServer server(mocks::DriveDevice(shipped_profile("cia402.yaml")), config);
+  ASSERT_FALSE(server.start());
+  RawSocket stalled(server.port());
+  ASSERT_TRUE(stalled.send({0x00, 0x07, 0x00, 0x00, 0x00, 0x06, 0x01, 0x03}));  // 8 of 12 bytes
+  RawSocket second(server.port());
+  RawSocket third(server.port());  // over max_connections: accepted and closed at once
+  EXPECT_TRUE(third.peer_closed());
+  EXPECT_TRUE(stalled.peer_closed());  // after frame_timeout (real time, bounded by the 2 s receive timeout)
+  EXPECT_EQ(server.stats().stalled, 1u);
+  ASSERT_TRUE(second.send({0x00, 0x08, 0x00, 0x00, 0x00, 0x06, 0x01, 0x03, 0x00, 0x0A, 0x00, 0x01}));
+  EXPECT_EQ(second.recv(11).size(), 11u);  // the healthy client is still served
+}
+
 TEST(ModbusFaults, SeveralClientsAtOnceWhileTheAxisRuns) {
   Loopback lb("cia402.yaml");
   ASSERT_TRUE(lb.enable());

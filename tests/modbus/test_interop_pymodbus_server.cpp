@@ -106,7 +106,7 @@ struct PeerDrive {
   DriveCommand command;
 };
 
-class PymodbusServer : public ::testing::Test {
+class ModbusPymodbusServer : public ::testing::Test {
 protected:
   void SetUp() override {
     if (!have_python()) GTEST_SKIP() << "/usr/bin/python3 with python3-pymodbus is not installed";
@@ -121,7 +121,7 @@ void enable_and_move(PeerDrive& d, std::int64_t target) {
   ASSERT_TRUE(d.until([&] { return d.drive->feedback().position_inc == target; }, 10));
 }
 
-TEST_F(PymodbusServer, Fc23ExchangeEnablesAndWordOrderMatches) {
+TEST_F(ModbusPymodbusServer, Fc23ExchangeEnablesAndWordOrderMatches) {
   PythonServer py;
   ASSERT_NE(py.port(), 0) << "pymodbus server did not start";
   PeerDrive d(shipped_profile("cia402.yaml"), py.port());
@@ -138,7 +138,7 @@ TEST_F(PymodbusServer, Fc23ExchangeEnablesAndWordOrderMatches) {
   EXPECT_EQ(d.drive->link_stats().errors, 0u);
 }
 
-TEST_F(PymodbusServer, Fc16PlusFc3Exchange) {
+TEST_F(ModbusPymodbusServer, Fc16PlusFc3Exchange) {
   PythonServer py;
   ASSERT_NE(py.port(), 0);
   auto profile = shipped_profile("cia402.yaml");
@@ -149,7 +149,7 @@ TEST_F(PymodbusServer, Fc16PlusFc3Exchange) {
   ASSERT_TRUE(d.until([&] { return d.drive->feedback().state == DriveState::switch_on_disabled; }, 5));
 }
 
-TEST_F(PymodbusServer, IllegalAddressFromPymodbusFaultsTheAxis) {
+TEST_F(ModbusPymodbusServer, IllegalAddressFromPymodbusFaultsTheAxis) {
   PythonServer py;
   ASSERT_NE(py.port(), 0);
   auto profile = shipped_profile("cia402.yaml");
@@ -162,7 +162,7 @@ TEST_F(PymodbusServer, IllegalAddressFromPymodbusFaultsTheAxis) {
       << d.drive->feedback().fault.describe();
 }
 
-TEST_F(PymodbusServer, KilledAndRestartedOnTheSamePort) {
+TEST_F(ModbusPymodbusServer, KilledAndRestartedOnTheSamePort) {
   auto py = std::make_unique<PythonServer>();
   const std::uint16_t port = py->port();
   ASSERT_NE(port, 0);

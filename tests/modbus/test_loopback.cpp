@@ -2,6 +2,7 @@
 // Our drive against our server over loopback TCP: enable, position and velocity following with
 // both profiles (FC 23; FC 4 + FC 16 with low-word-first values and scaling), drive faults.
 #include <cmath>
+#include <thread>
 
 #include "loopback_fixture.hpp"
 
@@ -96,6 +97,83 @@ TEST(ModbusLoopback, VendorFaultNumberAndText) {
   lb.server->inject(PlantFault::following_blowup, false);
   lb.drive->request(DriveRequest::fault_reset);
   ASSERT_TRUE(lb.cycle_until([&] { return lb.fb().state == DriveState::switch_on_disabled; }, 10));
+}
+
+// Real-time mode as `hilbridge run` uses it: the worker free-runs every poll period, the server
+// steps its plant on its own timer, the motion thread only copies images. Waits are bounded.
+TEST(ModbusLoopback, FreeRunningOnRealTime) {
+  auto profile = shipped_profile("cia402.yaml");
+  mocks::ModbusServerConfig sc;
+  sc.auto_step = milliseconds(1);
+  mocks::ModbusDriveServer server(mocks::DriveDevice(profile), sc);
+  ASSERT_FALSE(server.start());
+  SteadyClock clock;
+  drives::ModbusDriveConfig c;
+  c.profile = profile;
+  c.port = server.port();
+  c.poll_period = milliseconds(1);
+  drives::ModbusDrive drive(c, clock);
+  DriveCommand cmd;
+  auto run_until = [&](auto pred) {
+    const auto deadline = clock.now() + std::chrono::seconds(10);
+    while (clock.now() < deadline) {
+      const CycleTime t{clock.now(), milliseconds(1)};
+      drive.read(t);
+      drive.write(t, cmd);
+      if (pred()) return true;
+      std::this_thread::yield();
+    }
+    return false;
+  };
+  drive.request(DriveRequest::enable);
+  ASSERT_TRUE(run_until([&] { return drive.feedback().state == DriveState::operation_enabled; }));
+  cmd.position_inc = 1000;
+  ASSERT_TRUE(run_until([&] { return std::abs(drive.feedback().position_inc - 1000) <= 2; }));
+  EXPECT_LT(drive.feedback().age, std::chrono::milliseconds(500));  // fresh, not a frozen image
+  EXPECT_GT(drive.link_stats().exchanges, 5u);
+}
+
+// A small drive with 16-bit registers only, written one register per request (FC 6), feedback
+// read with FC 3, positions scaled 4 increments per register unit.
+TEST(ModbusLoopback, Fc6ProfileWith16BitScaledValues) {
+  auto profile = modbus::parse_profile(R"(name: tiny
+state_machine: vendor
+function_codes: {read: 3, write: 6}
+bits: {enable: 0, fault_reset: 7, ready: 0, enabled: 1, fault: 3}
+registers:
+  control_word:    {address: 40}
+  target_position: {address: 41, type: s16, scale: 4}
+  status_word:     {address: 50}
+  actual_position: {address: 51, type: s16, scale: 4}
+)", "tiny.yaml");
+  ASSERT_TRUE(profile) << profile.error().describe();
+  mocks::ModbusDriveServer server(mocks::DriveDevice(*profile), {});
+  ASSERT_FALSE(server.start());
+  VirtualClock clock;
+  drives::ModbusDriveConfig c;
+  c.profile = *profile;
+  c.port = server.port();
+  c.lockstep = true;
+  drives::ModbusDrive drive(c, clock);
+  EXPECT_FALSE(drive.capabilities().velocity_mode);  // no mode / target velocity registers
+  DriveCommand cmd;
+  auto cycle = [&] {
+    clock.advance(milliseconds(1));
+    server.step(milliseconds(1));
+    ASSERT_TRUE(drive.exchange_sync(clock.now()));
+    drive.read({clock.now(), milliseconds(1)});
+    drive.write({clock.now(), milliseconds(1)}, cmd);
+  };
+  drive.request(DriveRequest::enable);
+  for (int i = 0; i < 5; ++i) cycle();
+  ASSERT_EQ(drive.feedback().state, DriveState::operation_enabled);
+  cmd.position_inc = -4000;  // register value -1000
+  for (int i = 0; i < 400; ++i) cycle();
+  EXPECT_EQ(drive.feedback().position_inc, -4000);
+  const auto raw = server.with_device([](mocks::DriveDevice& d) { return d.table().get(modbus::RegisterSpace::holding, 41); });
+  EXPECT_EQ(static_cast<std::int16_t>(raw), -1000);
+  EXPECT_EQ(server.stats().requests, 3 * drive.link_stats().exchanges);  // 2 x FC 6 + 1 x FC 3
+  EXPECT_EQ(drive.link_stats().errors, 0u);
 }
 
 TEST(ModbusLoopback, HomingIsRefusedNotFaked) {

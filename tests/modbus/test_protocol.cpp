@@ -72,7 +72,7 @@ TEST(ModbusError, CategoryAndLibmodbusErrno) {
   for (int c : {1, 2, 3, 4, 5, 6, 7, 8, 10, 11}) EXPECT_TRUE(exception_from_code(static_cast<std::uint8_t>(c)));
 }
 
-class Handler : public ::testing::Test {
+class ModbusHandler : public ::testing::Test {
 protected:
   void SetUp() override {
     table.define(RegisterSpace::holding, 0, 6, Access::read_write);
@@ -102,7 +102,7 @@ protected:
   HandleResult last;
 };
 
-TEST_F(Handler, Fc3Fc4Reads) {
+TEST_F(ModbusHandler, Fc3Fc4Reads) {
   EXPECT_EQ(run({0x03, 0x00, 0x0A, 0x00, 0x02}), (Bytes{0x03, 0x04, 0x01, 0x0A, 0x01, 0x0B}));
   EXPECT_EQ(run({0x04, 0x00, 0x02, 0x00, 0x01}), (Bytes{0x04, 0x02, 0xBE, 0xEF}));
 }
@@ -113,7 +113,7 @@ struct ExceptionCase {
   std::uint8_t code;
 };
 
-TEST_F(Handler, ExceptionsTableDriven) {
+TEST_F(ModbusHandler, ExceptionsTableDriven) {
   const std::vector<ExceptionCase> cases = {
       {"unknown function", {0x2B, 0x0E, 0x01, 0x00}, 1},
       {"coils not served", {0x01, 0x00, 0x00, 0x00, 0x01}, 1},
@@ -145,7 +145,7 @@ TEST_F(Handler, ExceptionsTableDriven) {
   }
 }
 
-TEST_F(Handler, WritesEchoAndReport) {
+TEST_F(ModbusHandler, WritesEchoAndReport) {
   EXPECT_EQ(run({0x06, 0x00, 0x00, 0x00, 0x0F}), (Bytes{0x06, 0x00, 0x00, 0x00, 0x0F}));
   EXPECT_EQ(table.get(RegisterSpace::holding, 0), 0x000F);
   EXPECT_EQ(last.written_first, 0);
@@ -158,14 +158,14 @@ TEST_F(Handler, WritesEchoAndReport) {
   EXPECT_EQ(table.get(RegisterSpace::holding, 1), 0x0017);  // MB spec §6.16 example
 }
 
-TEST_F(Handler, Fc23WritesBeforeReading) {
+TEST_F(ModbusHandler, Fc23WritesBeforeReading) {
   const Bytes rsp = run({0x17, 0x00, 0x00, 0x00, 0x02, 0x00, 0x00, 0x00, 0x01, 0x02, 0xAB, 0xCD});
   EXPECT_EQ(rsp, (Bytes{0x17, 0x04, 0xAB, 0xCD, 0x01, 0x01}));
   EXPECT_EQ(last.written_first, 0);
   EXPECT_EQ(last.written_count, 1);
 }
 
-TEST_F(Handler, UnitPolicy) {
+TEST_F(ModbusHandler, UnitPolicy) {
   EXPECT_EQ(run({0x03, 0x00, 0x0A, 0x00, 0x01}, 17).size(), 4u);  // lenient: like libmodbus TCP
   options.strict_unit = true;
   EXPECT_EQ(run({0x03, 0x00, 0x0A, 0x00, 0x01}, 17), (Bytes{0x83, 0x0B}));
@@ -173,7 +173,7 @@ TEST_F(Handler, UnitPolicy) {
   EXPECT_EQ(run({0x03, 0x00, 0x0A, 0x00, 0x01}, 1).size(), 4u);
 }
 
-TEST_F(Handler, MalformedAduGetsNoResponse) {
+TEST_F(ModbusHandler, MalformedAduGetsNoResponse) {
   Bytes out(kMaxAduSize);
   const Bytes bad = {0x00, 0x01, 0x00, 0x00, 0x00, 0x06, 0x01, 0x03, 0x00};  // shorter than its length
   auto r = handle_request(bad, table, out, options);

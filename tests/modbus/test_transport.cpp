@@ -88,6 +88,9 @@ TEST(ModbusTransport, InProcessAxesEnableMoveAndSurviveServerDown) {
   ASSERT_TRUE(inj->inject_fault("busy", true));
   ASSERT_TRUE(run.until([&] { return (*x)->feedback().fault.code.value() == 6; }, 5));
   ASSERT_TRUE(inj->inject_fault("busy", false));
+  ASSERT_TRUE(inj->inject_fault("slow_response", true));  // replies 3x the 50 ms timeout late
+  ASSERT_TRUE(run.until([&] { return (*x)->feedback().fault.code.value() == 0x101; }, 5));
+  ASSERT_TRUE(inj->inject_fault("slow_response", false));
 
   const auto report = run.factory->finish(CycleTime{run.clock.now(), milliseconds(1)});
   ASSERT_EQ(report.lines.size(), 2u);

@@ -105,3 +105,27 @@ TEST(AsioScheduler, CycleFunctionStopsTheRunAndStopCancels) {
   io.run_for(1s);  // returns as soon as the cancelled timer completed
   EXPECT_TRUE(done);
 }
+
+TEST(AsioScheduler, OverrunKeepsTheGridAndSkipsMissedDeadlines) {
+  // Cycle 3 works for 3.5 periods (busy, measured on the clock, no sleep): it must be counted as
+  // an overrun, the deadlines it missed skipped, and the grid kept.
+  asio::io_context io;
+  hil::SteadyClock clock;
+  hil::runtime::AsioScheduler s(io, clock, 2ms);
+  std::vector<hil::TimePoint> deadlines;
+  const auto stats = s.run([&](const CycleTime& c) {
+    deadlines.push_back(c.now);
+    if (deadlines.size() == 3) {
+      const auto until = clock.now() + 7ms;
+      while (clock.now() < until) {
+      }
+    }
+    return CycleControl::proceed;
+  }, 6);
+  ASSERT_EQ(deadlines.size(), 6u);
+  EXPECT_GE(stats.overruns, 1u);
+  EXPECT_GE(stats.skipped_cycles, 3u);
+  EXPECT_GE(stats.max_cycle_work, 7ms);
+  EXPECT_GE(deadlines[3] - deadlines[2], 8ms);  // 3.5 periods of work: the next free slot is 4 periods on
+  for (std::size_t i = 1; i < deadlines.size(); ++i) EXPECT_EQ((deadlines[i] - deadlines[0]) % 2ms, Duration::zero());
+}

@@ -21,8 +21,9 @@ struct Rig {
   std::shared_ptr<const Ip247Ramp> ramp;
 };
 
-Rig make_setup(double fmax, double fss, double a, int pulse_us = 2, Polarity pol = Polarity::positive_edge) {
-  auto t = make_ip247_timing(pulse_us, PulseRounding::up, fmax, pol, 5'000, 5'000);
+Rig make_setup(double fmax, double fss, double a, int pulse_us = 2, Polarity pol = Polarity::positive_edge,
+               std::int64_t setup_ns = 5'000, std::int64_t hold_ns = 5'000) {
+  auto t = make_ip247_timing(pulse_us, PulseRounding::up, fmax, pol, setup_ns, hold_ns);
   EXPECT_TRUE(t.has_value());
   auto r = Ip247Ramp::make({fmax, fss, a}, t->min_period_ns());
   if (!r) {
@@ -44,7 +45,11 @@ Rig random_setup(std::mt19937_64& rng) {
   const int max_pulse = std::clamp(static_cast<int>(5e5 / fmax) - 1, 1, 31);
   std::uniform_int_distribution<int> pulse_d(1, max_pulse);
   std::bernoulli_distribution neg(0.5);
-  return make_setup(fmax, fss, a, pulse_d(rng), neg(rng) ? Polarity::negative_edge : Polarity::positive_edge);
+  std::uniform_int_distribution<std::int64_t> setup_d(0, 200'000);
+  const int pulse = pulse_d(rng);
+  const Polarity pol = neg(rng) ? Polarity::negative_edge : Polarity::positive_edge;
+  const std::int64_t setup = setup_d(rng), hold = setup_d(rng);
+  return make_setup(fmax, fss, a, pulse, pol, setup, hold);
 }
 
 }  // namespace
@@ -53,7 +58,8 @@ TEST(StepPlanner, RandomMovesStepCountEqualsDistanceAndNoRuleBroken) {
   std::mt19937_64 rng(0x1247);
   for (int trial = 0; trial < 60; ++trial) {
     Rig s = random_setup(rng);
-    StepPlanner p(s.timing, s.ramp);
+    std::uniform_int_distribution<std::int64_t> bl_d(0, 20);
+    StepPlanner p(s.timing, s.ramp, bl_d(rng));
     std::vector<Edge> edges;
     std::uniform_int_distribution<std::int64_t> dist_d(-3000, 3000);
     std::int64_t expected = 0;
@@ -72,8 +78,11 @@ TEST(StepPlanner, RandomMovesStepCountEqualsDistanceAndNoRuleBroken) {
       EXPECT_EQ(p.position(), target);
     }
     VerifyStats st;
-    auto v = verify_edges(edges, s.timing, expected, {}, &st);
+    auto v = verify_edges(edges, s.timing, p.motor_position(), {}, &st);
     ASSERT_FALSE(v) << "trial " << trial << ": " << v->describe();
+    // Every step on the wire is either a position step or a backlash step.
+    EXPECT_EQ(static_cast<std::uint64_t>(st.steps_forward + st.steps_backward), p.steps_total());
+    EXPECT_EQ(p.position(), expected);
   }
 }
 

@@ -26,6 +26,7 @@ struct EmulateOptions {
   double step_period_ms = 1.0;
   int max_connections = 64;
   double duration_s = 0.0;
+  double frame_timeout_s = 5.0;
   bool quiet = false;
 };
 
@@ -60,6 +61,7 @@ int run_emulate(const EmulateOptions& o) {
   config.handler.strict_unit = o.strict_unit;
   config.max_connections = static_cast<std::size_t>(o.max_connections);
   config.auto_step = from_seconds(o.step_period_ms / 1000.0);
+  config.frame_timeout = from_seconds(o.frame_timeout_s);
   if (!o.quiet)
     config.log = [](std::string_view msg) { std::fprintf(stderr, "%.*s\n", static_cast<int>(msg.size()), msg.data()); };
   const std::string name = profile->name;
@@ -97,9 +99,10 @@ int run_emulate(const EmulateOptions& o) {
   }
   server.stop();
   const auto s = server.stats();
-  std::printf("modbus-drive: stopped; %llu connections, %llu requests, %llu exceptions, %llu malformed\n",
+  std::printf("modbus-drive: stopped; %llu connections, %llu requests, %llu exceptions, %llu malformed, %llu stalled\n",
               static_cast<unsigned long long>(s.connections_accepted), static_cast<unsigned long long>(s.requests),
-              static_cast<unsigned long long>(s.exceptions), static_cast<unsigned long long>(s.malformed));
+              static_cast<unsigned long long>(s.exceptions), static_cast<unsigned long long>(s.malformed),
+              static_cast<unsigned long long>(s.stalled));
   return 0;
 }
 
@@ -123,6 +126,9 @@ void register_emulate_modbus_drive(Context& ctx) {
   cmd->add_option("--max-connections", o->max_connections, "Simultaneous clients (default 64)")->check(CLI::Range(1, 1024));
   cmd->add_option("--duration", o->duration_s, "Stop after this many seconds (default: until SIGINT/SIGTERM)")
       ->check(CLI::Range(0.0, 1e7));
+  cmd->add_option("--frame-timeout", o->frame_timeout_s,
+                  "Close a connection whose started frame is still incomplete after this many seconds (default 5)")
+      ->check(CLI::Range(0.001, 3600.0));
   cmd->add_flag("--quiet", o->quiet, "Do not log malformed frames and refused connections on stderr");
   cmd->footer(
       "Function codes: 3, 4, 6, 16, 22, 23; others answer exception 01. Writes to read-only registers answer 02.\n"

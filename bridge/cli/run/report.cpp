@@ -42,7 +42,6 @@ void print_summary(std::FILE* out, const runtime::RunResult& r) {
   }
   fmt::print(out, "scheduler: {}\n", describe_scheduler(r.scheduler));
   for (const auto& rep : r.reports) {
-    if (rep.report.lines.empty() && rep.report.ok) continue;
     fmt::print(out, "transport {}: {}\n", rep.transport, rep.report.ok ? "ok" : "FAILED");
     for (const auto& l : rep.report.lines) fmt::print(out, "  {}\n", l);
   }

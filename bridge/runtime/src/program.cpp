@@ -173,6 +173,7 @@ Program::Check Program::poll(Running& r, Duration t) {
     return ok ? Check::done : Check::pending;
   };
   using motion::AxisState;
+  using hil::DriveState;
   Check c = std::visit(
       Overloaded{
           [&](const EnableStep& e) {
@@ -184,8 +185,15 @@ Program::Check Program::poll(Running& r, Duration t) {
             return all(e.axes, [](const motion::AxisStatus& st) { return st.state == AxisState::disabled; });
           },
           [&](const ResetStep& e) {
-            for (const auto& n : e.axes)
-              if (axis(n).status().state == AxisState::error) return Check::pending;
+            // Done when the axis left error and its drive acknowledged the reset (a drive still in
+            // fault would refuse the enable that usually follows).
+            for (const auto& n : e.axes) {
+              auto& a = axis(n);
+              const auto ds = a.drive().feedback().state;
+              if (a.status().state == AxisState::error || ds == DriveState::fault ||
+                  ds == DriveState::fault_reaction_active)
+                return Check::pending;
+            }
             return Check::done;
           },
           [&](const HomeStep& e) {

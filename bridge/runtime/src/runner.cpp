@@ -2,6 +2,7 @@
 #include "hil/runtime/runner.hpp"
 
 #include <csignal>
+#include <optional>
 
 #include <asio/io_context.hpp>
 #include <asio/signal_set.hpp>
@@ -58,13 +59,33 @@ public:
       timed_out_ = true;
       return CycleControl::stop;
     }
-    if (scenario_.duration) return t + c.period > *scenario_.duration ? CycleControl::stop : CycleControl::proceed;
-    if (status == Program::Status::done && at_rest(machine_) && t >= monitor_.latest_expectation_time())
-      return CycleControl::stop;
+    if (scenario_.duration) return t + c.period >= *scenario_.duration ? CycleControl::stop : CycleControl::proceed;
+    if (status != Program::Status::done || !at_rest(machine_)) {
+      rest_since_.reset();
+      return CycleControl::proceed;
+    }
+    if (!rest_since_) rest_since_ = t;
+    // At rest; let standstill axes settle into their in-position window (bounded by the longest
+    // in-position timeout, after which supervision would have faulted anyway).
+    const bool settled = all_in_position(machine_) || t - *rest_since_ >= settle_limit();
+    if (settled && t >= monitor_.latest_expectation_time()) return CycleControl::stop;
     return CycleControl::proceed;
   }
 
   void interrupt() noexcept { interrupt_requested_ = true; }
+
+  static bool all_in_position(const Machine& m) {
+    for (const auto& a : m.axes()) {
+      const auto& st = a.axis->status();
+      if (st.state == motion::AxisState::standstill && !st.in_position) return false;
+    }
+    return true;
+  }
+  Duration settle_limit() const {
+    Duration d{};
+    for (const auto& a : machine_.axes()) d = std::max(d, a.axis->config().in_position_timeout);
+    return d + scenario_.period;
+  }
 
   RunResult finish(const SchedulerStats& stats) {
     RunResult r;
@@ -113,6 +134,7 @@ private:
   bool interrupt_requested_ = false;
   bool interrupted_ = false;
   Duration interrupted_at_{};
+  std::optional<Duration> rest_since_;
 };
 
 }  // namespace

@@ -381,14 +381,8 @@ private:
       p.at = f.optional_duration("at");
       p.by = f.optional_duration("by");
       if (p.at && p.by) f.child("by").fail("use either 'at' (checked at that instant) or 'by' (reached no later than)");
-      if (auto t = f.child("tolerance"); t.present()) {
-        p.tolerance = t.as_positive("a tolerance in units");
-      } else {
-        const AxisSpec* a = find(axes.front());
-        if (a->in_position_window <= 0.0)
-          f.fail("missing key 'tolerance' (the axis has no supervision.in_position window to default to)");
-        p.tolerance = a->in_position_window;
-      }
+      if (auto t = f.child("tolerance"); t.present()) p.tolerance = t.as_positive("a tolerance in units");
+      // else: each axis' own in-position window (set per axis below)
       e = p;
     } else if (kind == "fault") {
       only({"by"});
@@ -404,7 +398,12 @@ private:
       only({});
       e = MaxFollowingErrorExpectation{x.as_positive("a following error in units")};
     }
-    for (const auto& a : axes) out.push_back(Expectation{a, e, SourceRef{f.line(), f.path()}});
+    for (const auto& a : axes) {
+      Expectation one{a, e, SourceRef{f.line(), f.path()}};
+      if (auto* p = std::get_if<PositionExpectation>(&one.kind); p && p->tolerance <= 0.0)
+        p->tolerance = find(a)->in_position_window;  // the loader defaults it to > 0
+      out.push_back(std::move(one));
+    }
   }
 
   const AxisSpec* find(const std::string& name) const {

@@ -17,6 +17,7 @@ void PlotRecorder::on_start(const Scenario& scenario, const Machine& machine) {
     PlotSeries s;
     s.axis = a.spec->name;
     s.units = a.spec->units;
+    s.rotary = a.spec->rotary;
     data_.axes.push_back(std::move(s));
   }
 }
@@ -109,6 +110,7 @@ struct Line {
   const char* label;
   const char* color;
   bool dashed;
+  bool wraps = false;  ///< rotary position: break the line where it wraps
 };
 
 void chart(std::string& svg, double x0, double y0, const std::string& title, const std::vector<double>& t,
@@ -150,15 +152,25 @@ void chart(std::string& svg, double x0, double y0, const std::string& title, con
   }
   svg += fmt::format("<text x=\"{:.1f}\" y=\"{:.1f}\" class=\"xlabel\">t [s]</text>\n", px + pw / 2, py + ph + 32);
   for (const auto& l : lines) {
+    // A rotary position wraps (359.9 -> 0.1): break the line there instead of drawing a vertical
+    // stroke across the chart.
     std::string pts;
     pts.reserve(t.size() * 16);
+    double prev = NAN;
+    auto flush = [&] {
+      if (!pts.empty())
+        svg += fmt::format("<polyline fill=\"none\" stroke=\"{}\" stroke-width=\"1.5\"{} points=\"{}\"/>\n",
+                           l.color, l.dashed ? " stroke-dasharray=\"5,3\"" : "", pts);
+      pts.clear();
+    };
     for (std::size_t i = 0; i < t.size() && i < l.values->size(); ++i) {
       const double v = (*l.values)[i];
       if (!std::isfinite(v)) continue;
+      if (l.wraps && std::isfinite(prev) && std::abs(v - prev) > 0.5 * (yr.hi - yr.lo)) flush();
+      prev = v;
       fmt::format_to(std::back_inserter(pts), "{:.1f},{:.1f} ", X(t[i]), Y(v));
     }
-    svg += fmt::format("<polyline fill=\"none\" stroke=\"{}\" stroke-width=\"1.5\"{} points=\"{}\"/>\n", l.color,
-                       l.dashed ? " stroke-dasharray=\"5,3\"" : "", pts);
+    flush();
   }
   // Legend, top right inside the plot area.
   double ly = py + 14;
@@ -199,9 +211,9 @@ std::string render_svg(const PlotData& data) {
       width, height, xml_escape(data.title.empty() ? "hilbridge run" : "hilbridge run: " + data.title));
   double y = title_h;
   for (const auto& s : data.axes) {
-    const std::string u = xml_escape(s.units);
     chart(svg, 10, y, fmt::format("{}: position [{}]", s.axis, s.units), s.t,
-          {{&s.position, "actual", "#1f77b4", false}, {&s.command, "command", "#ff7f0e", true}}, t_end);
+          {{&s.position, "actual", "#1f77b4", false, s.rotary}, {&s.command, "command", "#ff7f0e", true, s.rotary}},
+          t_end);
     chart(svg, 10 + chart_w, y, fmt::format("{}: velocity [{}/s]", s.axis, s.units), s.t,
           {{&s.velocity, "actual", "#2ca02c", false}}, t_end);
     chart(svg, 10 + 2 * chart_w, y, fmt::format("{}: following error [{}]", s.axis, s.units), s.t,

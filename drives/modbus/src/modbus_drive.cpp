@@ -107,6 +107,7 @@ void ModbusDrive::read(const CycleTime& cycle) {
     seen_error_seq_ = local_link_.error_seq;
     link_fault_ = local_link_.error;  // latch the newest error
     link_reset_armed_ = false;
+    target_ = modbus::PowerTarget::disabled;  // a faulted axis is switched off; re-enable after the reset
   }
   clear_link_fault_if_reset();
   const auto& p = config_.profile;
@@ -165,7 +166,11 @@ void ModbusDrive::write(const CycleTime& /*cycle*/, const DriveCommand& command)
     }
     if (n >= 22) reset_pending_ = false;
   }
-  const auto cw = modbus::make_control_word(p, drive_state_, target_, reset_high);
+  // While a link fault is latched the drive is told to switch off (it may still be powered on
+  // the far side after an outage); the control word gets there as soon as the link is back.
+  const auto cw = link_fault_ != modbus::ModbusError::none
+                      ? modbus::make_control_word(p, drive_state_, modbus::PowerTarget::disabled, false)
+                      : modbus::make_control_word(p, drive_state_, target_, reset_high);
   put_field(FieldRole::control_word, cw);
   const bool velocity = command.mode == CommandMode::velocity && capabilities().velocity_mode;
   put_field(FieldRole::mode, velocity ? p.mode_velocity : p.mode_position);
@@ -212,10 +217,24 @@ void ModbusDrive::clear_link_fault_if_reset() noexcept {
 
 bool ModbusDrive::exchange_sync(TimePoint now, std::chrono::milliseconds wait) {
   if (!config_.lockstep) return false;
-  std::unique_lock lock(mutex_);
-  trigger_now_ = now;
-  const std::uint64_t want = ++trigger_seq_;
+  exchange_start(now);
+  return exchange_wait(wait);
+}
+
+void ModbusDrive::exchange_start(TimePoint now) {
+  if (!config_.lockstep) return;
+  {
+    std::lock_guard lock(mutex_);
+    trigger_now_ = now;
+    ++trigger_seq_;
+  }
   cv_.notify_all();
+}
+
+bool ModbusDrive::exchange_wait(std::chrono::milliseconds wait) {
+  if (!config_.lockstep) return false;
+  std::unique_lock lock(mutex_);
+  const std::uint64_t want = trigger_seq_;
   return cv_.wait_for(lock, wait, [&] { return done_seq_ >= want || stop_; }) && done_seq_ >= want;
 }
 
@@ -256,8 +275,15 @@ void ModbusDrive::worker() {
     modbus_set_slave(ctx.get(), config_.unit_id);
     modbus_set_error_recovery(ctx.get(), MODBUS_ERROR_RECOVERY_NONE);
   }
-  std::vector<std::vector<std::uint16_t>> command = shared_command_;
-  std::vector<std::vector<std::uint16_t>> image = shared_image_.blocks;
+  // Worker-local buffers sized like the shared ones (copied under the lock: the motion thread
+  // may already be writing commands).
+  std::vector<std::vector<std::uint16_t>> command;
+  std::vector<std::vector<std::uint16_t>> image;
+  {
+    std::lock_guard lock(mutex_);
+    command = shared_command_;
+    image = shared_image_.blocks;
+  }
   bool connected = false;
   TimePoint next_attempt{};
   Duration backoff = config_.backoff_min;

@@ -168,7 +168,9 @@ public:
     last_ = cycle.now;
     if (dt.count() > 0)
       for (auto& s : servers_) s->step(dt);
-    for (ModbusDrive* d : drives_) d->exchange_sync(cycle.now);  // no-op unless lockstep
+    // Lockstep (virtual time): all drives exchange in parallel, then the axes read. No-op otherwise.
+    for (ModbusDrive* d : drives_) d->exchange_start(cycle.now);
+    for (ModbusDrive* d : drives_) d->exchange_wait();
   }
 
   TransportReport finish(const CycleTime&) override {

@@ -63,7 +63,7 @@ Ex<StepDirConfig> parse_stepdir_config(const YAML::Node& drive, const Where& whe
           drive, where,
           {"transport", "chip", "lines", "profile", "fmax_hz", "fss_hz", "accel_hz_per_s", "pulse_us", "pulse_rounding",
            "step_space_ns", "dir_setup_ns", "dir_hold_ns", "polarity", "dir_forward_level", "backlash", "limit_switches",
-           "reset_pulse_ms", "ready_timeout_ms", "homing", "mock"});
+           "reset_pulse_ms", "ready_timeout_ms", "homing", "mock", "writer"});
       !r) {
     return std::unexpected(r.error());
   }
@@ -170,6 +170,21 @@ Ex<StepDirConfig> parse_stepdir_config(const YAML::Node& drive, const Where& whe
   if (*rp < 0 || *rt <= 0) return std::unexpected(error_at(drive, where, "reset_pulse_ms must be >= 0 and ready_timeout_ms > 0"));
   c.reset_pulse = std::chrono::milliseconds(*rp);
   c.ready_timeout = std::chrono::milliseconds(*rt);
+
+  if (const YAML::Node wr = drive["writer"]) {
+    const Where ww = where.key("writer");
+    if (auto r = hil::yaml::check_keys(wr, ww, {"spin_us", "late_us", "rt_priority"}); !r) return std::unexpected(r.error());
+    auto spin = integer(wr, ww, "spin_us", 200), late = integer(wr, ww, "late_us", 50), prio = integer(wr, ww, "rt_priority", 0);
+    if (!spin) return std::unexpected(spin.error());
+    if (!late) return std::unexpected(late.error());
+    if (!prio) return std::unexpected(prio.error());
+    if (*spin < 0 || *spin > 100'000 || *late < 1 || *prio < 0 || *prio > 99) {
+      return std::unexpected(error_at(wr, ww, "expected spin_us 0..100000, late_us >= 1, rt_priority 0..99"));
+    }
+    c.writer_spin = std::chrono::microseconds(*spin);
+    c.writer_late = std::chrono::microseconds(*late);
+    c.writer_rt_priority = static_cast<int>(*prio);
+  }
 
   // Lines.
   const YAML::Node lines = drive["lines"];

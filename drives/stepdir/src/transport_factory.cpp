@@ -58,7 +58,12 @@ std::expected<DrivePtr, ConfigError> StepDirTransportFactory::make_drive(const s
       axis->real_in = std::move(*i);
       in_bank = axis->real_in.get();
     }
-    axis->writer = std::make_unique<gpio::AsyncEdgeWriter>(*axis->real_out, axis->steady);
+    gpio::EdgeWriterOptions wo;
+    wo.spin_window = cfg->writer_spin;
+    wo.late_threshold = cfg->writer_late;
+    wo.realtime_priority = cfg->writer_rt_priority;
+    axis->writer = std::make_unique<gpio::AsyncEdgeWriter>(*axis->real_out, axis->steady, wo);
+    axis->late_us = static_cast<double>(cfg->writer_late.count()) / 1000.0;
     // Map the run's timeline onto the writer's steady clock.
     axis->writer->set_time_offset(axis->steady.now().time_since_epoch().count() - env.clock.now().time_since_epoch().count());
     axis->sink.next = axis->writer.get();
@@ -104,10 +109,13 @@ TransportReport StepDirTransportFactory::finish(const CycleTime&) {
     if (a->writer) {
       const auto ws = a->writer->stats();
       rep.lines.push_back(fmt::format(
-          "{}: writer: {} edges, {} late (> 50 us), error mean {:.1f} us, p99 <= {:.1f} us, max {:.1f} us, max slip {:.1f} us, {} I/O errors",
-          a->name, ws.edges, ws.late, ws.mean_error_ns() / 1000.0, static_cast<double>(ws.quantile_bound_ns(0.99)) / 1000.0,
+          "{}: writer: {} edges, {} late (> {} us), error mean {:.1f} us, p99 <= {:.1f} us, max {:.1f} us, max slip {:.1f} us, {} I/O errors",
+          a->name, ws.edges, ws.late, a->late_us, ws.mean_error_ns() / 1000.0, static_cast<double>(ws.quantile_bound_ns(0.99)) / 1000.0,
           static_cast<double>(ws.max_error_ns) / 1000.0, static_cast<double>(ws.max_slip_ns) / 1000.0, ws.io_errors));
       if (ws.io_errors) rep.ok = false;
+      if (auto ec = a->writer->realtime_error()) {
+        rep.lines.push_back(fmt::format("{}: writer: SCHED_FIFO refused ({}); ran with normal scheduling", a->name, ec.message()));
+      }
     }
   }
   return rep;

@@ -38,7 +38,7 @@ struct ModbusDriveServer::Impl {
 class ModbusDriveServer::Connection : public std::enable_shared_from_this<Connection> {
 public:
   Connection(ModbusDriveServer::Impl& impl, tcp::socket socket)
-      : impl_(impl), socket_(std::move(socket)), timer_(impl.io) {
+      : impl_(impl), socket_(std::move(socket)), timer_(impl.io), frame_timer_(impl.io) {
     std::error_code ec;
     peer_ = fmt::format("{}", socket_.remote_endpoint(ec).address().to_string());
     socket_.set_option(tcp::no_delay(true), ec);
@@ -51,6 +51,7 @@ public:
     socket_.shutdown(tcp::socket::shutdown_both, ec);
     socket_.close(ec);
     timer_.cancel();
+    frame_timer_.cancel();
     impl_.server.open_.fetch_sub(1);
     impl_.connections.erase(shared_from_this());
   }
@@ -112,6 +113,7 @@ private:
       std::memmove(rx_.data(), rx_.data() + off, have_ - off);
       have_ -= off;
     }
+    arm_frame_timer(off > 0);
     if (tx_.empty()) {
       if (close_after_write_) return close();
       return do_read();
@@ -128,6 +130,29 @@ private:
     }
   }
 
+  // A partial frame must complete within frame_timeout; a new partial frame restarts the clock.
+  void arm_frame_timer(bool progressed) {
+    if (have_ == 0 || close_after_write_) {
+      frame_armed_ = false;
+      frame_timer_.cancel();
+      return;
+    }
+    if (frame_armed_ && !progressed) return;
+    frame_armed_ = true;  // (re)arming cancels a pending wait, whose handler then sees operation_aborted
+    frame_timer_.expires_after(impl_.server.config_.frame_timeout);
+    frame_timer_.async_wait([self = shared_from_this()](std::error_code ec) {
+      if (ec || !self->frame_armed_) return;
+      self->impl_.server.stalled_.fetch_add(1);
+      self->impl_.log(fmt::format("modbus server: closing connection from {}: frame incomplete after {} ms ({} bytes)",
+                                  self->peer_,
+                                  std::chrono::duration_cast<std::chrono::milliseconds>(
+                                      self->impl_.server.config_.frame_timeout)
+                                      .count(),
+                                  self->have_));
+      self->close();
+    });
+  }
+
   void do_write() {
     asio::async_write(socket_, asio::buffer(tx_), [self = shared_from_this()](std::error_code ec, std::size_t) {
       if (ec || self->close_after_write_) return self->close();
@@ -138,6 +163,8 @@ private:
   ModbusDriveServer::Impl& impl_;
   tcp::socket socket_;
   asio::steady_timer timer_;
+  asio::steady_timer frame_timer_;
+  bool frame_armed_ = false;
   std::string peer_;
   // Two maximal ADUs fit: a full frame never waits for buffer space.
   std::array<std::uint8_t, 4 * modbus::kMaxAduSize> rx_{};
@@ -248,7 +275,7 @@ void ModbusDriveServer::fail_next(std::uint32_t count, modbus::ModbusError code)
 void ModbusDriveServer::set_response_delay(Duration delay) { delay_ns_ = delay.count(); }
 
 ModbusServerStats ModbusDriveServer::stats() const {
-  return {accepted_.load(), requests_.load(), exceptions_.load(), malformed_.load(), open_.load()};
+  return {accepted_.load(), requests_.load(), exceptions_.load(), malformed_.load(), stalled_.load(), open_.load()};
 }
 
 }  // namespace hil::mocks

@@ -4,6 +4,9 @@
 #include <algorithm>
 #include <bit>
 
+#include <pthread.h>
+#include <sched.h>
+
 namespace hil::gpio {
 
 std::int64_t EdgeWriterStats::quantile_bound_ns(double p) const noexcept {
@@ -71,7 +74,7 @@ std::error_code EdgeWriter::write(std::span<const Edge> edges) noexcept {
 }
 
 AsyncEdgeWriter::AsyncEdgeWriter(LineBank& lines, const SteadyClock& clock, EdgeWriterOptions options)
-    : writer_(lines, clock, options), thread_([this] { run(); }) {}
+    : writer_(lines, clock, options), rt_priority_(options.realtime_priority), thread_([this] { run(); }) {}
 
 AsyncEdgeWriter::~AsyncEdgeWriter() {
   {
@@ -117,18 +120,32 @@ EdgeWriterStats AsyncEdgeWriter::stats() const {
   return stats_;
 }
 
+std::error_code AsyncEdgeWriter::realtime_error() const {
+  std::lock_guard lock(mutex_);
+  return rt_error_;
+}
+
 std::error_code AsyncEdgeWriter::last_error() const {
   std::lock_guard lock(mutex_);
   return last_error_;
 }
 
 void AsyncEdgeWriter::run() {
+  if (rt_priority_ > 0) {
+    sched_param sp{};
+    sp.sched_priority = std::clamp(rt_priority_, sched_get_priority_min(SCHED_FIFO), sched_get_priority_max(SCHED_FIFO));
+    if (int rc = pthread_setschedparam(pthread_self(), SCHED_FIFO, &sp); rc != 0) {
+      std::lock_guard lock(mutex_);
+      rt_error_ = std::error_code(rc, std::generic_category());
+    }
+  }
   for (;;) {
     std::vector<Edge> batch;
     {
       std::unique_lock lock(mutex_);
       cv_.wait(lock, [this] { return stop_ || !queue_.empty(); });
-      if (queue_.empty()) return;  // stop requested and nothing left
+      // Destruction does not wait for a backlog (finish()/drain() reports one before that).
+      if (stop_) return;
       batch = std::move(queue_.front());
       queue_.pop_front();
       busy_ = true;

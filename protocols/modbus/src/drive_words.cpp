@@ -5,7 +5,7 @@ namespace hil::modbus {
 namespace {
 
 constexpr bool bit(std::uint16_t w, int n) noexcept { return n >= 0 && ((w >> n) & 1u) != 0; }
-constexpr std::uint16_t mask(int n) noexcept { return n >= 0 ? static_cast<std::uint16_t>(1u << n) : 0; }
+constexpr std::uint16_t mask(int n) noexcept { return static_cast<std::uint16_t>(n >= 0 ? (1u << n) : 0u); }
 
 bool referenced_from(const Profile& p, std::uint16_t sw) noexcept {
   return p.bits.referenced < 0 ? true : bit(sw, p.bits.referenced);

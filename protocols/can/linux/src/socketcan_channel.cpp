@@ -79,8 +79,10 @@ struct SocketCanChannel::Impl : std::enable_shared_from_this<SocketCanChannel::I
   const Clock& clock;
   SocketCanOptions options;
   int raw_fd;
-  ReceiveHandler handler;                       // executor only
-  std::function<void(BusState)> state_handler;  // executor only
+  // Held while a handler runs (see SocketcandChannel): destruction from any thread is safe.
+  std::recursive_mutex handler_mu;
+  ReceiveHandler handler;
+  std::function<void(BusState)> state_handler;
 
   mutable std::mutex mu;  // guards the fields below
   std::deque<can_frame> queue;
@@ -130,9 +132,25 @@ struct SocketCanChannel::Impl : std::enable_shared_from_this<SocketCanChannel::I
     }
   }
 
+  /// Caller holds `mu` and runs on the executor.
   void arm_locked(bool enobufs) {
     if (waiting) return;
     waiting = true;
+    start_wait(enobufs);
+  }
+
+  /// From send() on any thread: the descriptor and timer may only be touched on the executor.
+  void arm_from_any_thread_locked(bool enobufs) {
+    if (waiting) return;
+    waiting = true;
+    asio::post(desc.get_executor(), [self = shared_from_this(), enobufs] {
+      std::lock_guard lock(self->mu);
+      if (self->closed) return;
+      self->start_wait(enobufs);
+    });
+  }
+
+  void start_wait(bool enobufs) {
     auto self = shared_from_this();
     if (!enobufs) {
       desc.async_wait(asio::posix::stream_descriptor::wait_write, [self](const std::error_code& ec) { self->on_retry(ec); });
@@ -211,6 +229,7 @@ struct SocketCanChannel::Impl : std::enable_shared_from_this<SocketCanChannel::I
           ++stats.channel.rx_frames;
         }
       }
+      std::lock_guard hl(handler_mu);
       if (new_state && state_handler) state_handler(*new_state);
       if (f.error && !options.deliver_error_frames) continue;
       if (handler) handler(f, clock.now());
@@ -224,9 +243,9 @@ struct SocketCanChannel::Impl : std::enable_shared_from_this<SocketCanChannel::I
     return closed;
   }
 
+  /// Executor only (the descriptor and timer belong to it).
   void close() {
     std::lock_guard lock(mu);
-    if (closed) return;
     closed = true;
     queue.clear();
     std::error_code ec;
@@ -295,9 +314,17 @@ SocketCanChannel::SocketCanChannel(std::shared_ptr<Impl> impl, std::string name)
     : impl_(std::move(impl)), name_(std::move(name)) {}
 
 SocketCanChannel::~SocketCanChannel() {
-  impl_->handler = nullptr;
-  impl_->state_handler = nullptr;
-  impl_->close();
+  {
+    std::lock_guard hl(impl_->handler_mu);
+    impl_->handler = nullptr;
+    impl_->state_handler = nullptr;
+  }
+  {
+    std::lock_guard lock(impl_->mu);
+    impl_->closed = true;  // no more sends; the queue is dropped
+    impl_->queue.clear();
+  }
+  asio::post(impl_->desc.get_executor(), [impl = impl_] { impl->close(); });
 }
 
 std::error_code SocketCanChannel::send(const Frame& frame) {
@@ -319,7 +346,7 @@ std::error_code SocketCanChannel::send(const Frame& frame) {
         const bool enobufs = r == Impl::WriteResult::retry_later;
         impl_->queue.push_back(k);
         impl_->stats.tx_queue_high_water = std::max<std::uint64_t>(impl_->stats.tx_queue_high_water, 1);
-        impl_->arm_locked(enobufs);
+        impl_->arm_from_any_thread_locked(enobufs);
         return {};
       }
     }
@@ -333,8 +360,14 @@ std::error_code SocketCanChannel::send(const Frame& frame) {
   return {};
 }
 
-void SocketCanChannel::set_receive_handler(ReceiveHandler handler) { impl_->handler = std::move(handler); }
-void SocketCanChannel::set_state_handler(std::function<void(BusState)> handler) { impl_->state_handler = std::move(handler); }
+void SocketCanChannel::set_receive_handler(ReceiveHandler handler) {
+  std::lock_guard hl(impl_->handler_mu);
+  impl_->handler = std::move(handler);
+}
+void SocketCanChannel::set_state_handler(std::function<void(BusState)> handler) {
+  std::lock_guard hl(impl_->handler_mu);
+  impl_->state_handler = std::move(handler);
+}
 
 ChannelStats SocketCanChannel::stats() const noexcept {
   std::lock_guard lock(impl_->mu);

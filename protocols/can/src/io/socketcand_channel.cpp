@@ -23,7 +23,10 @@ struct SocketcandChannel::Impl : std::enable_shared_from_this<SocketcandChannel:
   ClientOptions options;
   ElementSplitter splitter;
   std::array<char, 4096> rx{};
-  ReceiveHandler handler;  // executor thread only
+  // Held while a handler runs, so the destructor (any thread) waits for a running handler and no
+  // handler starts afterwards. Recursive: a handler may destroy its own channel.
+  std::recursive_mutex handler_mu;
+  ReceiveHandler handler;
 
   mutable std::mutex mu;  // guards everything below
   std::string pending;
@@ -56,6 +59,7 @@ struct SocketcandChannel::Impl : std::enable_shared_from_this<SocketcandChannel:
           std::lock_guard lock(mu);
           ++stats.rx_frames;
         }
+        std::lock_guard hl(handler_mu);
         if (handler) handler(rx_frame->frame, clock.now());
       } else if (const auto* ef = std::get_if<ErrorFrame>(&*e)) {
         {
@@ -64,6 +68,7 @@ struct SocketcandChannel::Impl : std::enable_shared_from_this<SocketcandChannel:
           if (ef->frame.id & error_class::bus_off) stats.bus_off = true;
           if (ef->frame.id & error_class::restarted) stats.bus_off = false;
         }
+        std::lock_guard hl(handler_mu);
         if (handler) handler(ef->frame, clock.now());
       } else if (const auto* et = std::get_if<ErrorText>(&*e)) {
         std::lock_guard lock(mu);
@@ -243,8 +248,16 @@ SocketcandChannel::SocketcandChannel(std::shared_ptr<Impl> impl, std::string nam
     : impl_(std::move(impl)), name_(std::move(name)) {}
 
 SocketcandChannel::~SocketcandChannel() {
-  impl_->handler = nullptr;
-  impl_->close();
+  {
+    std::lock_guard hl(impl_->handler_mu);
+    impl_->handler = nullptr;
+  }
+  {
+    std::lock_guard lock(impl_->mu);
+    impl_->pending.clear();
+  }
+  // The socket belongs to the executor: close it there (safe from any thread).
+  asio::post(impl_->socket.get_executor(), [impl = impl_] { impl->close(); });
 }
 
 std::error_code SocketcandChannel::send(const Frame& frame) {
@@ -265,7 +278,10 @@ std::error_code SocketcandChannel::send(const Frame& frame) {
   return {};
 }
 
-void SocketcandChannel::set_receive_handler(ReceiveHandler handler) { impl_->handler = std::move(handler); }
+void SocketcandChannel::set_receive_handler(ReceiveHandler handler) {
+  std::lock_guard hl(impl_->handler_mu);
+  impl_->handler = std::move(handler);
+}
 
 ChannelStats SocketcandChannel::stats() const noexcept {
   std::lock_guard lock(impl_->mu);
@@ -278,5 +294,10 @@ std::string SocketcandChannel::last_server_error() const {
 }
 
 bool SocketcandChannel::connected() const noexcept { return !impl_->is_closed(); }
+
+std::size_t SocketcandChannel::tx_pending_bytes() const {
+  std::lock_guard lock(impl_->mu);
+  return impl_->pending.size() + (impl_->writing ? impl_->outbox.size() + 1 : 0);
+}
 
 }  // namespace hil::can::socketcand

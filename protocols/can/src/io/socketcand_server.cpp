@@ -97,7 +97,9 @@ private:
       auto ch = shared_->opener(open->bus, peer_);
       if (!ch) {
         ++shared_->stats.bus_open_failures;
-        reply_error("could not open bus");  // the daemon's words; it then closes the connection
+        std::string out;
+        format_error_text(out, "could not open bus");  // the daemon's words; it then closes the connection
+        write(out);
         close_after_write_ = true;
         return;
       }
@@ -109,6 +111,7 @@ private:
       if (state_ == State::no_bus) {
         reply_error("open a bus first: < open NAME >");
       } else if (mode->mode == Mode::raw || mode->mode == Mode::bcm) {
+        if (mode->mode == Mode::raw && state_ != State::raw) raw_since_ = shared_->clock.now();
         state_ = mode->mode == Mode::raw ? State::raw : State::bcm;
         write(ok_element);
       } else {
@@ -143,6 +146,10 @@ private:
     if (closed_ || state_ != State::raw) return;
     if (f.rtr) {
       ++shared_->stats.rtr_not_forwarded;
+      return;
+    }
+    if (shared_->options.raw_mode_grace > Duration{0} && shared_->clock.now() < raw_since_ + shared_->options.raw_mode_grace) {
+      ++shared_->stats.dropped_during_grace;
       return;
     }
     if (pending_.size() >= shared_->options.max_output_bytes) {
@@ -185,6 +192,7 @@ private:
   std::array<char, 4096> rx_{};
   ElementSplitter splitter_;
   State state_ = State::no_bus;
+  TimePoint raw_since_{};
   std::unique_ptr<Channel> channel_;
   std::string pending_;
   std::string outbox_;

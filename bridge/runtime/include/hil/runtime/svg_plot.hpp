@@ -18,6 +18,7 @@ namespace hil::runtime {
 struct PlotSeries {
   std::string axis;
   std::string units;
+  bool rotary = false;           ///< positions wrap at the modulo (the plot breaks the line there)
   std::vector<double> t;         ///< s
   std::vector<double> position;  ///< units
   std::vector<double> command;   ///< units

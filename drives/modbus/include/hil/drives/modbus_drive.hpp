@@ -79,6 +79,10 @@ public:
   /// most `wait` of real time. Blocks the caller; returns false on timeout or when not lockstep.
   /// Thread: the thread that drives the cycle (e.g. TransportFactory::begin_cycle).
   bool exchange_sync(TimePoint now, std::chrono::milliseconds wait = std::chrono::milliseconds(2000));
+  /// The two halves of exchange_sync(), so a transport can start the exchanges of all its
+  /// drives before waiting for any (they run in parallel on their workers). Lockstep only.
+  void exchange_start(TimePoint now);
+  bool exchange_wait(std::chrono::milliseconds wait = std::chrono::milliseconds(2000));
 
   [[nodiscard]] ModbusLinkStats link_stats() const;
   [[nodiscard]] const modbus::Profile& profile() const noexcept { return config_.profile; }

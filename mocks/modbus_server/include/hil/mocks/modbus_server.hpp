@@ -39,6 +39,9 @@ struct ModbusServerConfig {
   modbus::HandlerOptions handler{};
   std::size_t max_connections = 64;       ///< further connections are accepted and closed at once
   Duration auto_step{};                   ///< > 0: step the plant on a real-time timer with this period
+  /// A frame started but not completed within this time closes the connection (a stalled
+  /// client must not hold a connection slot forever). Real time.
+  Duration frame_timeout{std::chrono::seconds(5)};
   /// Diagnostics (malformed frames, refused connections). Called on the I/O thread; must not block.
   std::function<void(std::string_view)> log;
 };
@@ -48,6 +51,7 @@ struct ModbusServerStats {
   std::uint64_t requests = 0;
   std::uint64_t exceptions = 0;       ///< exception responses sent (handler or injected)
   std::uint64_t malformed = 0;        ///< connections closed for a bad MBAP header
+  std::uint64_t stalled = 0;          ///< connections closed for a frame left incomplete (frame_timeout)
   std::uint64_t open_connections = 0;
 };
 
@@ -97,7 +101,7 @@ private:
   std::atomic<std::uint32_t> fail_count_{0};
   std::atomic<int> fail_code_{0};
   std::atomic<std::int64_t> delay_ns_{0};
-  std::atomic<std::uint64_t> accepted_{0}, requests_{0}, exceptions_{0}, malformed_{0}, open_{0};
+  std::atomic<std::uint64_t> accepted_{0}, requests_{0}, exceptions_{0}, malformed_{0}, stalled_{0}, open_{0};
 };
 
 }  // namespace hil::mocks

@@ -3,8 +3,9 @@
 // A hil::can::Channel that is a socketcand client in raw mode (`socketcand://host:port/can0`):
 // works against the linux-can socketcand daemon and against `hilbridge can hub`.
 //
-// Thread: the connection lives on `executor`; receive handlers run there. send() may be called
-// from any thread (it queues and posts). Destroy on the executor's thread or while it is idle.
+// Thread: the connection lives on `executor`; receive handlers run there. send(),
+// set_receive_handler() and the destructor may be called from any thread; once the destructor
+// returns no handler runs (it waits for a running one). The io_context must outlive the channel.
 // Limits of the protocol: no RTR frames (send() returns operation_not_supported), no CAN FD.
 // Receive times are this process's clock at arrival (the server's wall-clock stamp is not in
 // our clock's domain).
@@ -45,6 +46,8 @@ public:
   /// Text of the last `< error ... >` the server sent (empty if none).
   [[nodiscard]] std::string last_server_error() const;
   [[nodiscard]] bool connected() const noexcept;
+  /// Bytes accepted by send() and not yet handed to the kernel (0 = flushed).
+  [[nodiscard]] std::size_t tx_pending_bytes() const;
 
   struct Impl;
 

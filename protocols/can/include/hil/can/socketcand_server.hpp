@@ -35,7 +35,11 @@ struct ServerOptions {
   std::size_t max_clients = 32;
   std::size_t max_output_bytes = 1u << 20;  ///< per client; frames beyond are dropped and counted
   /// Receive time (bus clock) -> wire timestamp. Default: wall clock (offset taken at construction).
-  std::function<Timestamp(TimePoint)> to_wire_time;
+  std::function<Timestamp(TimePoint)> to_wire_time{};
+  /// Frames from the bus are not forwarded during this time after a client entered raw mode.
+  /// python-can 4.1 (Debian 12) expects its `< ok >` alone in one recv(); a frame right behind
+  /// it makes its connect fail. The daemon has no such grace (0 = exact daemon behaviour).
+  Duration raw_mode_grace{0};
 };
 
 struct ServerStats {
@@ -49,6 +53,7 @@ struct ServerStats {
   std::uint64_t frames_to_clients = 0;
   std::uint64_t dropped_slow_client = 0;
   std::uint64_t rtr_not_forwarded = 0;    ///< socketcand raw mode has no RTR form
+  std::uint64_t dropped_during_grace = 0; ///< see ServerOptions::raw_mode_grace
 };
 
 class Server {

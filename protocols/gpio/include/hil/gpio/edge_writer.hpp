@@ -29,6 +29,7 @@ struct EdgeWriterOptions {
   Duration spin_window{std::chrono::microseconds(200)};  ///< spin (not sleep) this close to an edge
   Duration late_threshold{std::chrono::microseconds(50)}; ///< error above this counts as late
   Duration resync_gap{std::chrono::milliseconds(1)};      ///< gaps at least this long absorb slip
+  int realtime_priority = 0;  ///< AsyncEdgeWriter: SCHED_FIFO priority for its thread (0 = normal scheduling)
 };
 
 /// Timing error = (time set_value returned) - (edge time + current slip), per edge.
@@ -72,6 +73,7 @@ private:
 };
 
 /// The writer on its own thread, so the motion cycle only enqueues (non-blocking) batches.
+/// Call drain() before destruction: the destructor stops after the batch in progress.
 /// Thread: submit/stats/drain from any thread; the lines are touched only by the writer thread.
 class AsyncEdgeWriter final : public EdgeSink {
 public:
@@ -89,6 +91,8 @@ public:
   bool drain(Duration timeout);
   [[nodiscard]] EdgeWriterStats stats() const;
   [[nodiscard]] std::error_code last_error() const;
+  /// Result of the SCHED_FIFO request (empty when not asked or granted; EPERM without CAP_SYS_NICE).
+  [[nodiscard]] std::error_code realtime_error() const;
 
 private:
   void run();
@@ -102,6 +106,8 @@ private:
   EdgeWriterStats stats_;
   std::error_code last_error_;
   std::int64_t offset_ns_ = 0;
+  int rt_priority_ = 0;
+  std::error_code rt_error_;
   std::thread thread_;
 };
 

@@ -35,6 +35,7 @@ struct StepDirTransportFactory::Axis {
   std::unique_ptr<gpio::LineBank> real_out, real_in;
   SteadyClock steady;
   std::unique_ptr<gpio::AsyncEdgeWriter> writer;
+  double late_us = 50.0;
   StepDirDrive* drive = nullptr;
   // Mock fault state.
   bool not_ready = false, force_start = false, force_end = false, broken_start = false, broken_end = false,

@@ -52,6 +52,9 @@ struct StepDirConfig {
   std::chrono::nanoseconds ready_timeout{std::chrono::milliseconds(1000)};
   HomingConfig homing;
   std::optional<std::string> chip;       ///< absent: mock lines
+  std::chrono::nanoseconds writer_spin{std::chrono::microseconds(200)};  ///< real lines: spin this close to an edge
+  std::chrono::nanoseconds writer_late{std::chrono::microseconds(50)};   ///< real lines: lateness counted as late
+  int writer_rt_priority = 0;            ///< real lines: SCHED_FIFO priority of the writer thread (0 = off)
   gpio::LineSpec step, dir;
   std::optional<gpio::LineSpec> enable, ready, limit_start, limit_end, reference;
   MockSwitches mock;

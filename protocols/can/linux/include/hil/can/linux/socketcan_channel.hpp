@@ -12,8 +12,9 @@
 //   queue refuses with no_buffer_space and counts tx_dropped.
 // * Receive: drop counts of the socket queue (SO_RXQ_OVFL) become rx_overruns.
 // * Accepts an already-open, bound fd (adopt): tests pass a socketpair or a vcan socket.
-// Thread: the channel lives on `executor`; handlers run there; send() may be called from any
-// thread. Construct/destroy on the executor's thread or while it is idle.
+// Thread: the channel lives on `executor`; handlers run there. send(), the set_*_handler()
+// functions and the destructor may be called from any thread; once the destructor returns no
+// handler runs. The io_context must outlive the channel.
 
 #include <cstdint>
 #include <expected>
