@@ -10,7 +10,7 @@ packages=(
   libmodbus-dev libgpiod-dev gpiod
   libgtest-dev libgmock-dev libbenchmark-dev
   # independent peers for interop tests
-  can-utils python3 python3-can python3-pymodbus python3-serial mbpoll socat
+  can-utils python3 python3-can python3-pymodbus python3-serial python3-serial-asyncio mbpoll socat
 )
 if [[ "${1:-}" == "--with-vm" ]]; then
   # real-kernel tests (tests/vm/run-in-kernel.sh adds the kernel packages itself)

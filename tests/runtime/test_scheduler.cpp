@@ -1,6 +1,11 @@
 // SPDX-License-Identifier: MIT
 // Cycle scheduler: virtual time runs exact cycles; the Asio scheduler keeps an absolute grid on
 // real time and reports latency (bounded ~50 ms smoke run, no timing assertions).
+// A standard header before Asio: asio/detail/config.hpp picks its aligned allocator from
+// libstdc++'s macros, and every translation unit must see the same choice (otherwise ASan reports
+// an alloc-dealloc mismatch between TUs).
+#include <vector>
+
 #include <asio/io_context.hpp>
 #include <gtest/gtest.h>
 

@@ -417,6 +417,10 @@ public:
           else if (!s.empty()) fail(b["sign"], "wire.bcd.sign", "expected none, bit31 or nibble");
         }
         if (w["binary_bits"]) p.wire.binary_bits = static_cast<int>(integer(w["binary_bits"], "wire.binary_bits"));
+        if (const auto o = str(w["word_order"], "wire.word_order"); !o.empty()) {
+          if (o != "high_first" && o != "low_first") fail(w["word_order"], "wire.word_order", "expected high_first or low_first");
+          p.wire.low_word_first = o == "low_first";
+        }
       }
     } else if (doc["device"] && str(doc["device"], "device") != p.device) {
       fail(doc["device"], "device", fmt::format("included file belongs to '{}', not '{}'", str(doc["device"], "device"), p.device));

@@ -54,6 +54,7 @@ std::unique_ptr<ParameterSetParser> make_parameter_set_parser(std::shared_ptr<co
   if (f == "wf-md") return detail::make_wf_parser(std::move(profile));
   if (f == "s5-db") return detail::make_s5db_parser(std::move(profile));
   if (f == "sinumerik-md") return detail::make_sinumerik_parser(std::move(profile));
+  if (f == "amk-db") return detail::make_amk_parser(std::move(profile));
   return nullptr;
 }
 

@@ -290,7 +290,10 @@ std::expected<WireImage, std::string> encode_value(const Profile& p, const Param
         if (enc == Encoding::kh || enc == Encoding::ky) tf.is_signed = false;
         auto w = make_twos_complement(*raw, tf);
         if (!w) return std::unexpected(fmt::format("{}: {}", f.name, w.error().message));
-        if (wide) {
+        if (wide && p.wire.low_word_first) {
+          img.words.push_back(static_cast<std::uint16_t>(*w & 0xFFFFu));
+          img.words.push_back(static_cast<std::uint16_t>(*w >> 16));
+        } else if (wide) {
           img.words.push_back(static_cast<std::uint16_t>(*w >> 16));
           img.words.push_back(static_cast<std::uint16_t>(*w & 0xFFFFu));
         } else if (enc == Encoding::byte_l) {
@@ -301,7 +304,10 @@ std::expected<WireImage, std::string> encode_value(const Profile& p, const Param
         if (!img.text.empty()) img.text += p.wire.separator;
         // bytes are shown in their word position (DL 07 = "0700") so the text decodes back
         const std::uint64_t shown = enc == Encoding::byte_l ? (*w << 8) : *w;
-        img.text += wide ? hex_word_text(*w, 8) : fmt::format("{:04X}", shown);
+        if (wide && p.wire.low_word_first)
+          img.text += fmt::format("{:04X} {:04X}", *w & 0xFFFFu, (*w >> 16) & 0xFFFFu);
+        else
+          img.text += wide ? hex_word_text(*w, 8) : fmt::format("{:04X}", shown);
         break;
       }
     }
@@ -371,7 +377,9 @@ std::expected<ParamValue, std::string> decode_wire(const Profile& p, const Param
     const bool wide = enc == Encoding::kd || (enc == Encoding::fixed && f.fixed.word.bits == 32);
     const std::size_t need = wide ? 2 : 1;
     if (wi + need > words.size()) return std::unexpected(fmt::format("field '{}' needs {} more word(s)", f.name, need));
-    std::uint64_t w = wide ? (std::uint64_t{words[wi]} << 16) | words[wi + 1] : words[wi];
+    std::uint64_t w = !wide ? words[wi]
+                      : p.wire.low_word_first ? (std::uint64_t{words[wi + 1]} << 16) | words[wi]
+                                              : (std::uint64_t{words[wi]} << 16) | words[wi + 1];
     wi += need;
     TwosComplementFormat tf{wide ? 32 : 16, enc == Encoding::kf || enc == Encoding::kd || (enc == Encoding::fixed && f.fixed.word.is_signed)};
     if (enc == Encoding::byte_l) {

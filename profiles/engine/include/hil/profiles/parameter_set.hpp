@@ -74,6 +74,11 @@ public:
   }
   /// The device's own text for `set` (parse(write(s)) reproduces s).
   [[nodiscard]] virtual std::string write(const ParameterSet& set) const = 0;
+  /// As write(set), selecting variants with `settings` (AMKASYN: the SF type when the set has no init DB).
+  [[nodiscard]] virtual std::string write(const ParameterSet& set, const Settings& settings) const {
+    (void)settings;
+    return write(set);
+  }
   [[nodiscard]] virtual std::string_view format_name() const noexcept = 0;
 };
 

@@ -168,6 +168,7 @@ struct WireSpec {
   std::string separator = " ";   ///< between text fields
   BcdFormat bcd{8, BcdSign::bit31};
   int binary_bits = 32;
+  bool low_word_first = false;   ///< 32-bit values: low word at the lower address (AMKASYN DD)
 };
 
 class Profile {
