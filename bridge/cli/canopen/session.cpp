@@ -11,6 +11,13 @@ BusSession::BusSession(const std::string& url, const std::string& participant) {
     return;
   }
   channel_ = std::move(*ch);
+  // A socketcand hub drops frames addressed to a client that is still joining: let the join
+  // settle before the first request, or the first answer can be lost (seen with `hilbridge can hub`).
+  if (url.rfind("socketcand://", 0) == 0) {
+    channel_->set_receive_handler([](const can::Frame&, TimePoint) {});
+    io_.run_for(std::chrono::milliseconds(100));
+    io_.restart();
+  }
 }
 
 bool BusSession::run(const std::function<bool()>& done, const std::function<void(TimePoint)>& tick, Duration limit) {
