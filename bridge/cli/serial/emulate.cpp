@@ -1,0 +1,151 @@
+// SPDX-License-Identifier: MIT
+#include "emulate.hpp"
+
+#include <poll.h>
+#include <unistd.h>
+
+#include <fmt/format.h>
+
+#include <cstdio>
+#include <cstdlib>
+#include <mutex>
+#include <optional>
+#include <iostream>
+#include <thread>
+
+#include "hil/serial/linux/ports.hpp"
+#include "hil/serial/serial_stream.hpp"
+
+namespace hil::cli::serial_cli {
+
+void add_emulate_options(CLI::App& cmd, EmulateOptions& o) {
+  cmd.add_flag("--pty", o.pty, "Serve on a new pseudo-terminal; its slave path is printed on the first line of stdout");
+  cmd.add_option("--tcp", o.tcp_port, "Serve on this TCP port instead (0 = any free port, printed on stdout)");
+  cmd.add_option("--bind", o.bind, "Address to listen on with --tcp")->capture_default_str();
+  cmd.add_option("--baud,-b", o.link.baud, "Baud rate the emulated device is set to")->capture_default_str();
+  cmd.add_option("--format,-f", o.link.format, "Character format, e.g. 7E2 (parity is carried in bit 7 on a pty/TCP)")
+      ->capture_default_str();
+  cmd.add_option("--flow", o.link.flow, "Flow control: none, rtscts or xonxoff")->capture_default_str();
+  cmd.add_option("--xon", o.link.xon, "XON byte")->capture_default_str();
+  cmd.add_option("--xoff", o.link.xoff, "XOFF byte")->capture_default_str();
+  cmd.add_option("--state", o.state_file,
+                 "State file (saved atomically whenever the line is quiet after a change); default "
+                 "$XDG_STATE_HOME/hilbridge/<device>.json; 'none' keeps nothing");
+}
+
+std::filesystem::path default_state_path(const std::string& device) {
+  std::filesystem::path base;
+  if (const char* x = std::getenv("XDG_STATE_HOME"); x != nullptr && *x != '\0') base = x;
+  else if (const char* h = std::getenv("HOME"); h != nullptr) base = std::filesystem::path(h) / ".local" / "state";
+  else base = std::filesystem::temp_directory_path();
+  return base / "hilbridge" / (device + ".json");
+}
+
+int serve(mocks::legacy::Endpoint& endpoint, const EmulateOptions& o, const std::filesystem::path& state,
+          const std::function<std::string(mocks::legacy::Endpoint&, const std::string&)>& on_command) {
+  auto fmt_ok = line_format(o.link);
+  if (!fmt_ok) {
+    fmt::print(stderr, "error: {}\n", fmt_ok.error());
+    return 2;
+  }
+  if (!o.pty && o.tcp_port < 0) {
+    fmt::print(stderr, "error: give --pty or --tcp PORT\n");
+    return 2;
+  }
+  install_interrupt_handler();
+  SteadyClock clock;
+  hil::serial::Discipline d;
+  d.software_parity = true;
+  std::unique_ptr<hil::serial::SerialStream> stream;
+  std::optional<hil::serial::linux_io::PtyEndpoint> pty;
+  std::unique_ptr<hil::serial::linux_io::TcpListener> listener;
+  if (o.pty) {
+    auto p = hil::serial::linux_io::PtyEndpoint::create();
+    if (!p) {
+      fmt::print(stderr, "error: {}\n", p.error().message);
+      return 1;
+    }
+    pty.emplace(std::move(*p));
+    stream = std::make_unique<hil::serial::SerialStream>(pty->take_master(), *fmt_ok, d, clock);
+    fmt::print("{}\n", pty->slave_path());
+  } else {
+    auto l = hil::serial::linux_io::TcpListener::create(o.bind, static_cast<std::uint16_t>(o.tcp_port));
+    if (!l) {
+      fmt::print(stderr, "error: {}\n", l.error().message);
+      return 1;
+    }
+    listener = std::move(*l);
+    fmt::print("tcp:{}:{}\n", o.bind, listener->port());
+  }
+  std::fflush(stdout);
+  if (!state.empty()) fmt::print(stderr, "state file: {}\n", state.string());
+
+  std::atomic<bool> stop{false};
+  std::mutex endpoint_mutex;  // guards the endpoint between the line thread and stdin commands
+  std::unique_ptr<mocks::legacy::EndpointHost> host;
+  std::thread line([&] {
+    while (!stop && !interrupted()) {
+      if (listener && !stream) {
+        auto raw = listener->accept(std::chrono::milliseconds(200));
+        if (!raw) continue;
+        stream = std::make_unique<hil::serial::SerialStream>(std::move(raw), *fmt_ok, d, clock);
+      }
+      {
+        std::lock_guard lock(endpoint_mutex);
+        if (!host) host = std::make_unique<mocks::legacy::EndpointHost>(endpoint, *stream, clock, state);
+      }
+      const auto ec = host->step(std::chrono::milliseconds(50));
+      if (listener && ec == hil::serial::LineError::closed) {
+        // The TCP client went away: keep the state, wait for the next one.
+        std::lock_guard lock(endpoint_mutex);
+        (void)host->persist();
+        host.reset();
+        stream.reset();
+      }
+    }
+    if (host) (void)host->persist();
+  });
+
+  std::string cmd;
+  bool stdin_open = true;
+  while (!interrupted()) {
+    if (!stdin_open) {
+      ::poll(nullptr, 0, 200);
+      continue;
+    }
+    pollfd p{0, POLLIN, 0};
+    if (::poll(&p, 1, 200) <= 0) continue;
+    if (!std::getline(std::cin, cmd)) {
+      stdin_open = false;  // keep serving without a console (run in the background)
+      continue;
+    }
+    if (cmd.empty()) continue;
+    if (cmd == "quit" || cmd == "exit") break;
+    std::string reply;
+    if (cmd.starts_with("drop ")) {
+      // Fault injection for tests: "drop AFTER COUNT" stops answering after AFTER replies.
+      int after = 0, count = 0;
+      if (std::sscanf(cmd.c_str(), "drop %d %d", &after, &count) != 2 || after < 0 || count < 0) {
+        fmt::print("error: usage: drop AFTER COUNT\n");
+      } else {
+        std::lock_guard lock(endpoint_mutex);
+        if (host) host->drop_replies(after, count);
+        fmt::print("{}\n", host ? "ok " + cmd : std::string("error: no line yet"));
+      }
+      std::fflush(stdout);
+      continue;
+    }
+    {
+      std::lock_guard lock(endpoint_mutex);
+      if (host) host->with_endpoint([&](mocks::legacy::Endpoint& e) { reply = on_command(e, cmd); });
+      else reply = on_command(endpoint, cmd);
+    }
+    fmt::print("{}\n", reply);
+    std::fflush(stdout);
+  }
+  stop = true;
+  line.join();
+  return 0;
+}
+
+}  // namespace hil::cli::serial_cli

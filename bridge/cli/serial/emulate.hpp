@@ -1,0 +1,35 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+// `hilbridge emulate clm14|elg-tape|ip247|wf725`: emulated controllers on a pty or TCP port.
+
+#include <filesystem>
+#include <functional>
+#include <memory>
+#include <string>
+
+#include "hil/mocks/legacy/endpoint.hpp"
+#include "link_options.hpp"
+
+namespace hil::cli::serial_cli {
+
+struct EmulateOptions {
+  bool pty = false;
+  int tcp_port = -1;           ///< >= 0: listen on this TCP port (0 = any free port)
+  std::string bind = "127.0.0.1";
+  LinkOptions link;            ///< baud/format/flow for the emulator's side of the line
+  std::string state_file;      ///< "" = default path per device; "none" = no persistence
+};
+
+void add_emulate_options(CLI::App& cmd, EmulateOptions& o);
+/// Default state path: $XDG_STATE_HOME/hilbridge/<device>.json (or ~/.local/state/...).
+[[nodiscard]] std::filesystem::path default_state_path(const std::string& device);
+
+/// Serve `endpoint` on the line `o` describes until SIGINT/SIGTERM. Prints the pty path or TCP
+/// port on stdout (first line), then reads commands from stdin and hands them to `on_command`
+/// (which returns a reply line, or an error text starting with "error:"). "drop AFTER COUNT"
+/// (fault injection: stop answering after AFTER replies for COUNT replies) and "quit" are
+/// handled here for every device.
+int serve(mocks::legacy::Endpoint& endpoint, const EmulateOptions& o, const std::filesystem::path& state,
+          const std::function<std::string(mocks::legacy::Endpoint&, const std::string&)>& on_command);
+
+}  // namespace hil::cli::serial_cli

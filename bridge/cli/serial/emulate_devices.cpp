@@ -1,0 +1,195 @@
+// SPDX-License-Identifier: MIT
+// `hilbridge emulate clm14 | elg-tape | ip247 | wf725`.
+#include <fmt/format.h>
+
+#include <fstream>
+#include <sstream>
+
+#include "emulate.hpp"
+#include "hil/cli/context.hpp"
+#include "hil/mocks/legacy/clm14_line.hpp"
+#include "hil/mocks/legacy/elg_tape_endpoint.hpp"
+#include "hil/mocks/legacy/s5_block_endpoint.hpp"
+#include "hil/serial/clm14/device_data.hpp"
+#include "hil/serial/profile_checks.hpp"
+
+namespace hil::cli::serial_cli {
+
+namespace lg = hil::mocks::legacy;
+
+namespace {
+
+std::filesystem::path resolve_state(const EmulateOptions& o, const std::string& device) {
+  if (o.state_file == "none") return {};
+  const std::filesystem::path p = o.state_file.empty() ? default_state_path(device) : std::filesystem::path(o.state_file);
+  std::error_code ec;
+  if (p.has_parent_path()) std::filesystem::create_directories(p.parent_path(), ec);
+  return p;
+}
+
+std::optional<std::string> read_file(const std::filesystem::path& p) {
+  if (p.empty()) return std::nullopt;
+  std::ifstream in(p, std::ios::binary);
+  if (!in) return std::nullopt;
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+std::expected<lg::ClmMode, std::string> parse_mode(std::string_view s) {
+  if (s == "parameter") return lg::ClmMode::parameter;
+  if (s == "manual") return lg::ClmMode::manual;
+  if (s == "auto" || s == "automatic") return lg::ClmMode::automatic;
+  return std::unexpected(fmt::format("mode '{}' unknown: use parameter, manual or auto", s));
+}
+
+}  // namespace
+
+void register_emulators(Context& ctx) {
+  // --- CLM1.4 -------------------------------------------------------------------------------
+  struct ClmOpts {
+    EmulateOptions e;
+    std::string mode = "manual";
+    int stations = 0;
+    int axes = 2;
+  };
+  auto co = std::make_shared<ClmOpts>();
+  auto* clm = ctx.emulate.add_subcommand(
+      "clm14",
+      "Emulated Rexroth CLM1.4 on its serial interface: 3000 program lines, parameters (writable in Parameter mode only, "
+      "validated when leaving it), variables, logic task, status queries, interface commands, RS-485 stations.");
+  add_emulate_options(*clm, co->e);
+  clm->add_option("--mode", co->mode, "Mode inputs at start: parameter, manual or auto")->capture_default_str();
+  clm->add_option("--stations", co->stations, "0 = one RS-232 unit; 1..32 = that many RS-485 stations on the line")
+      ->check(CLI::Range(0, 32))
+      ->capture_default_str();
+  clm->add_option("--axes", co->axes, "Axes (A1xx..A4xx parameter blocks)")->check(CLI::Range(1, 4))->capture_default_str();
+  clm->footer(
+      "Console commands (stdin): 'mode parameter|manual|auto' changes the mode inputs of every station, 'status' prints "
+      "mode and fault per station, 'quit' stops (state is saved).\n"
+      "Example: hilbridge emulate clm14 --pty --format 7E2 --mode parameter --stations 32");
+  clm->callback([&ctx, co] {
+    auto mode = parse_mode(co->mode);
+    if (!mode) {
+      fmt::print(stderr, "error: --mode: {}\n", mode.error());
+      ctx.exit_code = 2;
+      return;
+    }
+    auto data = hil::serial::clm14::load_device_data();
+    if (!data) {
+      fmt::print(stderr, "error: device profile clm14: {}\n", data.error());
+      ctx.exit_code = 2;
+      return;
+    }
+    lg::Clm14Line line(*data, co->stations, co->axes);
+    const auto state = resolve_state(co->e, "clm14");
+    if (auto text = read_file(state)) {
+      if (auto r = line.load_state(*text); !r) fmt::print(stderr, "warning: {}: {}; starting from defaults\n", state.string(), r.error());
+    }
+    line.set_mode(*mode);
+    ctx.exit_code = serve(line, co->e, state, [](lg::Endpoint& ep, const std::string& cmd) -> std::string {
+      auto& l = static_cast<lg::Clm14Line&>(ep);
+      if (cmd.starts_with("mode ")) {
+        auto m = parse_mode(cmd.substr(5));
+        if (!m) return "error: " + m.error();
+        l.set_mode(*m);
+        return "ok " + cmd;
+      }
+      if (cmd == "status") {
+        std::string s;
+        for (std::size_t i = 0; i < l.size(); ++i) {
+          const auto& st = l.station(i);
+          s += fmt::format("{}station {} mode {} fault {:02X}", i ? "\n" : "", st.station(),
+                           st.mode() == lg::ClmMode::parameter ? "parameter" : st.mode() == lg::ClmMode::manual ? "manual" : "auto",
+                           st.fault());
+        }
+        return s;
+      }
+      return "error: unknown command (mode parameter|manual|auto, status, quit)";
+    });
+  });
+
+  // --- ELG tape reader/punch -----------------------------------------------------------------
+  auto eo = std::make_shared<EmulateOptions>();
+  eo->link.format = "8N2";
+  eo->link.baud = 4800;
+  auto* elg = ctx.emulate.add_subcommand(
+      "elg-tape",
+      "Emulated SINUMERIK ELG universal interface: reads %TEA1 / %SEA tapes (ISO, even parity in bit 7) and punches them on "
+      "Data Start (a DC2 byte from the peer).");
+  add_emulate_options(*elg, *eo);
+  elg->footer("Console commands: 'alarm', 'clear', 'quit'. Data Start (MD tape, then SD tape) is a DC2 byte from the peer.");
+  elg->callback([&ctx, eo] {
+    auto check = hil::serial::load_elg_check();
+    if (!check) {
+      fmt::print(stderr, "error: device profile: {}\n", check.error());
+      ctx.exit_code = 2;
+      return;
+    }
+    lg::ElgTapeEndpoint ep(*check);
+    const auto state = resolve_state(*eo, "elg");
+    if (auto text = read_file(state))
+      if (auto r = ep.load_state(*text); !r) fmt::print(stderr, "warning: {}\n", r.error());
+    ctx.exit_code = serve(ep, *eo, state, [](lg::Endpoint& e, const std::string& cmd) -> std::string {
+      auto& t = static_cast<lg::ElgTapeEndpoint&>(e);
+      if (cmd == "alarm") return t.alarm() == 0 ? std::string("no alarm") : fmt::format("alarm {}: {}", t.alarm(), t.alarm_text());
+      if (cmd == "clear") {
+        t.clear_alarm();
+        return "ok";
+      }
+      return "error: unknown command (alarm, clear, quit); Data Start is a DC2 byte from the peer";
+    });
+  });
+
+  // --- IP247 / WF 725/726 -------------------------------------------------------------------
+  for (const std::string dev : {"ip247", "wf725"}) {
+    auto so = std::make_shared<EmulateOptions>();
+    so->link.format = "8E1";
+    so->link.baud = 9600;
+    auto* cmd = ctx.emulate.add_subcommand(
+        dev, dev == "ip247" ? "Emulated SIMATIC S5 IP247: MD and traversing-program DBs behind 3964R/RK512 (SEND writes, FETCH "
+                              "reads; no overwrite, delete = SEND of one word 0000 to DW0)"
+                            : "Emulated WF 725/726 data codes behind 3964R/RK512 (DB number = data code; code 1 = MD1..MD50)");
+    add_emulate_options(*cmd, *so);
+    cmd->callback([&ctx, so, dev] {
+      std::unique_ptr<lg::DbPolicy> policy;
+      if (dev == "ip247") {
+        auto check = hil::serial::load_ip247_check();
+        if (!check) {
+          fmt::print(stderr, "error: device profile: {}\n", check.error());
+          ctx.exit_code = 2;
+          return;
+        }
+        policy = lg::make_ip247_policy([c = *check](std::uint8_t, const std::vector<std::uint16_t>& w) { return c(w).empty() ? 0 : 1; });
+      } else {
+        auto check = hil::serial::load_wf725_check();
+        if (!check) {
+          fmt::print(stderr, "error: device profile: {}\n", check.error());
+          ctx.exit_code = 2;
+          return;
+        }
+        policy = lg::make_wf725_policy([c = *check](const std::vector<std::uint16_t>& w) { return c(w).empty(); });
+      }
+      lg::S5BlockEndpoint ep(std::move(policy));
+      if (dev == "wf725") {
+        // A fresh module holds the profile's default machine data (data code 1).
+        if (auto img = hil::serial::load_wf725_default_image()) ep.store()[1] = *img;
+      }
+      const auto state = resolve_state(*so, dev);
+      if (auto text = read_file(state))
+        if (auto r = ep.load_state(*text); !r) fmt::print(stderr, "warning: {}\n", r.error());
+      ctx.exit_code = serve(ep, *so, state, [](lg::Endpoint& e, const std::string& c) -> std::string {
+        auto& s = static_cast<lg::S5BlockEndpoint&>(e);
+        if (c == "dbs") {
+          std::string out;
+          for (const auto& [n, w] : s.store()) out += fmt::format("DB{} {} words\n", n, w.size());
+          return out.empty() ? std::string("no DBs") : out;
+        }
+        if (c == "error") return s.last_error().empty() ? std::string("no error") : s.last_error();
+        return "error: unknown command (dbs, error, quit)";
+      });
+    });
+  }
+}
+
+}  // namespace hil::cli::serial_cli

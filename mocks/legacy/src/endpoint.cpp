@@ -1,0 +1,98 @@
+// SPDX-License-Identifier: MIT
+#include "hil/mocks/legacy/endpoint.hpp"
+
+#include <fcntl.h>
+#include <unistd.h>
+
+#include <array>
+#include <cerrno>
+
+namespace hil::mocks::legacy {
+
+std::error_code save_atomically(const std::filesystem::path& path, const std::string& text) {
+  const std::filesystem::path tmp = path.string() + ".tmp";
+  const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+  if (fd < 0) return {errno, std::system_category()};
+  std::size_t done = 0;
+  while (done < text.size()) {
+    const ssize_t n = ::write(fd, text.data() + done, text.size() - done);
+    if (n < 0) {
+      if (errno == EINTR) continue;
+      const std::error_code ec(errno, std::system_category());
+      ::close(fd);
+      return ec;
+    }
+    done += static_cast<std::size_t>(n);
+  }
+  if (::fsync(fd) != 0) {
+    const std::error_code ec(errno, std::system_category());
+    ::close(fd);
+    return ec;
+  }
+  ::close(fd);
+  std::error_code ec;
+  std::filesystem::rename(tmp, path, ec);
+  return ec;
+}
+
+EndpointHost::EndpointHost(Endpoint& endpoint, serial::ByteStream& stream, const Clock& clock, std::filesystem::path state_file)
+    : endpoint_(endpoint), stream_(stream), clock_(clock), state_file_(std::move(state_file)) {}
+
+void EndpointHost::send(const std::string& bytes) {
+  if (bytes.empty()) return;
+  if (drop_after_ > 0) {
+    --drop_after_;
+  } else if (drop_replies_ > 0) {
+    --drop_replies_;
+    return;
+  }
+  const auto* p = reinterpret_cast<const std::uint8_t*>(bytes.data());
+  (void)stream_.write(std::span(p, bytes.size()), std::chrono::seconds(5));
+}
+
+std::error_code EndpointHost::step(Duration max_wait) {
+  std::array<std::uint8_t, 1024> buf{};
+  Duration wait = max_wait;
+  {
+    std::lock_guard lock(mutex_);
+    const TimePoint deadline = endpoint_.next_deadline();
+    if (deadline != TimePoint::max()) wait = std::max(Duration::zero(), std::min(wait, deadline - clock_.now()));
+  }
+  const serial::ReadResult r = stream_.read_some(buf, wait);
+  std::string out;
+  {
+    std::lock_guard lock(mutex_);
+    if (r.size > 0) out += endpoint_.on_bytes(std::span(buf.data(), r.size), clock_.now());
+    if (r.error && r.error != serial::LineError::timeout && r.error != serial::LineError::closed)
+      out += endpoint_.on_line_error(r.error, clock_.now());
+    if (clock_.now() >= endpoint_.next_deadline()) out += endpoint_.on_idle(clock_.now());
+    if (endpoint_.take_dirty()) pending_save_ = true;
+  }
+  send(out);
+  if (r.size == 0 && pending_save_) (void)persist();
+  return r.error;
+}
+
+void EndpointHost::run() {
+  while (!stop_) step(std::chrono::milliseconds(50));
+  (void)persist();
+}
+
+void EndpointHost::with_endpoint(const std::function<void(Endpoint&)>& fn) {
+  std::lock_guard lock(mutex_);
+  fn(endpoint_);
+  if (endpoint_.take_dirty()) pending_save_ = true;
+}
+
+std::error_code EndpointHost::persist() {
+  std::string text;
+  {
+    std::lock_guard lock(mutex_);
+    if (state_file_.empty() || !pending_save_) return {};
+    pending_save_ = false;
+    text = endpoint_.save_state();
+  }
+  return save_atomically(state_file_, text);
+}
+
+}  // namespace hil::mocks::legacy

@@ -1,0 +1,157 @@
+// SPDX-License-Identifier: MIT
+// Emulated CLM1.4 station against the manual's telegrams: replies byte for byte, every serial
+// error path, modes, parameter validation on leaving Parameter mode, RS-485 addressing,
+// persistence.
+#include <gtest/gtest.h>
+
+#include <nlohmann/json.hpp>
+
+#include "hil/mocks/legacy/clm14_line.hpp"
+#include "hil/serial/clm14/serial_error.hpp"
+#include "hil/serial/clm14/telegram.hpp"
+
+using namespace hil::mocks::legacy;
+using namespace hil::serial::clm14;
+
+namespace {
+std::shared_ptr<const DeviceData> data() {
+  static auto d = load_device_data();
+  EXPECT_TRUE(d) << d.error();
+  return *d;
+}
+/// Send a telegram with checksum; returns the reply bytes.
+std::string ask(Clm14Station& s, char lead, std::string_view body, char station = ' ') {
+  std::string wire = make_telegram(lead, station, body);
+  return s.on_line(std::string_view(wire).substr(0, wire.size() - 2));
+}
+std::string err(int code, char station = ' ') {
+  return make_telegram('X', station, make_error_body(code, data()->serial_error_text(code)));
+}
+}  // namespace
+
+TEST(Clm14Emulator, EmptyProgramLineAsInTheManual) {
+  Clm14Station s(0, data());
+  // digest §2.4: "?␣N0000␣" of an empty line -> "#␣N0000␣NOP␣␣␣" (checksum 40)
+  EXPECT_EQ(ask(s, '?', "N0000"), "# N0000 NOP   $40\r\n");
+}
+
+TEST(Clm14Emulator, ProgramWriteConfirmAndReadBack) {
+  Clm14Station s(0, data());
+  EXPECT_EQ(s.on_line("# N0101 AEA Q1.00.3 1 $C0"), "Y\r\n");
+  EXPECT_EQ(ask(s, '?', "N0101"), "# N0101 AEA Q1.00.3 1 $C0\r\n");
+  EXPECT_EQ(s.on_line("# N0100 POI 1    +123456.786 123 $C6"), "Y\r\n");
+}
+
+TEST(Clm14Emulator, SerialErrorsWithTheirTexts) {
+  Clm14Station s(0, data());
+  EXPECT_EQ(s.on_line("# N0101 AEA Q1.00.3 1 $C1"), err(4));                   // checksum
+  EXPECT_EQ(ask(s, '?', "N3000"), err(12));                                   // block # too large
+  EXPECT_EQ(ask(s, '?', "N30X0"), err(1));                                    // not decimal
+  EXPECT_EQ(ask(s, '#', "N0001 XYZ 1 "), err(13));                            // invalid command
+  EXPECT_EQ(ask(s, '#', "K B002 019200 0 1 8 1"), err(5));                    // not in Parameter mode
+  EXPECT_EQ(ask(s, '?', "X  01 "), err(9));                                   // status 01 cannot be queried
+  EXPECT_EQ(ask(s, '?', "X  5A "), err(8));
+  EXPECT_EQ(ask(s, '#', "V100 +00000001.000000 "), err(23));                  // system variable
+  EXPECT_EQ(ask(s, '#', "V600 +0000000A.000000 "), err(18));
+  EXPECT_EQ(ask(s, '?', "K Z000"), err(11));
+  EXPECT_EQ(ask(s, '?', "K B0X1"), err(6));
+  EXPECT_EQ(ask(s, '?', "K B099"), err(7));
+  EXPECT_TRUE(err(12).starts_with("X 01 12 Block # too large    $")) << err(12);
+}
+
+TEST(Clm14Emulator, ParametersOnlyInParameterModeAndValidatedOnLeaving) {
+  Clm14Station s(0, data());
+  s.set_mode(ClmMode::parameter);
+  EXPECT_EQ(ask(s, '#', "K B002 019200 0 1 8 1"), "Y\r\n");
+  EXPECT_EQ(ask(s, '!', "K A101 0020.00000"), "Y\r\n");  // '!' accepted for parameter writes
+  EXPECT_EQ(ask(s, '?', "K A101"), "# K A101 0020.00000$7C\r\n");
+  EXPECT_EQ(ask(s, '?', "K B006"), "# K B006 $59\r\n");
+  // An out-of-range value is stored but flagged when Parameter mode is left (error 02, status 60).
+  EXPECT_EQ(ask(s, '#', "K A112 99999 10.0"), "Y\r\n");
+  s.set_mode(ClmMode::manual);
+  EXPECT_EQ(s.fault(), 0x02);
+  EXPECT_NE(ask(s, '?', "X  60 0 ").find("0 A112"), std::string::npos);
+  s.set_mode(ClmMode::parameter);
+  EXPECT_EQ(ask(s, '#', "K A112 03000 10.0"), "Y\r\n");
+  s.set_mode(ClmMode::manual);
+  EXPECT_EQ(s.fault(), 0x00);
+}
+
+TEST(Clm14Emulator, DefaultParametersAreTheManualStrings) {
+  Clm14Station s(0, data());
+  // digest §2.5: the printed default telegrams and checksums
+  EXPECT_EQ(ask(s, '?', "K B002"), "# K B002 019200 0 1 8 1$E4\r\n");
+  EXPECT_EQ(ask(s, '?', "K B003"), "# K B003 0 1 00 0 000 000$A8\r\n");
+  EXPECT_EQ(ask(s, '?', "K A124"), "# K A124 Q1.00.0 -100 0$BA\r\n");
+  EXPECT_EQ(ask(s, '?', "K C008"), "# K C008 00.00.0 000$58\r\n");
+}
+
+TEST(Clm14Emulator, VariablesStatusCommandsAndPoll) {
+  Clm14Station s(0, data());
+  EXPECT_EQ(s.on_line("# V600 +00000100.000000 $93"), "Y\r\n");
+  EXPECT_EQ(ask(s, '?', "V600"), make_telegram('V', ' ', "600 +00000100.000000 "));
+  EXPECT_EQ(ask(s, '#', "V601 -12,5 "), "Y\r\n");
+  EXPECT_EQ(ask(s, '?', "V601"), make_telegram('V', ' ', "601 -00000012.500000 "));
+  EXPECT_NE(ask(s, '?', "X 53 ").find("X 53 00 "), std::string::npos);  // one space accepted too
+  EXPECT_EQ(s.on_line("! START $10"), err(5));                       // only in Automatic
+  s.set_mode(ClmMode::automatic);
+  EXPECT_EQ(s.on_line("! START $10"), "Y\r\n");
+  EXPECT_EQ(s.on_line("! STOP $58"), "Y\r\n");
+  EXPECT_EQ(s.on_line("! CSETPA $DD"), err(5));                      // Parameter mode only
+  EXPECT_EQ(ask(s, '!', "START"), "Y\r\n");
+  EXPECT_EQ(s.on_line("! START "), err(4)) << "'!' commands always need the checksum";
+  EXPECT_EQ(ask(s, '!', "FOO"), err(2));
+  s.set_mode(ClmMode::parameter);
+  EXPECT_EQ(ask(s, '!', "CNOPNC10000999"), err(12));
+  EXPECT_EQ(ask(s, '!', "CNOPNC00000999"), "Y\r\n");
+  EXPECT_EQ(ask(s, '?', "P 0000"), make_telegram('P', ' ', "0000 END "));
+}
+
+TEST(Clm14Emulator, Rs485StationsSilentOnWrongStationAndBroadcast) {
+  Clm14Line line(data(), 32);
+  ASSERT_EQ(line.size(), 32U);
+  const auto send = [&](std::string wire) {
+    return line.on_bytes(std::span(reinterpret_cast<const std::uint8_t*>(wire.data()), wire.size()), {});
+  };
+  // Only station 10 ('A') answers.
+  EXPECT_EQ(send(make_telegram('?', 'A', "N0000")), make_telegram('#', 'A', "N0000 NOP   "));
+  EXPECT_EQ(send(make_telegram('?', 'W', "X  53 ")).substr(0, 6), "XW53 0");
+  EXPECT_EQ(send(make_telegram('?', 'X', "N0000")), "") << "no station X: silence";
+  EXPECT_EQ(send(":5\r\n"), ":500\r\n");
+  // Broadcast (space) on RS-485: every station stores, none answers.
+  line.set_mode(ClmMode::parameter);
+  EXPECT_EQ(send(make_telegram('#', ' ', "N0007 WAI 00.500 ")), "");
+  for (std::size_t i = 0; i < line.size(); ++i) EXPECT_EQ(line.station(i).program_line(7), "WAI 00.500 ");
+  // Noise on the station character makes it nobody's telegram: silence, not an error.
+  std::string bad = make_telegram('?', '3', "N0000");
+  bad[1] = 'Z';
+  EXPECT_EQ(send(bad), "");
+  std::string bad_mine = make_telegram('?', '3', "N0000");
+  bad_mine[4] = '1';
+  EXPECT_EQ(send(bad_mine), err(4, '3'));
+}
+
+TEST(Clm14Emulator, ParityErrorInATelegramIsAFormatError) {
+  Clm14Line line(data(), 0);
+  const std::string first = "# N0001 ";
+  (void)line.on_bytes(std::span(reinterpret_cast<const std::uint8_t*>(first.data()), first.size()), {});
+  (void)line.on_line_error(hil::serial::LineError::parity, {});
+  const std::string rest = "NOP   $00\r\n";
+  EXPECT_EQ(line.on_bytes(std::span(reinterpret_cast<const std::uint8_t*>(rest.data()), rest.size()), {}), err(2));
+}
+
+TEST(Clm14Emulator, StateSurvivesRestart) {
+  Clm14Line line(data(), 0);
+  line.set_mode(ClmMode::parameter);
+  EXPECT_EQ(ask(line.station(0), '#', "N2999 JMP 0000 "), "Y\r\n");
+  EXPECT_EQ(ask(line.station(0), '#', "K A101 0020.00000"), "Y\r\n");
+  EXPECT_EQ(ask(line.station(0), '#', "V999 +00000001.500000 "), "Y\r\n");
+  const std::string saved = line.save_state();
+  Clm14Line restarted(data(), 0);
+  ASSERT_TRUE(restarted.load_state(saved));
+  EXPECT_EQ(restarted.station(0).program_line(2999), "JMP 0000 ");
+  EXPECT_EQ(restarted.station(0).parameter("A101"), "0020.00000");
+  EXPECT_EQ(ask(restarted.station(0), '?', "V999"), make_telegram('V', ' ', "999 +00000001.500000 "));
+  EXPECT_FALSE(restarted.load_state("{not json"));
+  EXPECT_FALSE(restarted.load_state(R"({"device":"clm14","stations":[{"program":{"9999":"NOP"}}]})"));
+}
