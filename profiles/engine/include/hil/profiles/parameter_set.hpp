@@ -16,6 +16,7 @@
 //
 // Comments: ';' or '//' to end of line ('(' … ')' for sinumerik-md). Problems carry the line.
 
+#include <map>
 #include <memory>
 #include <optional>
 #include <string>
@@ -55,6 +56,16 @@ public:
   [[nodiscard]] const SetEntry* find(std::string_view concrete_id) const;
   /// Inserts or replaces the entry of `e.ref.id()`.
   void set(SetEntry e);
+
+private:
+  // normalised id → position in `entries`; checked on use, so direct edits of `entries` stay safe
+  struct Slot {
+    std::size_t pos;
+    const ParamSpec* spec;
+    std::optional<std::int64_t> instance;
+  };
+  std::map<std::string, Slot, std::less<>> index_;
+  [[nodiscard]] const SetEntry* indexed(const std::string& key) const;
 };
 
 struct ParseResult {
