@@ -20,6 +20,9 @@ endif()
 find_path(ASIO_INCLUDE_DIR asio.hpp REQUIRED)
 add_library(hil_asio INTERFACE)
 target_include_directories(hil_asio SYSTEM INTERFACE ${ASIO_INCLUDE_DIR})
-target_compile_definitions(hil_asio INTERFACE ASIO_STANDALONE ASIO_NO_DEPRECATED)
+# ASIO_DISABLE_STD_ALIGNED_ALLOC: Asio picks its aligned allocator from libstdc++ macros, so a file
+# that includes Asio before any standard header would otherwise pair new/delete differently from
+# the others (ASan reports alloc-dealloc-mismatch).
+target_compile_definitions(hil_asio INTERFACE ASIO_STANDALONE ASIO_NO_DEPRECATED ASIO_DISABLE_STD_ALIGNED_ALLOC)
 target_link_libraries(hil_asio INTERFACE Threads::Threads)
 add_library(hil::asio ALIAS hil_asio)

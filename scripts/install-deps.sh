@@ -9,9 +9,8 @@ packages=(
   libasio-dev libyaml-cpp-dev libcli11-dev libfmt-dev libspdlog-dev nlohmann-json3-dev
   libmodbus-dev libgpiod-dev gpiod
   libgtest-dev libgmock-dev libbenchmark-dev
-  clang-14 libclang-rt-14-dev
   # independent peers for interop tests
-  can-utils python3 python3-can python3-pymodbus python3-serial mbpoll socat
+  can-utils python3 python3-can python3-pymodbus python3-serial python3-serial-asyncio mbpoll socat
 )
 if [[ "${1:-}" == "--with-vm" ]]; then
   # real-kernel tests (tests/vm/run-in-kernel.sh adds the kernel packages itself)

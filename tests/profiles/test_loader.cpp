@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <cstdlib>
 #include <fstream>
 
 #include "hil/profiles/loader.hpp"
@@ -131,5 +132,24 @@ TEST(Loader, IncludesAreMerged) {
   auto wrong = hp::load_profile(dir / "dev.yaml");
   ASSERT_FALSE(wrong);
   EXPECT_NE(wrong.error().message.find("other"), std::string::npos);
+  std::filesystem::remove_all(dir);
+}
+
+TEST(Loader, SearchPathHonoursHilbridgeProfiles) {
+  const auto dir = std::filesystem::temp_directory_path() / "hil_profiles_env_test";
+  std::filesystem::create_directories(dir);
+  std::ofstream(dir / "env-only-device.yaml") << "device: env-only-device\ntext_format: wf-md\nparameters:\n  - {id: MD1, number: 1, range: [0, 10]}\n"
+                                                   "catalogues:\n  - id: e\n    entries:\n      - {code: '1', text: t, reaction: stop, acknowledge: a}\n";
+  const char* old = std::getenv("HILBRIDGE_PROFILES");
+  const std::string saved = old ? old : "";
+  ::setenv("HILBRIDGE_PROFILES", dir.c_str(), 1);
+  EXPECT_EQ(hp::profile_search_path().front(), std::filesystem::weakly_canonical(dir));
+  const auto names = hp::list_profiles();
+  EXPECT_NE(std::find(names.begin(), names.end(), "env-only-device"), names.end());
+  auto p = hp::find_profile("env-only-device");
+  ASSERT_TRUE(p) << p.error().describe();
+  EXPECT_EQ((*p)->catalogue("e")->category().name(), std::string("env-only-device.e"));
+  if (old) ::setenv("HILBRIDGE_PROFILES", saved.c_str(), 1);
+  else ::unsetenv("HILBRIDGE_PROFILES");
   std::filesystem::remove_all(dir);
 }

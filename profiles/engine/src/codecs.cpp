@@ -141,6 +141,7 @@ std::int64_t bcd_max_magnitude(const BcdFormat& f) noexcept {
 
 std::expected<std::uint32_t, CodecError> make_bcd(std::int64_t v, const BcdFormat& f) {
   if (f.digits < 1 || f.digits > 8) return std::unexpected(err(CodecError::Kind::syntax, "BCD format needs 1..8 digits"));
+  if (f.sign == BcdSign::bit31 && f.digits != 8) return std::unexpected(err(CodecError::Kind::syntax, "the bit-31 sign needs 8 BCD digits"));
   if (v < 0 && f.sign == BcdSign::none)
     return std::unexpected(err(CodecError::Kind::out_of_range, fmt::format("{} is negative; the BCD format is unsigned", v)));
   const std::int64_t mag = v < 0 ? -v : v;
@@ -161,6 +162,7 @@ std::expected<std::uint32_t, CodecError> make_bcd(std::int64_t v, const BcdForma
 
 std::expected<std::int64_t, CodecError> parse_bcd(std::uint32_t word, const BcdFormat& f) {
   if (f.digits < 1 || f.digits > 8) return std::unexpected(err(CodecError::Kind::syntax, "BCD format needs 1..8 digits"));
+  if (f.sign == BcdSign::bit31 && f.digits != 8) return std::unexpected(err(CodecError::Kind::syntax, "the bit-31 sign needs 8 BCD digits"));
   if (f.digits < 8 && (word >> (4 * f.digits)) != 0)
     return std::unexpected(err(CodecError::Kind::syntax, fmt::format("BCD word {:08X} has bits above its {} digits", word, f.digits)));
   bool neg = false;

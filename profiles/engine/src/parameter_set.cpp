@@ -23,20 +23,38 @@ std::string Problem::describe(std::string_view file) const {
   return s;
 }
 
+const SetEntry* ParameterSet::indexed(const std::string& key) const {
+  const auto it = index_.find(key);
+  if (it == index_.end() || it->second.pos >= entries.size()) return nullptr;
+  const auto& e = entries[it->second.pos];
+  // cheap identity check: the entry at that position still is the indexed parameter
+  if (e.ref.spec != it->second.spec || e.ref.instance != it->second.instance) return nullptr;
+  return &e;
+}
+
 const SetEntry* ParameterSet::find(std::string_view concrete_id) const {
   const auto key = normalise_id(concrete_id);
+  if (const auto* e = indexed(key)) return e;
+  if (index_.size() == entries.size() && !index_.count(key)) return nullptr;  // index complete: a miss is a miss
   for (const auto& e : entries)
     if (normalise_id(e.ref.id()) == key) return &e;
   return nullptr;
 }
 
 void ParameterSet::set(SetEntry e) {
-  const auto key = normalise_id(e.ref.id());
-  for (auto& x : entries)
-    if (normalise_id(x.ref.id()) == key) {
-      x = std::move(e);
+  auto key = normalise_id(e.ref.id());
+  if (const auto* old = indexed(key)) {
+    entries[static_cast<std::size_t>(old - entries.data())] = std::move(e);
+    return;
+  }
+  const bool complete = index_.size() == entries.size() && !index_.count(key);
+  for (std::size_t i = 0; !complete && i < entries.size(); ++i)
+    if (normalise_id(entries[i].ref.id()) == key) {
+      index_[key] = Slot{i, e.ref.spec, e.ref.instance};
+      entries[i] = std::move(e);
       return;
     }
+  index_[std::move(key)] = Slot{entries.size(), e.ref.spec, e.ref.instance};
   entries.push_back(std::move(e));
 }
 

@@ -53,7 +53,9 @@ public:
   explicit AmkParser(std::shared_ptr<const Profile> p) : p_(std::move(p)) {}
   std::string_view format_name() const noexcept override { return "amk-db"; }
 
-  ParseResult parse(std::string_view text) const override {
+  ParseResult parse(std::string_view text) const override { return parse(text, Settings{}); }
+
+  ParseResult parse(std::string_view text, const Settings& settings) const override {
     ParseResult r;
     r.set.device = p_->device;
     std::vector<RawItem> items;
@@ -95,16 +97,20 @@ public:
     for (int pass = 0; pass < 2; ++pass)
       for (const auto& it : items) {
         if (is_header(it.id) != (pass == 0)) continue;
-        add(r, it);
+        add(r, it, settings);
       }
     std::stable_sort(r.problems.begin(), r.problems.end(), [](const Problem& a, const Problem& b) { return a.line < b.line; });
     return r;
   }
 
-  std::string write(const ParameterSet& set) const override {
+  std::string write(const ParameterSet& set) const override { return write(set, Settings{}); }
+
+  std::string write(const ParameterSet& set, const Settings& settings) const override {
     std::string init, cmd;
+    const Scope scope(*p_, &set, settings);
     for (const auto& e : set.entries) {
-      const auto& v = parse_variant(*p_, e.ref, set);
+      const ParamVariant* vp = select_variant(e.ref, scope);
+      const auto& v = vp ? *vp : e.ref.spec->variants.front();
       if (v.fields.empty() || e.value.empty()) continue;
       const auto* d = std::get_if<Decimal>(&e.value[0]);
       if (!d) continue;
@@ -119,15 +125,14 @@ public:
   }
 
 private:
-  void add(ParseResult& r, const RawItem& it) const {
+  void add(ParseResult& r, const RawItem& it, const Settings& settings) const {
     auto problem = [&](std::string rule, std::string msg) { r.problems.push_back({it.line, it.id, "", it.text, std::move(rule), std::move(msg)}); };
     const auto ref = p_->resolve(it.id);
     if (!ref) {
       problem("defined address", fmt::format("{} is not a data item of the {} DB", it.id, it.id.starts_with("INIT") ? "init" : "commanding"));
       return;
     }
-    static const Settings none;
-    const Scope scope(*p_, &r.set, none);
+    const Scope scope(*p_, &r.set, settings);
     const ParamVariant* v = select_variant(*ref, scope);
     if (!v) {
       problem("address used by this SF", fmt::format("{} is not used by SF type {} (fct/BA as given): use the addresses of its commanding DB",

@@ -77,6 +77,14 @@ std::string ParamSpec::concrete_id(std::optional<std::int64_t> instance) const {
 
 void Profile::index() {
   index_.clear();
+  templates_.clear();
+  for (const auto& p : parameters) {
+    if (p.instances.empty()) continue;
+    templates_.emplace(normalise_id(p.id), &p);
+    std::string bare = p.pattern;
+    if (const auto at = bare.find('{'); at != std::string::npos) bare.erase(at, bare.find('}', at) - at + 1);
+    if (!bare.empty()) templates_.emplace(normalise_id(bare), &p);
+  }
   for (const auto& p : parameters) {
     if (p.instances.empty()) {
       index_.emplace(normalise_id(p.id), ParamRef{&p, std::nullopt});
@@ -91,6 +99,11 @@ std::optional<ParamRef> Profile::resolve(std::string_view id) const {
   const auto it = index_.find(normalise_id(id));
   if (it == index_.end()) return std::nullopt;
   return it->second;
+}
+
+const ParamSpec* Profile::resolve_template(std::string_view id) const {
+  const auto it = templates_.find(normalise_id(id));
+  return it == templates_.end() ? nullptr : it->second;
 }
 
 std::vector<ParamRef> Profile::all_refs() const {

@@ -86,16 +86,8 @@ std::optional<ExprValue> Scope::lookup(std::string_view name) const {
   if (!ref) {
     // a template id ("Ax06", "MD204*") or its pattern without the placeholder ("MD204") names the
     // parameter of the instance in scope
-    for (const auto& p : profile_->parameters) {
-      if (p.instances.empty() || !instance_) continue;
-      std::string bare = p.pattern;
-      if (const auto at = bare.find('{'); at != std::string::npos) bare.erase(at, bare.find('}', at) - at + 1);
-      const auto key = normalise_id(id);
-      if (normalise_id(p.id) == key || normalise_id(bare) == key) {
-        ref = ParamRef{&p, *instance_};
-        break;
-      }
-    }
+    if (instance_)
+      if (const auto* t = profile_->resolve_template(id)) ref = ParamRef{t, *instance_};
   }
   if (!ref) return std::nullopt;
   ++depth_;

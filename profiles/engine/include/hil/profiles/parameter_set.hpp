@@ -16,6 +16,7 @@
 //
 // Comments: ';' or '//' to end of line ('(' … ')' for sinumerik-md). Problems carry the line.
 
+#include <map>
 #include <memory>
 #include <optional>
 #include <string>
@@ -55,6 +56,16 @@ public:
   [[nodiscard]] const SetEntry* find(std::string_view concrete_id) const;
   /// Inserts or replaces the entry of `e.ref.id()`.
   void set(SetEntry e);
+
+private:
+  // normalised id → position in `entries`; checked on use, so direct edits of `entries` stay safe
+  struct Slot {
+    std::size_t pos;
+    const ParamSpec* spec;
+    std::optional<std::int64_t> instance;
+  };
+  std::map<std::string, Slot, std::less<>> index_;
+  [[nodiscard]] const SetEntry* indexed(const std::string& key) const;
 };
 
 struct ParseResult {
@@ -74,6 +85,11 @@ public:
   }
   /// The device's own text for `set` (parse(write(s)) reproduces s).
   [[nodiscard]] virtual std::string write(const ParameterSet& set) const = 0;
+  /// As write(set), selecting variants with `settings` (AMKASYN: the SF type when the set has no init DB).
+  [[nodiscard]] virtual std::string write(const ParameterSet& set, const Settings& settings) const {
+    (void)settings;
+    return write(set);
+  }
   [[nodiscard]] virtual std::string_view format_name() const noexcept = 0;
 };
 

@@ -194,11 +194,16 @@ public:
   [[nodiscard]] const ErrorCatalogue* catalogue(std::string_view id) const;
   [[nodiscard]] const SettingSpec* setting(std::string_view name) const;
 
+  /// An instanced parameter by its template id ("Ax06", "MD204*") or its pattern without the
+  /// placeholder ("MD204"); nullptr when none.
+  [[nodiscard]] const ParamSpec* resolve_template(std::string_view id) const;
+
   /// Builds the id index; called by the loader after filling the members.
   void index();
 
 private:
   std::map<std::string, ParamRef, std::less<>> index_;
+  std::map<std::string, const ParamSpec*, std::less<>> templates_;
 };
 
 /// Normalised lookup key for ids: upper case, spaces removed ("md 11" → "MD11").

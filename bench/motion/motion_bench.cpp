@@ -1,0 +1,152 @@
+// SPDX-License-Identifier: MIT
+// Motion core speed goals (run: bench_motion --benchmark_format=json):
+//   plan one jerk-limited rest-to-rest move    < 150 ns median (Ruckig: ~110 ns)
+//   one Axis::update with a trivial drive      < 50 ns (trajectory sample + supervision)
+//   1 kHz loop, 64 axes on SimDrive            < 5 % of one core (counter cpu_percent)
+#include <benchmark/benchmark.h>
+
+#include <memory>
+#include <random>
+#include <vector>
+
+#include "hil/mocks/sim_drive.hpp"
+#include "hil/motion/axis.hpp"
+#include "hil/motion/plan.hpp"
+
+namespace {
+
+using namespace hil::motion;
+using std::chrono::milliseconds;
+
+struct Move {
+  double from, to;
+  Limits limits;
+};
+
+std::vector<Move> random_moves(std::size_t n) {
+  std::mt19937_64 rng(1);
+  std::uniform_real_distribution<double> pos(-1000.0, 1000.0), lv(10.0, 500.0), la(100.0, 5000.0), lj(1e3, 1e5);
+  std::vector<Move> out(n);
+  for (auto& m : out) m = Move{pos(rng), pos(rng), Limits{lv(rng), la(rng), lj(rng)}};
+  return out;
+}
+
+void BM_PlanRestToRest(benchmark::State& state) {
+  const auto moves = random_moves(1024);
+  Profile p;
+  std::size_t i = 0;
+  for (auto _ : state) {
+    const Move& m = moves[i++ & 1023];
+    plan_rest_to_rest(m.from, m.to, m.limits, p);
+    benchmark::DoNotOptimize(p);
+  }
+}
+BENCHMARK(BM_PlanRestToRest);
+
+void BM_PlanFromMotion(benchmark::State& state) {
+  const auto moves = random_moves(1024);
+  std::vector<State> states(1024);
+  Profile p;
+  for (std::size_t k = 0; k < 1024; ++k) {
+    plan_rest_to_rest(moves[k].from, moves[k].to, moves[k].limits, p);
+    states[k] = p.sample(0.37 * p.duration());
+  }
+  std::size_t i = 0;
+  for (auto _ : state) {
+    const std::size_t k = i++ & 1023;
+    plan_position(states[k], moves[(k + 1) & 1023].to, moves[k].limits, p);
+    benchmark::DoNotOptimize(p);
+  }
+}
+BENCHMARK(BM_PlanFromMotion);
+
+// The drive does nothing but report the command back (ideal, instant).
+class EchoDrive final : public hil::Drive {
+public:
+  std::string_view name() const noexcept override { return "echo"; }
+  hil::DriveCapabilities capabilities() const noexcept override { return {}; }
+  void read(const hil::CycleTime&) override {}
+  void write(const hil::CycleTime&, const hil::DriveCommand& c) override {
+    fb_.position_inc = c.position_inc;
+    fb_.velocity_inc_per_s = c.velocity_inc_per_s;
+  }
+  const hil::DriveFeedback& feedback() const noexcept override { return fb_; }
+  bool request(hil::DriveRequest r) override {
+    if (r == hil::DriveRequest::enable) fb_.state = hil::DriveState::operation_enabled;
+    return true;
+  }
+
+private:
+  hil::DriveFeedback fb_;
+};
+
+AxisConfig bench_config() {
+  AxisConfig c;
+  c.name = "bench";
+  c.inc_per_unit = {4096, 5};
+  c.limits = {200.0, 2000.0, 40000.0};
+  c.quick_stop_deceleration = 10000.0;
+  c.jog_velocity = 50.0;
+  c.following_error.dynamic = true;
+  c.following_error.kv_per_s = 50.0;
+  c.following_error.min_window = 0.2;
+  c.following_error.max_window = 8.0;
+  c.standstill_window = 0.1;
+  c.in_position_window = 0.01;
+  c.in_position_timeout = milliseconds(300);
+  return c;
+}
+
+void BM_AxisUpdate(benchmark::State& state) {
+  Axis axis(bench_config(), std::make_unique<EchoDrive>());
+  hil::TimePoint now{};
+  const hil::Duration period = milliseconds(1);
+  axis.update({now, period});
+  axis.enable();
+  for (int i = 0; i < 3; ++i) axis.update({now += period, period});
+  std::mt19937_64 rng(2);
+  std::uniform_real_distribution<double> pos(-1000.0, 1000.0);
+  for (auto _ : state) {
+    if (!axis.status().busy) axis.move_absolute(pos(rng));  // keeps it moving through all phases
+    benchmark::DoNotOptimize(axis.update({now += period, period}));
+  }
+}
+BENCHMARK(BM_AxisUpdate);
+
+void BM_Loop64AxesSimDrive1s(benchmark::State& state) {
+  std::vector<std::unique_ptr<Axis>> axes;
+  for (int k = 0; k < 64; ++k) {
+    hil::mocks::SimDriveConfig d;
+    d.plant.kv_per_s = 50.0;
+    auto c = bench_config();
+    c.name = "a" + std::to_string(k);
+    axes.push_back(std::make_unique<Axis>(c, std::make_unique<hil::mocks::SimDrive>(d)));
+  }
+  hil::TimePoint now{};
+  const hil::Duration period = milliseconds(1);
+  for (auto& a : axes) {
+    a->update({now, period});
+    a->enable();
+  }
+  for (int i = 0; i < 50; ++i) {
+    now += period;
+    for (auto& a : axes) a->update({now, period});
+  }
+  std::mt19937_64 rng(3);
+  std::uniform_real_distribution<double> pos(-300.0, 300.0);
+  for (auto _ : state) {
+    for (int cycle = 0; cycle < 1000; ++cycle) {  // 1 s of simulated time at 1 kHz
+      now += period;
+      for (auto& a : axes) {
+        if (!a->status().busy && a->status().in_position) a->move_absolute(pos(rng));
+        benchmark::DoNotOptimize(a->update({now, period}));
+      }
+    }
+  }
+  // CPU time per simulated second, as % of one core: 100 * (seconds per iteration) / 1 s.
+  state.counters["cpu_percent"] =
+      benchmark::Counter(0.01, benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
+}
+BENCHMARK(BM_Loop64AxesSimDrive1s)->Unit(benchmark::kMillisecond);
+
+}  // namespace

@@ -1,0 +1,128 @@
+// SPDX-License-Identifier: MIT
+// `hilbridge can dump`: candump -L style lines on stdout, optionally a log file (replayable with
+// `hilbridge can replay` or canplayer) and a pcap file (LINKTYPE_CAN_SOCKETCAN, for Wireshark).
+#include <cstdio>
+#include <memory>
+
+#include <asio/io_context.hpp>
+#include <asio/signal_set.hpp>
+#include <asio/steady_timer.hpp>
+#include <fmt/format.h>
+
+#include "commands.hpp"
+#include "hil/can/candump.hpp"
+#include "hil/can/make_channel.hpp"
+#include "hil/can/pcap.hpp"
+
+namespace hil::cli::can_cmd {
+
+namespace {
+
+struct DumpOptions {
+  std::string bus;
+  std::string pcap;
+  std::string log;
+  std::uint64_t count = 0;
+  double duration_s = 0;
+  bool quiet = false;
+};
+
+struct FileCloser {
+  void operator()(std::FILE* f) const noexcept {
+    if (f) std::fclose(f);
+  }
+};
+using File = std::unique_ptr<std::FILE, FileCloser>;
+
+int run_dump(const DumpOptions& o) {
+  asio::io_context io;
+  SteadyClock clock;
+  auto url = can::parse_bus_url(o.bus);
+  if (!url) {
+    fmt::print(stderr, "hilbridge can dump: --bus: {}\n", url.error());
+    return 2;
+  }
+  File log;
+  File pcap;
+  if (!o.log.empty() && !(log = File(std::fopen(o.log.c_str(), "w")))) {
+    fmt::print(stderr, "hilbridge can dump: cannot create log file '{}': {}\n", o.log, std::strerror(errno));
+    return 2;
+  }
+  if (!o.pcap.empty()) {
+    pcap = File(std::fopen(o.pcap.c_str(), "wb"));
+    if (!pcap) {
+      fmt::print(stderr, "hilbridge can dump: cannot create pcap file '{}': {}\n", o.pcap, std::strerror(errno));
+      return 2;
+    }
+    const auto header = can::pcap::make_global_header();
+    std::fwrite(header.data(), 1, header.size(), pcap.get());
+    std::fflush(pcap.get());
+  }
+  auto channel = can::make_channel(*url, {io.get_executor(), clock});
+  if (!channel) {
+    fmt::print(stderr, "hilbridge can dump: {}\n", channel.error().message);
+    return 2;
+  }
+  const auto wall_offset = std::chrono::duration_cast<Duration>(std::chrono::system_clock::now().time_since_epoch()) -
+                           clock.now().time_since_epoch();
+  std::uint64_t frames = 0;
+  std::string line;
+  const std::string iface = url->name;
+  (*channel)->set_receive_handler([&](const can::Frame& f, TimePoint t) {
+    const auto ns = (t.time_since_epoch() + wall_offset).count();
+    const can::socketcand::Timestamp ts{ns / 1'000'000'000, static_cast<std::uint32_t>((ns % 1'000'000'000) / 1000)};
+    line.clear();
+    can::candump::format_log_line(line, {ts, iface, f});
+    line.push_back('\n');
+    if (!o.quiet) {
+      std::fwrite(line.data(), 1, line.size(), stdout);
+      std::fflush(stdout);
+    }
+    if (log) {
+      std::fwrite(line.data(), 1, line.size(), log.get());
+      std::fflush(log.get());
+    }
+    if (pcap) {
+      const auto rec = can::pcap::make_record(f, ts);
+      std::fwrite(rec.data(), 1, rec.size(), pcap.get());
+      std::fflush(pcap.get());
+    }
+    if (++frames == o.count) io.stop();
+  });
+  fmt::print(stderr, "hilbridge can dump: listening on {}{}\n", url->to_string(),
+             o.count ? fmt::format(" for {} frames", o.count) : std::string(" (Ctrl-C to stop)"));
+  asio::signal_set signals(io, SIGINT, SIGTERM);
+  signals.async_wait([&](const std::error_code&, int) { io.stop(); });
+  asio::steady_timer deadline(io);
+  if (o.duration_s > 0) {
+    deadline.expires_after(std::chrono::duration_cast<std::chrono::steady_clock::duration>(std::chrono::duration<double>(o.duration_s)));
+    deadline.async_wait([&](const std::error_code& ec) {
+      if (!ec) io.stop();
+    });
+  }
+  io.run();
+  const auto st = (*channel)->stats();
+  fmt::print(stderr, "hilbridge can dump: {} frames ({} error frames, {} receive overruns)\n", frames, st.error_frames,
+             st.rx_overruns);
+  return 0;
+}
+
+}  // namespace
+
+void add_dump(CLI::App& can, Context& ctx) {
+  auto o = std::make_shared<DumpOptions>();
+  auto* cmd = can.add_subcommand("dump", "Print received frames (candump -L lines); write a log and/or a pcap file");
+  cmd->footer(
+      "Print every received frame as `(SECONDS.MICROS) BUS ID#DATA` (candump -L format, wall-clock\n"
+      "time). --log writes the same lines to a file that `hilbridge can replay` and canplayer read;\n"
+      "--pcap writes LINKTYPE_CAN_SOCKETCAN (227) that Wireshark's CAN and CANopen dissectors open.");
+  cmd->add_option("--bus", o->bus, bus_help)->required();
+  cmd->add_option("--pcap", o->pcap, "Also write a pcap capture to FILE");
+  cmd->add_option("--log", o->log, "Also write candump log lines to FILE");
+  cmd->add_option("--count,-n", o->count, "Stop after N frames");
+  cmd->add_option("--duration", o->duration_s, "Stop after SECONDS")->check(CLI::PositiveNumber);
+  cmd->add_flag("--quiet,-q", o->quiet, "Do not print frames on stdout (files only)");
+  cmd->callback([o, &ctx] { ctx.exit_code = run_dump(*o); });
+}
+
+}  // namespace hil::cli::can_cmd

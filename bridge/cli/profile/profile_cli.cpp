@@ -1,0 +1,315 @@
+// SPDX-License-Identifier: MIT
+// `hilbridge profile list|show|validate|encode|decode`: the device profiles of profiles/devices.
+#include <fmt/format.h>
+
+#include <fstream>
+#include <sstream>
+
+#include "hil/cli/context.hpp"
+#include "hil/profiles/loader.hpp"
+#include "hil/profiles/parameter_set.hpp"
+#include "hil/profiles/validation.hpp"
+#include "hil/profiles/wire.hpp"
+#include "profile_cli.hpp"
+
+namespace hil::cli {
+namespace {
+
+namespace hp = hil::profiles;
+
+struct Options {
+  std::string device;
+  std::string param;
+  std::string value;
+  std::string file;
+  std::string errors;
+  bool show_errors = false;
+  bool partial = false;
+  std::vector<std::string> sets;
+};
+
+std::expected<hp::Settings, std::string> parse_settings(const hp::Profile& p, const std::vector<std::string>& sets) {
+  hp::Settings s;
+  for (const auto& kv : sets) {
+    const auto eq = kv.find('=');
+    if (eq == std::string::npos || eq == 0) return std::unexpected(fmt::format("--set '{}': expected name=value", kv));
+    const std::string name = kv.substr(0, eq), value = kv.substr(eq + 1);
+    if (!p.setting(name)) {
+      std::string known;
+      for (const auto& x : p.settings) known += (known.empty() ? "" : ", ") + x.name;
+      return std::unexpected(fmt::format("--set {}: {} has no such setting (settings: {})", name, p.device, known.empty() ? "none" : known));
+    }
+    if (auto d = hp::parse_decimal(value)) s[name] = d->to_long_double();
+    else s[name] = value;
+  }
+  return s;
+}
+
+std::shared_ptr<const hp::Profile> load(const std::string& device, int& exit_code) {
+  auto p = hp::find_profile(device);
+  if (!p) {
+    fmt::print(stderr, "error: {}\n", p.error().describe());
+    std::string names;
+    for (const auto& n : hp::list_profiles()) names += (names.empty() ? "" : ", ") + n;
+    fmt::print(stderr, "known devices: {}\n", names.empty() ? "none (set HILBRIDGE_PROFILES)" : names);
+    exit_code = 2;
+    return nullptr;
+  }
+  return *p;
+}
+
+/// Resolves PARAM and its variant for the given settings; prints the reason on failure.
+const hp::ParamVariant* variant_for(const hp::Profile& p, const std::string& param, const hp::Settings& s, hp::ParamRef& ref, int& exit_code) {
+  auto r = p.resolve(param);
+  if (!r) {
+    fmt::print(stderr, "error: {} has no parameter '{}' (see: hilbridge profile show {})\n", p.device, param, p.device);
+    exit_code = 2;
+    return nullptr;
+  }
+  ref = *r;
+  hp::ParameterSet empty;
+  const hp::Scope scope(p, &empty, s);
+  const auto* v = hp::select_variant(ref, scope);
+  if (!v) {
+    std::string conds;
+    for (const auto& x : ref.spec->variants) conds += (conds.empty() ? "" : " | ") + x.when.text();
+    fmt::print(stderr, "error: {} does not exist for this configuration; it applies when {} (choose with --set)\n", ref.id(), conds);
+    exit_code = 2;
+    return nullptr;
+  }
+  return v;
+}
+
+void print_field_problems(const hp::ParamRef& ref, const hp::ParamVariant& v, const hp::ParamValue& value, const hp::Profile& p,
+                          const hp::Settings& s, int& exit_code) {
+  hp::ParameterSet empty;
+  const hp::Scope scope(p, &empty, s);
+  for (std::size_t i = 0; i < v.fields.size() && i < value.size(); ++i)
+    for (const auto& pr : hp::check_field(ref, v.fields[i], value[i], scope)) {
+      fmt::print("error: {}\n", pr.describe());
+      exit_code = 1;
+    }
+}
+
+std::string units(const hp::ParamVariant& v) {
+  std::string u;
+  for (const auto& f : v.fields)
+    if (!f.unit.empty()) u += (u.empty() ? "" : ", ") + f.unit;
+  return u.empty() ? "" : " [" + u + "]";
+}
+
+void run_list(Context& ctx) {
+  const auto names = hp::list_profiles();
+  if (names.empty()) {
+    fmt::print(stderr, "error: no profiles found; searched:");
+    for (const auto& d : hp::profile_search_path()) fmt::print(stderr, " {}", d.string());
+    fmt::print(stderr, "\nset HILBRIDGE_PROFILES to the folder holding <device>.yaml\n");
+    ctx.exit_code = 2;
+    return;
+  }
+  fmt::print("{:<16} {:>10} {:>8}  {}\n", "DEVICE", "PARAMETERS", "ERRORS", "TITLE");
+  for (const auto& n : names) {
+    auto p = hp::find_profile(n);
+    if (!p) {
+      fmt::print("{:<16} error: {}\n", n, p.error().describe());
+      ctx.exit_code = 1;
+      continue;
+    }
+    std::size_t codes = 0;
+    for (const auto& c : (*p)->catalogues) codes += c->entries().size();
+    fmt::print("{:<16} {:>10} {:>8}  {}\n", n, (*p)->all_refs().size(), codes, (*p)->title);
+  }
+}
+
+void run_show(Context& ctx, const Options& o) {
+  auto p = load(o.device, ctx.exit_code);
+  if (!p) return;
+  if (o.show_errors) {
+    if (!o.errors.empty() && !p->catalogue(o.errors)) {
+      fmt::print(stderr, "error: {} has no error catalogue '{}'\n", p->device, o.errors);
+      ctx.exit_code = 2;
+      return;
+    }
+    profile::print_catalogues(*p, o.errors);
+    return;
+  }
+  if (o.param.empty()) {
+    profile::print_overview(*p);
+    return;
+  }
+  auto ref = p->resolve(o.param);
+  if (!ref) {
+    // an error code of one or more catalogues?
+    bool found = false;
+    for (const auto& c : p->catalogues)
+      if (auto code = c->parse_code(o.param); code && c->find(*code)) {
+        const auto* e = c->find(*code);
+        fmt::print("{} {} ({}): {}{}\n  cause: {}\n  remedy: {}\n  reaction: {}; acknowledge: {}\n", c->id(), e->code_text, c->category().name(),
+                   e->text, e->text_de.empty() ? "" : " [" + e->text_de + "]", e->cause, e->remedy, hp::to_string(e->reaction), e->acknowledge);
+        found = true;
+      }
+    if (found) return;
+    fmt::print(stderr, "error: {} has no parameter or error code '{}'\n", p->device, o.param);
+    ctx.exit_code = 2;
+    return;
+  }
+  profile::print_parameter(*p, *ref);
+}
+
+void run_validate(Context& ctx, const Options& o) {
+  auto p = load(o.device, ctx.exit_code);
+  if (!p) return;
+  auto settings = parse_settings(*p, o.sets);
+  if (!settings) {
+    fmt::print(stderr, "error: {}\n", settings.error());
+    ctx.exit_code = 2;
+    return;
+  }
+  std::ifstream in(o.file, std::ios::binary);
+  if (!in) {
+    fmt::print(stderr, "error: cannot read {}\n", o.file);
+    ctx.exit_code = 2;
+    return;
+  }
+  std::stringstream buf;
+  buf << in.rdbuf();
+  auto parser = hp::make_parameter_set_parser(p);
+  if (!parser) {
+    fmt::print(stderr, "error: {} declares the unknown parameter-set format '{}'\n", p->device, p->text_format);
+    ctx.exit_code = 2;
+    return;
+  }
+  const auto parsed = parser->parse(buf.str(), *settings);
+  auto problems = parsed.problems;
+  for (auto& pr : hp::validate(*p, parsed.set, *settings)) {
+    if (o.partial && pr.rule.starts_with("required")) continue;
+    problems.push_back(std::move(pr));
+  }
+  std::stable_sort(problems.begin(), problems.end(), [](const hp::Problem& a, const hp::Problem& b) {
+    if ((a.line == 0) != (b.line == 0)) return a.line != 0;
+    return a.line < b.line;
+  });
+  for (const auto& pr : problems) fmt::print("{}\n", pr.describe(o.file));
+  if (problems.empty()) {
+    fmt::print("{}: valid {} parameter set ({} parameters)\n", o.file, p->device, parsed.set.entries.size());
+  } else {
+    fmt::print("{}: {} problem(s) in a {} parameter set of {} parameters\n", o.file, problems.size(), p->device, parsed.set.entries.size());
+    ctx.exit_code = 1;
+  }
+}
+
+void run_encode(Context& ctx, const Options& o) {
+  auto p = load(o.device, ctx.exit_code);
+  if (!p) return;
+  auto settings = parse_settings(*p, o.sets);
+  if (!settings) {
+    fmt::print(stderr, "error: {}\n", settings.error());
+    ctx.exit_code = 2;
+    return;
+  }
+  hp::ParamRef ref;
+  const auto* v = variant_for(*p, o.param, *settings, ref, ctx.exit_code);
+  if (!v) return;
+  auto value = hp::parse_value_input(*v, o.value);
+  if (!value) {
+    fmt::print(stderr, "error: {} = '{}': {}\n", ref.id(), o.value, value.error());
+    ctx.exit_code = 1;
+    return;
+  }
+  auto img = hp::encode_value(*p, *v, *value);
+  if (!img) {
+    fmt::print(stderr, "error: {} = {}: {}\n", ref.id(), o.value, img.error());
+    ctx.exit_code = 1;
+    return;
+  }
+  fmt::print("{} {} = {}{}\n", ref.id(), v->name, hp::value_text(*v, *value), units(*v));
+  fmt::print("{}", img->describe());
+  // the parameter as a line of the device's own text format
+  if (auto parser = hp::make_parameter_set_parser(p)) {
+    hp::ParameterSet one;
+    one.device = p->device;
+    one.set({ref, *value, 0, hp::value_text(*v, *value)});
+    fmt::print("device text:\n{}", parser->write(one, *settings));
+  }
+  print_field_problems(ref, *v, *value, *p, *settings, ctx.exit_code);
+}
+
+void run_decode(Context& ctx, const Options& o) {
+  auto p = load(o.device, ctx.exit_code);
+  if (!p) return;
+  auto settings = parse_settings(*p, o.sets);
+  if (!settings) {
+    fmt::print(stderr, "error: {}\n", settings.error());
+    ctx.exit_code = 2;
+    return;
+  }
+  hp::ParamRef ref;
+  const auto* v = variant_for(*p, o.param, *settings, ref, ctx.exit_code);
+  if (!v) return;
+  auto value = hp::decode_wire(*p, *v, o.value);
+  if (!value) {
+    fmt::print(stderr, "error: {} wire '{}': {}\n", ref.id(), o.value, value.error());
+    ctx.exit_code = 1;
+    return;
+  }
+  fmt::print("{} {} = {}{}\n", ref.id(), v->name, hp::value_text(*v, *value), units(*v));
+  for (std::size_t i = 0; i < v->fields.size(); ++i) {
+    const auto& f = v->fields[i];
+    if (f.type == hp::FieldType::bits)
+      if (const auto* d = std::get_if<hp::Decimal>(&(*value)[i]))
+        if (auto b = hp::parse_bit_field(static_cast<std::uint64_t>(d->units), f.bits)) fmt::print("  {}: {}\n", f.name, hp::bit_field_text(*b, f.bits));
+    if (f.type == hp::FieldType::choice)
+      if (const auto* d = std::get_if<hp::Decimal>(&(*value)[i]))
+        for (const auto& c : f.choices)
+          if (hp::Decimal{c.value, 0} == *d) fmt::print("  {}: {}\n", f.name, c.meaning);
+  }
+  print_field_problems(ref, *v, *value, *p, *settings, ctx.exit_code);
+}
+
+}  // namespace
+
+void register_profile(Context& ctx) {
+  auto opts = std::make_shared<Options>();
+  auto* cmd = ctx.app.add_subcommand("profile",
+                                     "Device profiles of the legacy controllers (CLM1.4, SINUMERIK ELG, IP247, WF 725/726, AMKASYN SF):\n"
+                                     "parameters, value codecs, validation of parameter sets and error catalogues.\n"
+                                     "Profiles are YAML files found in $HILBRIDGE_PROFILES, <exe>/../profiles/devices or the source tree.");
+  cmd->require_subcommand(1);
+
+  auto* list = cmd->add_subcommand("list", "List the device profiles found, with parameter and error-code counts");
+  list->callback([&ctx] { run_list(ctx); });
+
+  auto* show = cmd->add_subcommand("show", "Show a profile, one parameter (every variant, field, range, default, rule) or an error catalogue");
+  show->add_option("device", opts->device, "Device name, e.g. clm14, wf725-726, ip247, sinumerik-elg, amkasyn-sf")->required();
+  show->add_option("param", opts->param, "Parameter id (A106, MD11, DW5, fmax, MD396*) or an error code of a catalogue");
+  show->add_flag("--errors", opts->show_errors, "List the error catalogues (all, or the one named by --catalogue)");
+  show->add_option("--catalogue", opts->errors, "Error catalogue to list with --errors (e.g. diagnostic, serial, traversing)");
+  show->callback([&ctx, opts] { run_show(ctx, *opts); });
+
+  auto* validate = cmd->add_subcommand("validate",
+                                       "Validate a parameter set in the device's own text format; every problem is listed with its line.\n"
+                                       "Exit code 0 = valid, 1 = problems found, 2 = usage error.");
+  validate->add_option("device", opts->device, "Device name")->required();
+  validate->add_option("file", opts->file, "Parameter set file (CLM K telegrams, WF 'MD n = v', IP247 S5 DB listing, ELG %TEA1/%SEA tape, AMK DB lines)")
+      ->required();
+  validate->add_option("--set", opts->sets, "Setting name=value (e.g. module=WF726C, hardware_axes=2, id2_ms=2); repeatable");
+  validate->add_flag("--partial", opts->partial, "Do not report parameters missing from the set");
+  validate->callback([&ctx, opts] { run_validate(ctx, *opts); });
+
+  auto* encode = cmd->add_subcommand("encode", "Print a value's wire form (telegram field text, BCD and binary words, data words, tape block)");
+  encode->add_option("device", opts->device, "Device name")->required();
+  encode->add_option("param", opts->param, "Parameter id")->required();
+  encode->add_option("value", opts->value, "Value in the parameter's unit; several fields space-separated in one argument (\"3000 10\"); after -- for negative values")
+      ->required();
+  encode->add_option("--set", opts->sets, "Setting name=value selecting the variant (e.g. control=AK, resolution=10, sf_type=6); repeatable");
+  encode->callback([&ctx, opts] { run_encode(ctx, *opts); });
+
+  auto* decode = cmd->add_subcommand("decode", "Decode a wire form back to the value (\"03000 10.0\", \"8002 4537\", \"HEX FFFF A027\", \"0000 1388\")");
+  decode->add_option("device", opts->device, "Device name")->required();
+  decode->add_option("param", opts->param, "Parameter id")->required();
+  decode->add_option("wire", opts->value, "Wire form as printed by encode")->required();
+  decode->add_option("--set", opts->sets, "Setting name=value selecting the variant; repeatable");
+  decode->callback([&ctx, opts] { run_decode(ctx, *opts); });
+}
+
+}  // namespace hil::cli

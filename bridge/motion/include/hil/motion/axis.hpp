@@ -1,0 +1,96 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+// One axis: trajectory + scaling + supervision over one hil::Drive. Pure and clock-free: the
+// caller hands every update its CycleTime. Single-threaded: every member is called on the
+// motion thread; nothing blocks; update() never throws.
+
+#include <cstdint>
+#include <system_error>
+
+#include "hil/core/drive.hpp"
+#include "hil/core/fault.hpp"
+#include "hil/motion/axis_config.hpp"
+#include "hil/motion/axis_status.hpp"
+#include "hil/motion/profile.hpp"
+#include "hil/motion/scaling.hpp"
+#include "hil/motion/supervision.hpp"
+
+namespace hil::motion {
+
+/// Result of one cycle. `fault` while the axis holds an active fault (state error).
+enum class CycleResult : std::uint8_t { ok, fault };
+
+class Axis {
+public:
+  /// `config` must have passed validate(); an invalid config puts the axis in error with
+  /// MotionFault::invalid_command (never throws).
+  Axis(AxisConfig config, hil::DrivePtr drive);
+
+  // Commands. Each returns {} when accepted, or a hil::MotionFault error code when rejected
+  // (the axis state is then unchanged). They take effect from the next update().
+  std::error_code enable();   ///< request(enable), wait for operation_enabled (enable_timeout)
+  std::error_code disable();  ///< request(disable); motion is dropped
+  std::error_code reset();    ///< clear the axis fault; request(fault_reset) if the drive is faulted
+  std::error_code home();     ///< request(home) when the drive supports homing
+  /// Absolute move (units). Rotary: `position` is taken modulo and `direction` picks the way.
+  std::error_code move_absolute(double position, Direction direction = Direction::shortest,
+                                std::optional<Limits> limits = {});
+  /// Relative to the last target (drift-free: fractional increments carry over).
+  std::error_code move_relative(double distance, std::optional<Limits> limits = {});
+  /// Run at `velocity` (units/s, signed) until stop(); brakes to land exactly on a soft limit.
+  std::error_code move_velocity(double velocity, std::optional<Limits> limits = {});
+  std::error_code jog(int direction);  ///< +1 / -1 at jog_velocity until stop()
+  std::error_code stop();              ///< controlled stop under the configured limits
+  std::error_code quick_stop();        ///< stop at quick_stop_deceleration
+
+  /// One cycle: drive.read -> trajectory + supervision -> drive.write. Never throws.
+  CycleResult update(const hil::CycleTime& cycle);
+
+  [[nodiscard]] const AxisStatus& status() const noexcept { return status_; }
+  [[nodiscard]] hil::Drive& drive() noexcept { return *drive_; }
+  [[nodiscard]] const AxisConfig& config() const noexcept { return config_; }
+  [[nodiscard]] const Scaling& scaling() const noexcept { return scaling_; }
+  /// The active profile (for diagnostics and tests). Time 0 = the update that planned it.
+  [[nodiscard]] const Profile& profile() const noexcept { return profile_; }
+
+private:
+  enum class Mode : std::uint8_t { hold, position, velocity, velocity_to_limit, stopping };
+  [[nodiscard]] std::error_code check_can_move() const;
+  [[nodiscard]] std::error_code start_position(std::int64_t target_inc, const Limits& limits);
+  void raise(std::error_code code, std::string text);
+  void react_to_fault();
+  void plan_stop(const Limits& limits, Mode after);
+  void hold_at_actual();
+  void step_trajectory(const hil::CycleTime& cycle);
+  void finish_profile();
+  [[nodiscard]] Limits effective(const std::optional<Limits>& limits) const;
+  [[nodiscard]] Limits quick_stop_limits() const;
+
+  AxisConfig config_;
+  hil::DrivePtr drive_;
+  Scaling scaling_;
+  AxisStatus status_{};
+  Profile profile_{};
+  std::size_t profile_hint_ = 0;
+  Mode mode_ = Mode::hold;
+  bool profile_active_ = false;
+  hil::TimePoint profile_start_{};   ///< the update the profile was planned at (its t = 0)
+  Limits active_limits_{};           ///< limits of the active move (stop() brakes under them)
+  std::int64_t last_drive_cmd_inc_ = 0;  ///< command written last cycle (backlash included)
+  int home_cycles_ = 0;
+  bool home_seen_active_ = false;
+  double cmd_p_ = 0.0, cmd_v_ = 0.0, cmd_a_ = 0.0;  ///< command state, units (unwrapped)
+  std::int64_t cmd_inc_ = 0;         ///< commanded position without backlash
+  std::int64_t target_inc_ = 0;      ///< last target (unwrapped), increments
+  double relative_carry_inc_ = 0.0;  ///< fractional increments carried between relative moves
+  double limit_target_ = 0.0;        ///< soft limit a velocity move is landing on
+  double programmed_feed_ = 0.0;     ///< |peak velocity| of the active move (dynamic window)
+  double backlash_offset_ = 0.0;     ///< units currently added to the drive command
+  double backlash_goal_ = 0.0;       ///< 0 after positive motion, -backlash after negative
+  Supervisor supervisor_;
+  hil::TimePoint enable_started_{};
+  bool first_cycle_ = true;
+  hil::TimePoint last_now_{};
+};
+
+}  // namespace hil::motion

@@ -1,0 +1,40 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+// Trajectory planning (Ruckig-style: pure functions of state, target and limits; no clock).
+// All positions in user units; limits as in limits.hpp. See docs/motion.md for the maths.
+
+#include "hil/motion/limits.hpp"
+#include "hil/motion/profile.hpp"
+
+namespace hil::motion {
+
+/// Time-optimal rest-to-rest move from `from` to `to` under symmetric limits: 7-phase S-curve
+/// (trapezoid for jerk = inf), with the cases where the maximum acceleration and/or velocity are
+/// not reached solved in closed form. O(1), no iteration.
+void plan_rest_to_rest(double from, double to, const Limits& limits, Profile& out) noexcept;
+
+/// Minimum duration of a rest-to-rest move of |distance| under `limits` (closed form).
+[[nodiscard]] double rest_to_rest_duration(double distance, const Limits& limits) noexcept;
+
+/// Move from any state (p, v, a) to rest at `target`, never exceeding `limits` (an initial
+/// |v| or |a| above the limits is first brought inside them). Time-optimal from rest; from
+/// motion it takes the fastest profile of the family "ramp to a cruise velocity, cruise, ramp to
+/// rest", or, if the target lies inside the braking distance, brakes to rest and moves back.
+void plan_position(const State& from, double target, const Limits& limits, Profile& out) noexcept;
+
+/// Reach `velocity` (signed) with zero acceleration from any state, then cruise on.
+void plan_velocity(const State& from, double velocity, const Limits& limits, Profile& out) noexcept;
+
+/// Re-planning with *lower* limits than the ones `from` was reached under: when `from` lies
+/// outside `limits` (|a| above the new acceleration, or zeroing a under the new jerk would pass
+/// the new velocity), first bring a to zero under `entry` (the higher limits the state was
+/// planned with), velocity clamped into the new limit, then continue under `limits`.
+void plan_position(const State& from, double target, const Limits& limits, const Limits& entry, Profile& out) noexcept;
+void plan_velocity(const State& from, double velocity, const Limits& limits, const Limits& entry, Profile& out) noexcept;
+/// Where a stop under `limits` (entered under `entry`) comes to rest.
+[[nodiscard]] double stop_position(const State& from, const Limits& limits, const Limits& entry) noexcept;
+
+/// Position where a stop from `from` under `limits` comes to rest.
+[[nodiscard]] double stop_position(const State& from, const Limits& limits) noexcept;
+
+}  // namespace hil::motion

@@ -1,0 +1,485 @@
+// SPDX-License-Identifier: MIT
+// Step 7: the axis cycle. drive.read -> drive checks -> state machine -> trajectory sample ->
+// backlash -> supervision -> drive.write. Commands only plan; update() executes.
+#include "hil/motion/axis.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include <fmt/format.h>
+
+#include "hil/motion/plan.hpp"
+
+namespace hil::motion {
+namespace {
+
+bool valid_limits(const Limits& l) {
+  return std::isfinite(l.velocity) && l.velocity > 0 && std::isfinite(l.acceleration) && l.acceleration > 0 &&
+         l.jerk > 0;
+}
+
+bool drive_faulted(const hil::DriveFeedback& fb) {
+  return fb.state == hil::DriveState::fault || fb.state == hil::DriveState::fault_reaction_active ||
+         static_cast<bool>(fb.fault);
+}
+
+Limits upper(const Limits& a, const Limits& b) {
+  return Limits{std::max(a.velocity, b.velocity), std::max(a.acceleration, b.acceleration), std::max(a.jerk, b.jerk)};
+}
+
+long long to_ms(hil::Duration d) { return std::chrono::duration_cast<std::chrono::milliseconds>(d).count(); }
+
+}  // namespace
+
+Axis::Axis(AxisConfig config, hil::DrivePtr drive)
+    : config_(std::move(config)),
+      drive_(std::move(drive)),
+      scaling_(config_.inc_per_unit, config_.rotary, config_.modulo) {
+  active_limits_ = config_.limits;
+  if (auto ok = validate(config_); !ok) {
+    status_.state = AxisState::error;
+    status_.fault = hil::Fault{make_error_code(MotionFault::invalid_command), "invalid axis configuration: " + ok.error()};
+  }
+  if (!drive_) {
+    status_.state = AxisState::error;
+    status_.fault = hil::Fault{make_error_code(MotionFault::drive_lost), fmt::format("axis '{}': no drive", config_.name)};
+  }
+}
+
+Limits Axis::effective(const std::optional<Limits>& limits) const { return limits ? *limits : config_.limits; }
+
+Limits Axis::quick_stop_limits() const {
+  Limits l = config_.limits;
+  const double k = config_.quick_stop_deceleration / config_.limits.acceleration;
+  l.acceleration = config_.quick_stop_deceleration;
+  if (l.jerk_limited()) l.jerk *= k;  // same jerk time as a normal ramp
+  return l;
+}
+
+std::error_code Axis::check_can_move() const {
+  switch (status_.state) {
+    case AxisState::standstill:
+    case AxisState::moving:
+    case AxisState::stopping: return {};
+    case AxisState::disabled:
+    case AxisState::enabling: return make_error_code(MotionFault::not_enabled);
+    case AxisState::homing:
+    case AxisState::error: return make_error_code(MotionFault::invalid_command);
+  }
+  return make_error_code(MotionFault::invalid_command);
+}
+
+// ---- commands -------------------------------------------------------------------------------
+
+std::error_code Axis::enable() {
+  if (!drive_) return make_error_code(MotionFault::drive_lost);
+  switch (status_.state) {
+    case AxisState::disabled: break;
+    case AxisState::error: return make_error_code(MotionFault::invalid_command);
+    default: return {};
+  }
+  if (!drive_->request(hil::DriveRequest::enable)) return make_error_code(MotionFault::not_enabled);
+  status_.state = AxisState::enabling;
+  enable_started_ = last_now_;
+  return {};
+}
+
+std::error_code Axis::disable() {
+  if (!drive_) return make_error_code(MotionFault::drive_lost);
+  drive_->request(hil::DriveRequest::disable);
+  profile_active_ = false;
+  mode_ = Mode::hold;
+  if (status_.state != AxisState::error) status_.state = AxisState::disabled;
+  status_.busy = false;
+  return {};
+}
+
+std::error_code Axis::reset() {
+  if (status_.state != AxisState::error) return {};
+  if (!drive_) return make_error_code(MotionFault::drive_lost);
+  if (status_.fault.code == make_error_code(MotionFault::invalid_command) && !validate(config_))
+    return make_error_code(MotionFault::invalid_command);  // a bad configuration cannot be reset
+  const auto& fb = drive_->feedback();
+  if (drive_faulted(fb)) drive_->request(hil::DriveRequest::fault_reset);
+  if (fb.state == hil::DriveState::operation_enabled && !drive_faulted(fb)) {
+    if (profile_active_) {
+      status_.state = AxisState::stopping;  // the fault reaction's stop runs to its end
+    } else {
+      // A software-limit stop left the set-point exactly on the limit: keep it there. After a
+      // supervision or drive fault the set-point takes over the actual position (no jump).
+      if (status_.fault.code != make_error_code(MotionFault::software_limit)) hold_at_actual();
+      supervisor_.hold();
+      status_.state = AxisState::standstill;
+    }
+  } else {
+    hold_at_actual();
+    profile_active_ = false;
+    mode_ = Mode::hold;
+    status_.state = AxisState::disabled;
+  }
+  status_.fault = {};
+  return {};
+}
+
+std::error_code Axis::home() {
+  if (!drive_) return make_error_code(MotionFault::drive_lost);
+  if (status_.state == AxisState::disabled || status_.state == AxisState::enabling)
+    return make_error_code(MotionFault::not_enabled);
+  if (status_.state != AxisState::standstill) return make_error_code(MotionFault::invalid_command);
+  if (!drive_->capabilities().homing || !drive_->request(hil::DriveRequest::home))
+    return make_error_code(MotionFault::invalid_command);
+  status_.state = AxisState::homing;
+  status_.busy = true;
+  home_cycles_ = 0;
+  home_seen_active_ = false;
+  profile_active_ = false;
+  mode_ = Mode::hold;
+  return {};
+}
+
+std::error_code Axis::start_position(std::int64_t target_inc, const Limits& limits) {
+  const State from{cmd_p_, cmd_v_, cmd_a_, 0.0};
+  const Limits entry = upper(active_limits_, limits);
+  if (!config_.rotary && (config_.soft_limit_min || config_.soft_limit_max)) {
+    const double sp = stop_position(from, limits, entry);
+    if ((config_.soft_limit_max && sp > *config_.soft_limit_max) || (config_.soft_limit_min && sp < *config_.soft_limit_min))
+      return make_error_code(MotionFault::software_limit);
+  }
+  plan_position(from, scaling_.to_units(target_inc), limits, entry, profile_);
+  target_inc_ = target_inc;
+  active_limits_ = limits;
+  mode_ = Mode::position;
+  profile_active_ = true;
+  profile_start_ = last_now_;
+  profile_hint_ = 0;
+  programmed_feed_ = profile_.peak_velocity();
+  supervisor_.start_move();
+  status_.state = AxisState::moving;
+  status_.busy = true;
+  status_.in_position = false;
+  return {};
+}
+
+std::error_code Axis::move_absolute(double position, Direction direction, std::optional<Limits> limits) {
+  if (auto ec = check_can_move()) return ec;
+  const Limits lim = effective(limits);
+  if (!std::isfinite(position) || !valid_limits(lim)) return make_error_code(MotionFault::invalid_command);
+  std::int64_t target = 0;
+  if (config_.rotary) {
+    const int dir = direction == Direction::positive ? 1 : direction == Direction::negative ? -1 : 0;
+    target = cmd_inc_ + scaling_.rotary_step(cmd_inc_, position, dir);
+  } else {
+    if ((config_.soft_limit_max && position > *config_.soft_limit_max) ||
+        (config_.soft_limit_min && position < *config_.soft_limit_min))
+      return make_error_code(MotionFault::software_limit);
+    target = scaling_.to_inc(position);
+  }
+  if (auto ec = start_position(target, lim)) return ec;
+  relative_carry_inc_ = 0.0;
+  return {};
+}
+
+std::error_code Axis::move_relative(double distance, std::optional<Limits> limits) {
+  if (auto ec = check_can_move()) return ec;
+  const Limits lim = effective(limits);
+  if (!std::isfinite(distance) || !valid_limits(lim)) return make_error_code(MotionFault::invalid_command);
+  const std::int64_t base = mode_ == Mode::position ? target_inc_ : cmd_inc_;
+  double carry = mode_ == Mode::position || status_.state == AxisState::standstill ? relative_carry_inc_ : 0.0;
+  const std::int64_t target = base + scaling_.delta_to_inc(distance, carry);
+  if (!config_.rotary) {
+    const double t = scaling_.to_units(target);
+    if ((config_.soft_limit_max && t > *config_.soft_limit_max) || (config_.soft_limit_min && t < *config_.soft_limit_min))
+      return make_error_code(MotionFault::software_limit);
+  }
+  if (auto ec = start_position(target, lim)) return ec;
+  relative_carry_inc_ = carry;
+  return {};
+}
+
+std::error_code Axis::move_velocity(double velocity, std::optional<Limits> limits) {
+  if (auto ec = check_can_move()) return ec;
+  Limits lim = effective(limits);
+  if (!std::isfinite(velocity) || !valid_limits(lim) || std::fabs(velocity) > lim.velocity)
+    return make_error_code(MotionFault::invalid_command);
+  if (velocity == 0.0) return stop();
+  const State from{cmd_p_, cmd_v_, cmd_a_, 0.0};
+  const Limits entry = upper(active_limits_, lim);
+  const std::optional<double> limit =
+      config_.rotary ? std::nullopt : (velocity > 0 ? config_.soft_limit_max : config_.soft_limit_min);
+  if (limit) {
+    // Dynamic software limit (WF 725/726 MD 11/13): plan the stop to land exactly on the limit.
+    const bool beyond = velocity > 0 ? cmd_p_ >= *limit : cmd_p_ <= *limit;
+    const double sp = stop_position(from, lim, entry);
+    const bool cannot_stop = velocity > 0 ? sp > *limit : sp < *limit;
+    if (beyond || cannot_stop) return make_error_code(MotionFault::software_limit);
+    lim.velocity = std::fabs(velocity);
+    plan_position(from, *limit, lim, entry, profile_);
+    mode_ = Mode::velocity_to_limit;
+    limit_target_ = *limit;
+    target_inc_ = scaling_.to_inc(*limit);
+  } else {
+    plan_velocity(from, velocity, lim, entry, profile_);
+    mode_ = Mode::velocity;
+  }
+  active_limits_ = effective(limits);
+  profile_active_ = true;
+  profile_start_ = last_now_;
+  profile_hint_ = 0;
+  programmed_feed_ = std::max(std::fabs(velocity), std::fabs(cmd_v_));
+  relative_carry_inc_ = 0.0;
+  supervisor_.start_move();
+  status_.state = AxisState::moving;
+  status_.busy = true;
+  status_.in_position = false;
+  return {};
+}
+
+std::error_code Axis::jog(int direction) {
+  if (direction != 1 && direction != -1) return make_error_code(MotionFault::invalid_command);
+  return move_velocity(direction * config_.jog_velocity);
+}
+
+void Axis::plan_stop(const Limits& limits, Mode after) {
+  const State from{cmd_p_, cmd_v_, cmd_a_, 0.0};
+  plan_velocity(from, 0.0, limits, upper(active_limits_, limits), profile_);
+  mode_ = after;
+  profile_active_ = true;
+  profile_start_ = last_now_;
+  profile_hint_ = 0;
+  supervisor_.start_move();
+  status_.busy = true;
+}
+
+std::error_code Axis::stop() {
+  switch (status_.state) {
+    case AxisState::moving:
+    case AxisState::stopping:
+      plan_stop(active_limits_, Mode::stopping);
+      status_.state = AxisState::stopping;
+      return {};
+    case AxisState::homing:
+      drive_->request(hil::DriveRequest::quick_stop);
+      return {};
+    default: return {};  // at rest, disabled, or already braking in error
+  }
+}
+
+std::error_code Axis::quick_stop() {
+  switch (status_.state) {
+    case AxisState::moving:
+    case AxisState::stopping:
+      plan_stop(quick_stop_limits(), Mode::stopping);
+      status_.state = AxisState::stopping;
+      return {};
+    case AxisState::error:
+      if (profile_active_) plan_stop(quick_stop_limits(), Mode::stopping);
+      return {};
+    case AxisState::homing:
+      drive_->request(hil::DriveRequest::quick_stop);
+      return {};
+    default: return {};
+  }
+}
+
+// ---- cycle ----------------------------------------------------------------------------------
+
+void Axis::raise(std::error_code code, std::string text) {
+  if (status_.state == AxisState::error) return;  // keep the first fault
+  status_.state = AxisState::error;
+  status_.fault = hil::Fault{code, std::move(text)};
+  status_.in_position = false;
+}
+
+void Axis::react_to_fault() {
+  if (cmd_v_ == 0.0 && cmd_a_ == 0.0 && config_.reaction != FaultReaction::disable) {
+    profile_active_ = false;  // already at rest: hold the set-point
+    mode_ = Mode::hold;
+    status_.busy = false;
+    return;
+  }
+  switch (config_.reaction) {
+    case FaultReaction::quick_stop: plan_stop(quick_stop_limits(), Mode::stopping); break;
+    case FaultReaction::stop: plan_stop(active_limits_, Mode::stopping); break;
+    case FaultReaction::disable:
+      drive_->request(hil::DriveRequest::disable);
+      hold_at_actual();
+      break;
+  }
+}
+
+void Axis::hold_at_actual() {
+  const auto& fb = drive_->feedback();
+  profile_active_ = false;
+  mode_ = Mode::hold;
+  cmd_inc_ = fb.position_inc - scaling_.to_inc_fast(backlash_offset_);
+  cmd_p_ = scaling_.to_units(cmd_inc_);
+  cmd_v_ = 0.0;
+  cmd_a_ = 0.0;
+  target_inc_ = cmd_inc_;
+  relative_carry_inc_ = 0.0;
+  last_drive_cmd_inc_ = fb.position_inc;  // the set-point is the actual: no following error
+  status_.busy = false;
+}
+
+void Axis::finish_profile() {
+  profile_active_ = false;
+  const State& e = profile_.end();
+  cmd_v_ = 0.0;
+  cmd_a_ = 0.0;
+  switch (mode_) {
+    case Mode::position:
+    case Mode::velocity_to_limit:
+      cmd_inc_ = target_inc_;
+      cmd_p_ = scaling_.to_units(target_inc_);
+      break;
+    default:
+      cmd_p_ = e.p;
+      cmd_inc_ = scaling_.to_inc(e.p);
+      target_inc_ = cmd_inc_;
+      relative_carry_inc_ = 0.0;
+      break;
+  }
+  const Mode done = mode_;
+  mode_ = Mode::hold;
+  status_.busy = false;
+  if (status_.state == AxisState::error) return;
+  status_.state = AxisState::standstill;
+  if (done == Mode::velocity_to_limit) {
+    raise(make_error_code(MotionFault::software_limit),
+          fmt::format("axis '{}': {} software limit {:.6g} reached; axis stopped on the limit (reset, then move back)",
+                      config_.name, config_.soft_limit_max && limit_target_ == *config_.soft_limit_max ? "positive" : "negative",
+                      limit_target_));
+  }
+}
+
+void Axis::step_trajectory(const hil::CycleTime& cycle) {
+  if (!profile_active_) return;
+  const double t = hil::to_seconds(cycle.now - profile_start_);
+  if (profile_.end().v == 0.0 && t >= profile_.duration()) {
+    finish_profile();
+    return;
+  }
+  const State s = profile_.sample(t, profile_hint_);
+  cmd_p_ = s.p;
+  cmd_v_ = s.v;
+  cmd_a_ = s.a;
+  cmd_inc_ = scaling_.to_inc_fast(s.p);
+}
+
+CycleResult Axis::update(const hil::CycleTime& cycle) {
+  if (!drive_) return CycleResult::fault;
+  drive_->read(cycle);
+  const auto& fb = drive_->feedback();
+  if (first_cycle_) {
+    first_cycle_ = false;
+    last_now_ = cycle.now;
+    hold_at_actual();
+    enable_started_ = cycle.now;
+  }
+  const double upi = 1.0 / scaling_.inc_per_unit();
+
+  // Drive-side faults and staleness (only while the axis expects the drive to be on).
+  const AxisState st = status_.state;
+  if (st != AxisState::disabled && st != AxisState::error) {
+    if (drive_faulted(fb)) {
+      raise(make_error_code(MotionFault::drive_fault),
+            fmt::format("axis '{}': drive {} reports a fault (state {}): {}", config_.name, drive_->name(),
+                        hil::to_string(fb.state), fb.fault.describe()));
+      hold_at_actual();
+    } else if (fb.age > config_.feedback_timeout) {
+      raise(make_error_code(MotionFault::drive_lost),
+            fmt::format("axis '{}': feedback from drive {} is {} ms old (feedback_timeout {} ms)", config_.name,
+                        drive_->name(), to_ms(fb.age), to_ms(config_.feedback_timeout)));
+      react_to_fault();
+    } else if (st != AxisState::enabling && fb.state != hil::DriveState::operation_enabled) {
+      raise(make_error_code(MotionFault::drive_fault),
+            fmt::format("axis '{}': drive {} left operation_enabled (now {})", config_.name, drive_->name(),
+                        hil::to_string(fb.state)));
+      hold_at_actual();
+    }
+  }
+
+  switch (status_.state) {
+    case AxisState::disabled: hold_at_actual(); break;
+    case AxisState::enabling:
+      hold_at_actual();
+      if (fb.state == hil::DriveState::operation_enabled) {
+        status_.state = AxisState::standstill;
+        supervisor_.hold();
+      } else if (cycle.now - enable_started_ > config_.enable_timeout) {
+        raise(make_error_code(MotionFault::not_enabled),
+              fmt::format("axis '{}': drive {} did not reach operation_enabled within {} ms (state {})", config_.name,
+                          drive_->name(), to_ms(config_.enable_timeout), hil::to_string(fb.state)));
+        drive_->request(hil::DriveRequest::disable);
+      }
+      break;
+    case AxisState::homing:
+      hold_at_actual();
+      status_.busy = true;
+      ++home_cycles_;
+      if (fb.homing_active) home_seen_active_ = true;
+      if (!fb.homing_active && (home_seen_active_ || (home_cycles_ > 2 && fb.referenced))) {
+        status_.busy = false;
+        if (fb.referenced) {
+          status_.state = AxisState::standstill;
+          supervisor_.hold();
+        } else {
+          raise(make_error_code(MotionFault::drive_fault),
+                fmt::format("axis '{}': homing on drive {} ended without a reference", config_.name, drive_->name()));
+        }
+      }
+      break;
+    default: step_trajectory(cycle); break;
+  }
+
+  // Backlash: after a reversal of the commanded motion the drive command carries -backlash
+  // (negative approach) or 0 (positive approach), slewed at limits.velocity.
+  if (config_.backlash > 0.0) {
+    if (cmd_v_ > 1e-9) backlash_goal_ = 0.0;
+    else if (cmd_v_ < -1e-9) backlash_goal_ = -config_.backlash;
+    const double dt = std::max(0.0, hil::to_seconds(cycle.now - last_now_));
+    const double step = config_.limits.velocity * std::max(dt, hil::to_seconds(cycle.period));
+    backlash_offset_ += std::clamp(backlash_goal_ - backlash_offset_, -step, step);
+  }
+  const std::int64_t drive_cmd = cmd_inc_ + (config_.backlash > 0.0 ? scaling_.to_inc_fast(backlash_offset_) : 0);
+
+  // Following error against the command the drive has had (last cycle's).
+  const double fe = static_cast<double>(last_drive_cmd_inc_ - fb.position_inc) * upi;
+  status_.following_error = fe;
+  const AxisState now_state = status_.state;
+  if (now_state == AxisState::standstill || now_state == AxisState::moving || now_state == AxisState::stopping) {
+    const std::int64_t tgt = profile_active_ && mode_ == Mode::velocity ? drive_cmd : target_inc_ + (drive_cmd - cmd_inc_);
+    const double target_error = static_cast<double>(tgt - fb.position_inc) * upi;
+    hil::Fault f = supervisor_.check(config_, fe, programmed_feed_, profile_active_, target_error, cycle.now);
+    if (f) {
+      raise(f.code, std::move(f.text));
+      react_to_fault();
+    }
+  }
+
+  hil::DriveCommand cmd;
+  cmd.mode = hil::CommandMode::position;
+  cmd.position_inc = status_.state == AxisState::disabled || status_.state == AxisState::enabling ||
+                             status_.state == AxisState::homing
+                         ? fb.position_inc
+                         : (config_.backlash > 0.0 ? cmd_inc_ + scaling_.to_inc_fast(backlash_offset_) : cmd_inc_);
+  cmd.velocity_inc_per_s = cmd_v_ * scaling_.inc_per_unit();
+  cmd.acceleration_inc_per_s2 = cmd_a_ * scaling_.inc_per_unit();
+  drive_->write(cycle, cmd);
+  last_drive_cmd_inc_ = cmd.position_inc;
+  last_now_ = cycle.now;
+
+  // Status.
+  status_.position_inc = fb.position_inc;
+  status_.drive_state = fb.state;
+  status_.referenced = fb.referenced;
+  status_.position = scaling_.to_units_fast(scaling_.wrap_inc(fb.position_inc));
+  status_.command_position = scaling_.to_units_fast(scaling_.wrap_inc(cmd_inc_));
+  status_.velocity = fb.velocity_inc_per_s * upi;
+  status_.command_velocity = cmd_v_;
+  status_.command_acceleration = cmd_a_;
+  status_.in_position = status_.state == AxisState::standstill && supervisor_.in_position();
+  return status_.state == AxisState::error ? CycleResult::fault : CycleResult::ok;
+}
+
+}  // namespace hil::motion

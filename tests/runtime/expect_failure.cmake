@@ -1,0 +1,16 @@
+# SPDX-License-Identifier: MIT
+# `hilbridge test SCENARIO` must exit 1 and name the expectation, the time, the value and the miss.
+execute_process(COMMAND ${HILBRIDGE} test ${SCENARIO} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+message("${out}${err}")
+if(NOT rc EQUAL 1)
+  message(FATAL_ERROR "expected exit status 1, got ${rc}")
+endif()
+if(NOT out MATCHES "FAIL  wrong_expectation")
+  message(FATAL_ERROR "no FAIL line for the scenario")
+endif()
+if(NOT out MATCHES "expected position 100\\.000 \\+/- 0\\.010 mm at t=0\\.500 s, was [0-9]+\\.[0-9][0-9][0-9] mm \\(off by [0-9]+\\.[0-9][0-9][0-9] mm\\)")
+  message(FATAL_ERROR "the failure does not say what, when and by how much")
+endif()
+if(NOT out MATCHES "wrong_expectation.yaml:14 expect\\[0\\]")
+  message(FATAL_ERROR "the failure does not name the file and line")
+endif()

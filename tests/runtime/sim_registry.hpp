@@ -1,0 +1,83 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+// Test helpers: a TransportRegistry with the `sim` transport (the CLI registers the same one in
+// bridge/cli/sim), and a transport that logs the cycle order.
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "hil/core/transport.hpp"
+#include "hil/mocks/sim_drive.hpp"
+
+namespace hil::testing {
+
+class SimFactory : public TransportFactory {
+public:
+  std::expected<DrivePtr, ConfigError> make_drive(const std::string& axis, const YAML::Node& node,
+                                                  RunEnvironment& env) override {
+    auto config = mocks::parse_sim_drive_config(node, yaml::Where{env.source_file, "drive"});
+    if (!config) return std::unexpected(config.error());
+    config->name = axis;
+    return std::make_unique<mocks::SimDrive>(std::move(*config));
+  }
+};
+
+/// Wraps a SimDrive and logs read/write, so tests see the order of a cycle.
+class LoggingDrive final : public Drive, public FaultInjectable {
+public:
+  LoggingDrive(DrivePtr inner, std::string axis, std::vector<std::string>& log)
+      : inner_(std::move(inner)), axis_(std::move(axis)), log_(log) {}
+  std::string_view name() const noexcept override { return inner_->name(); }
+  DriveCapabilities capabilities() const noexcept override { return inner_->capabilities(); }
+  void read(const CycleTime& c) override {
+    log_.push_back("read " + axis_);
+    inner_->read(c);
+  }
+  void write(const CycleTime& c, const DriveCommand& cmd) override {
+    log_.push_back("write " + axis_);
+    inner_->write(c, cmd);
+  }
+  const DriveFeedback& feedback() const noexcept override { return inner_->feedback(); }
+  bool request(DriveRequest r) override { return inner_->request(r); }
+  std::vector<std::string> injectable_faults() const override {
+    return dynamic_cast<FaultInjectable&>(*inner_).injectable_faults();
+  }
+  bool inject_fault(std::string_view n, bool a) override { return dynamic_cast<FaultInjectable&>(*inner_).inject_fault(n, a); }
+
+private:
+  DrivePtr inner_;
+  std::string axis_;
+  std::vector<std::string>& log_;
+};
+
+class LoggingFactory final : public TransportFactory {
+public:
+  explicit LoggingFactory(std::vector<std::string>& log, bool report_ok = true) : log_(log), report_ok_(report_ok) {}
+  std::expected<DrivePtr, ConfigError> make_drive(const std::string& axis, const YAML::Node& node,
+                                                  RunEnvironment& env) override {
+    YAML::Node plain = YAML::Clone(node);
+    plain.remove("transport");
+    plain["transport"] = "sim";
+    auto d = SimFactory{}.make_drive(axis, plain, env);
+    if (!d) return d;
+    return std::make_unique<LoggingDrive>(std::move(*d), axis, log_);
+  }
+  void begin_cycle(const CycleTime&) override { log_.push_back("begin"); }
+  void end_cycle(const CycleTime&) override { log_.push_back("end"); }
+  TransportReport finish(const CycleTime&) override {
+    log_.push_back("finish");
+    return TransportReport{{"logged " + std::to_string(log_.size()) + " events"}, report_ok_};
+  }
+
+private:
+  std::vector<std::string>& log_;
+  bool report_ok_;
+};
+
+inline TransportRegistry sim_registry() {
+  TransportRegistry r;
+  r.add("sim", [] { return std::make_unique<SimFactory>(); });
+  return r;
+}
+
+}  // namespace hil::testing
