@@ -10,6 +10,7 @@
 #include "hil/serial/clm14/client.hpp"
 #include "hil/serial/clm14/files.hpp"
 #include "hil/serial/clm14/item_devices.hpp"
+#include "hil/serial/clm14/serial_error.hpp"
 #include "hil/serial/item_transfer.hpp"
 #include "transfer.hpp"
 
@@ -162,6 +163,9 @@ int clm14_upload(const TransferOptions& o) {
     bar.finish(report.cancelled ? "interrupted" : "failed");
     (void)journal.save(o.file);
     fmt::print(stderr, "upload of {} incomplete: {}\n", o.file, report.describe());
+    if (report.error && report.error->code == clm::SerialError::invalid_mode)
+      fmt::print(stderr, "The CLM accepts parameters only in Parameter mode: set input X3/1 (Parameter) and clear X3/2 (Auto), "
+                         "or I2.00.0 over the fieldbus, then resume.\n");
     fmt::print(stderr, "Resume with the same command plus --resume.\n");
     return 1;
   }
