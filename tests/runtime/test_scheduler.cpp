@@ -1,6 +1,12 @@
 // SPDX-License-Identifier: MIT
 // Cycle scheduler: virtual time runs exact cycles; the Asio scheduler keeps an absolute grid on
 // real time and reports latency (bounded ~50 ms smoke run, no timing assertions).
+// A standard header before any Asio header: Asio 1.28 decides aligned_new/aligned_delete
+// (aligned_alloc+free or new+delete) from _GLIBCXX_HAVE_ALIGNED_ALLOC, which only a libstdc++
+// header defines; with Asio first this file picked new+delete while hil_runtime picked
+// aligned_alloc+free, an ODR clash ASan reports as alloc-dealloc-mismatch.
+#include <cstddef>
+
 #include <asio/io_context.hpp>
 #include <gtest/gtest.h>
 
