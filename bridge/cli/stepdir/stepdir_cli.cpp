@@ -91,7 +91,10 @@ void register_stepdir(Context& ctx) {
   auto output = std::make_shared<std::string>();
   auto summary = std::make_shared<bool>(false);
   auto verify = std::make_shared<bool>(false);
-  plan->add_option("--distance", *distance, "Distance in steps (negative = backward)")->required();
+  // IP247 distances are signed 32-bit (manual digest); INT64_MIN/MAX made the planner hang.
+  plan->add_option("--distance", *distance, "Distance in steps (negative = backward)")
+      ->required()
+      ->check(CLI::Range(std::int64_t{-2147483647}, std::int64_t{2147483647}));
   plan->add_option("--speed", *speed, "Commanded frequency f_v in Hz (default f_max; clamped to f_ss..f_max)");
   plan->add_option("--backlash", *backlash, "Backlash steps; the move is planned after a reversal so they are added");
   plan->add_option("-o,--output", *output, "Write the edge log to this file instead of stdout");
