@@ -3,8 +3,6 @@
 // client side) exchanges frames with our hub; bytes are checked on both sides.
 #include <gtest/gtest.h>
 
-#include <asio/steady_timer.hpp>
-
 #include "hub_fixture.hpp"
 #include "subprocess.hpp"
 
@@ -39,6 +37,7 @@ TEST(SocketcandPython, PythonCanExchangesFramesWithOurHub) {
   for (std::size_t i = 0; i < frames.size(); ++i) {
     hub.run([&] { EXPECT_FALSE(local->send(frames[i])); });
     auto got = rx.wait_for(i + 1);
+    // >=: after the last echo the peer sends 7FF#PY at once; both may arrive before we look.
     ASSERT_GE(got.size(), i + 1) << "no echo for frame " << i << "\n" << py.output();
     can::Frame expected = frames[i];
     expected.id += 1;
@@ -53,49 +52,6 @@ TEST(SocketcandPython, PythonCanExchangesFramesWithOurHub) {
   EXPECT_NE(py.output().find("RX 18FF0010#010203"), std::string::npos) << py.output();
   EXPECT_NE(py.output().find("RX 80#\n"), std::string::npos) << py.output();
   hub.run([&] { local.reset(); });
-}
-
-/// python-can 4.1 joins a bus that carries a frame every 200 us. Its handshake breaks if a frame
-/// lands in the same recv() as `< ok >`; that is timing-dependent (a descheduled client), so the hub
-/// CLI's 50 ms join grace (ServerOptions::raw_mode_grace) is used here as there.
-int connect_python_while_busy(std::chrono::milliseconds grace) {
-  can::socketcand::ServerOptions options;
-  options.raw_mode_grace = grace;
-  Hub hub(options);
-  auto local = hub.run([&] { return hub.bus.attach("sync-producer"); });
-  auto timer = hub.run([&] { return std::make_unique<asio::steady_timer>(hub.io); });
-  bool stop = false;  // io thread only
-  std::function<void()> tick = [&] {
-    if (stop) return;
-    (void)local->send(can::make_frame(0x080, {}));
-    timer->expires_after(std::chrono::microseconds(200));
-    timer->async_wait([&](const std::error_code& ec) {
-      if (!ec) tick();
-    });
-  };
-  hub.run([&] { tick(); });
-  Subprocess py({"/usr/bin/python3", "-c",
-                 "import can,sys\n"
-                 "bus = can.Bus(interface='socketcand', host='127.0.0.1', port=" + std::to_string(hub.port()) +
-                     ", channel='can0')\n"
-                 "m = bus.recv(timeout=10)\n"
-                 "print('GOT', None if m is None else hex(m.arbitration_id), flush=True)\n"
-                 "bus.shutdown()\n"
-                 "sys.exit(0 if m is not None and m.arbitration_id == 0x80 else 3)\n"});
-  const int rc = py.wait(std::chrono::seconds(60));
-  hub.run([&] {
-    stop = true;
-    timer.reset();  // I/O objects are destroyed on their executor
-    local.reset();
-  });
-  hub.run([] {});  // the cancelled wait's handler ran before this: nothing refers to our locals now
-  return rc;
-}
-
-TEST(SocketcandPython, PythonCan41JoinsABusyBus) {
-  if (!can::test::python_has("can.interfaces.socketcand"))
-    GTEST_SKIP() << "/usr/bin/python3 with python3-can's socketcand interface is not installed (apt install python3-can)";
-  for (int i = 0; i < 3; ++i) EXPECT_EQ(connect_python_while_busy(std::chrono::milliseconds(50)), 0) << "attempt " << i;
 }
 
 }  // namespace

@@ -112,4 +112,8 @@ TEST(EdgeLog, ErrorsNameLineAndColumn) {
   EXPECT_FALSE(parse_edge_log("1 step"));
   EXPECT_FALSE(parse_edge_log("1 step 1 extra"));
   EXPECT_FALSE(parse_edge_log("99999999999999999999 step 1"));
+  // Times the verifier could not subtract without signed overflow (UBSan report before).
+  EXPECT_FALSE(parse_edge_log("-9223372036854775808 step 1\n9223372036854775807 step 0\n"));
+  EXPECT_FALSE(parse_edge_log("-1 step 1"));
+  EXPECT_TRUE(parse_edge_log("4611686018427387904 step 1"));
 }

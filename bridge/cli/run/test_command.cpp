@@ -112,8 +112,9 @@ int test_command(Context& ctx, const TestArgs& args) {
 
 void register_test_command(Context& ctx) {
   auto args = std::make_shared<TestArgs>();
-  auto* test = ctx.app.add_subcommand(
-      "test",
+  // One line for `hilbridge --help`; the details go to the footer of `hilbridge test --help`.
+  auto* test = ctx.app.add_subcommand("test", "Run scenario files as tests on virtual time; JUnit XML; exit 1 on a failure");
+  test->footer(
       "Run scenario files as tests: each on virtual time as fast as the CPU allows, checking its\n"
       "'expect:' entries (position within tolerance at/by a time, a fault code by a time, a state,\n"
       "no fault, maximum following error). A fault that no 'fault:' expectation of its axis accounts\n"

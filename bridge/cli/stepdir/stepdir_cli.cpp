@@ -39,8 +39,12 @@ struct TimingOptions {
     app.add_option("--polarity", polarity, "Active step edge: positive (idle low) or negative (idle high)")
         ->check(CLI::IsMember({"positive", "negative"}))
         ->capture_default_str();
-    app.add_option("--dir-setup-ns", dir_setup_ns, "Direction setup before the active edge, ns")->capture_default_str();
-    app.add_option("--dir-hold-ns", dir_hold_ns, "Direction hold after the trailing edge, ns")->capture_default_str();
+    app.add_option("--dir-setup-ns", dir_setup_ns, "Direction setup before the active edge, ns")
+        ->check(CLI::Range(std::int64_t{0}, std::int64_t{1'000'000'000}))
+        ->capture_default_str();
+    app.add_option("--dir-hold-ns", dir_hold_ns, "Direction hold after the trailing edge, ns")
+        ->check(CLI::Range(std::int64_t{0}, std::int64_t{1'000'000'000}))
+        ->capture_default_str();
   }
   /// Timing + ramp, or an error message naming the MD error.
   std::expected<std::pair<StepTiming, Ip247Ramp>, std::string> build() const {
@@ -91,9 +95,13 @@ void register_stepdir(Context& ctx) {
   auto output = std::make_shared<std::string>();
   auto summary = std::make_shared<bool>(false);
   auto verify = std::make_shared<bool>(false);
-  plan->add_option("--distance", *distance, "Distance in steps (negative = backward)")->required();
+  // IP247 distances are signed 32-bit (manual digest); INT64_MIN/MAX made the planner hang.
+  plan->add_option("--distance", *distance, "Distance in steps (negative = backward)")
+      ->required()
+      ->check(CLI::Range(std::int64_t{-2147483647}, std::int64_t{2147483647}));
   plan->add_option("--speed", *speed, "Commanded frequency f_v in Hz (default f_max; clamped to f_ss..f_max)");
-  plan->add_option("--backlash", *backlash, "Backlash steps; the move is planned after a reversal so they are added");
+  plan->add_option("--backlash", *backlash, "Backlash steps; the move is planned after a reversal so they are added")
+      ->check(CLI::Range(std::int64_t{0}, std::int64_t{2147483647}));
   plan->add_option("-o,--output", *output, "Write the edge log to this file instead of stdout");
   plan->add_flag("--summary", *summary, "Print only the summary (steps, duration, frequencies), no edges");
   plan->add_flag("--verify", *verify, "Check the schedule with the verifier; exit 1 on the first violation");

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <string_view>
 
 #include <fmt/format.h>
 
@@ -173,10 +174,14 @@ void chart(std::string& svg, double x0, double y0, const std::string& title, con
     flush();
   }
   // Legend, top right inside the plot area.
+  // Sized to the longest label (11px sans-serif: at most about 7px a character), so it stays inside the plot.
+  std::size_t longest = 0;
+  for (const auto& l : lines) longest = std::max(longest, std::string_view(l.label).size());
+  const double legend_w = 34.0 + 7.0 * static_cast<double>(longest);
   double ly = py + 14;
-  const double lx = px + pw - 110;
-  svg += fmt::format("<rect x=\"{:.1f}\" y=\"{:.1f}\" width=\"104\" height=\"{:.1f}\" class=\"legend\"/>\n", lx - 4,
-                     py + 4, 16.0 * static_cast<double>(lines.size()) + 4);
+  const double lx = px + pw - legend_w - 6;
+  svg += fmt::format("<rect x=\"{:.1f}\" y=\"{:.1f}\" width=\"{:.1f}\" height=\"{:.1f}\" class=\"legend\"/>\n",
+                     lx - 4, py + 4, legend_w, 16.0 * static_cast<double>(lines.size()) + 4);
   for (const auto& l : lines) {
     svg += fmt::format("<line x1=\"{:.1f}\" y1=\"{:.1f}\" x2=\"{:.1f}\" y2=\"{:.1f}\" stroke=\"{}\" "
                        "stroke-width=\"2\"{}/>\n",

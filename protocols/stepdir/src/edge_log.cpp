@@ -60,6 +60,11 @@ std::expected<std::vector<gpio::Edge>, EdgeLogError> parse_edge_log(std::string_
         return std::unexpected(EdgeLogError{line_no, cols[0],
                                             fmt::format("time must be an integer in ns, got '{}'", fields[0])});
       }
+      // Bounded so that the verifier's differences of two times cannot overflow.
+      if (e.t_ns < 0 || e.t_ns > (std::int64_t{1} << 62)) {
+        return std::unexpected(EdgeLogError{line_no, cols[0],
+                                            fmt::format("time must be 0 .. 2^62 ns, got '{}'", fields[0])});
+      }
       if (fields[1] == "step") {
         e.line = 0;
       } else if (fields[1] == "dir") {
