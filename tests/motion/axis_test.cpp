@@ -137,6 +137,10 @@ TEST_F(AxisTest, RejectsNonsense) {
   EXPECT_EQ(axis->move_absolute(std::nan("")), make_error_code(MotionFault::invalid_command));
   EXPECT_EQ(axis->move_absolute(1.0, Direction::shortest, Limits{-1.0, 1.0, 1.0}), make_error_code(MotionFault::invalid_command));
   EXPECT_EQ(axis->move_velocity(101.0), make_error_code(MotionFault::invalid_command));
+  EXPECT_EQ(axis->move_absolute(1.0, Direction::shortest, Limits{100.0, 1001.0, 20000.0}),
+            make_error_code(MotionFault::invalid_command));  // above the machine's acceleration
+  EXPECT_EQ(axis->move_relative(1.0, Limits{100.0, 1000.0, std::numeric_limits<double>::infinity()}),
+            make_error_code(MotionFault::invalid_command));  // trapezoid on a jerk-limited axis
   EXPECT_EQ(axis->jog(2), make_error_code(MotionFault::invalid_command));
   AxisConfig bad = base_config();
   bad.limits.jerk = -1;

@@ -13,9 +13,11 @@
 namespace hil::motion {
 namespace {
 
-bool valid_limits(const Limits& l) {
+// A move's own limits may only lower the configured (machine) limits.
+bool valid_limits(const Limits& l, const Limits& machine) {
   return std::isfinite(l.velocity) && l.velocity > 0 && std::isfinite(l.acceleration) && l.acceleration > 0 &&
-         l.jerk > 0;
+         l.jerk > 0 && l.velocity <= machine.velocity && l.acceleration <= machine.acceleration &&
+         l.jerk <= machine.jerk && (l.jerk_limited() || !machine.jerk_limited());
 }
 
 bool drive_faulted(const hil::DriveFeedback& fb) {
@@ -36,6 +38,7 @@ Axis::Axis(AxisConfig config, hil::DrivePtr drive)
       drive_(std::move(drive)),
       scaling_(config_.inc_per_unit, config_.rotary, config_.modulo) {
   active_limits_ = config_.limits;
+  entry_limits_ = config_.limits;
   if (auto ok = validate(config_); !ok) {
     status_.state = AxisState::error;
     status_.fault = hil::Fault{make_error_code(MotionFault::invalid_command), "invalid axis configuration: " + ok.error()};
@@ -139,15 +142,19 @@ std::error_code Axis::home() {
 
 std::error_code Axis::start_position(std::int64_t target_inc, const Limits& limits) {
   const State from{cmd_p_, cmd_v_, cmd_a_, 0.0};
-  const Limits entry = upper(active_limits_, limits);
+  const Limits entry = upper(entry_limits_, limits);
   if (!config_.rotary && (config_.soft_limit_min || config_.soft_limit_max)) {
+    // Reject only if braking ends beyond a limit *and* further out than the axis is now (an
+    // axis standing outside its range, e.g. after power-up, may always move back in).
     const double sp = stop_position(from, limits, entry);
-    if ((config_.soft_limit_max && sp > *config_.soft_limit_max) || (config_.soft_limit_min && sp < *config_.soft_limit_min))
+    if ((config_.soft_limit_max && sp > *config_.soft_limit_max && sp > from.p) ||
+        (config_.soft_limit_min && sp < *config_.soft_limit_min && sp < from.p))
       return make_error_code(MotionFault::software_limit);
   }
   plan_position(from, scaling_.to_units(target_inc), limits, entry, profile_);
   target_inc_ = target_inc;
   active_limits_ = limits;
+  entry_limits_ = entry;
   mode_ = Mode::position;
   profile_active_ = true;
   profile_start_ = last_now_;
@@ -163,7 +170,7 @@ std::error_code Axis::start_position(std::int64_t target_inc, const Limits& limi
 std::error_code Axis::move_absolute(double position, Direction direction, std::optional<Limits> limits) {
   if (auto ec = check_can_move()) return ec;
   const Limits lim = effective(limits);
-  if (!std::isfinite(position) || !valid_limits(lim)) return make_error_code(MotionFault::invalid_command);
+  if (!std::isfinite(position) || !valid_limits(lim, config_.limits)) return make_error_code(MotionFault::invalid_command);
   std::int64_t target = 0;
   if (config_.rotary) {
     const int dir = direction == Direction::positive ? 1 : direction == Direction::negative ? -1 : 0;
@@ -182,7 +189,7 @@ std::error_code Axis::move_absolute(double position, Direction direction, std::o
 std::error_code Axis::move_relative(double distance, std::optional<Limits> limits) {
   if (auto ec = check_can_move()) return ec;
   const Limits lim = effective(limits);
-  if (!std::isfinite(distance) || !valid_limits(lim)) return make_error_code(MotionFault::invalid_command);
+  if (!std::isfinite(distance) || !valid_limits(lim, config_.limits)) return make_error_code(MotionFault::invalid_command);
   const std::int64_t base = mode_ == Mode::position ? target_inc_ : cmd_inc_;
   double carry = mode_ == Mode::position || status_.state == AxisState::standstill ? relative_carry_inc_ : 0.0;
   const std::int64_t target = base + scaling_.delta_to_inc(distance, carry);
@@ -199,11 +206,11 @@ std::error_code Axis::move_relative(double distance, std::optional<Limits> limit
 std::error_code Axis::move_velocity(double velocity, std::optional<Limits> limits) {
   if (auto ec = check_can_move()) return ec;
   Limits lim = effective(limits);
-  if (!std::isfinite(velocity) || !valid_limits(lim) || std::fabs(velocity) > lim.velocity)
+  if (!std::isfinite(velocity) || !valid_limits(lim, config_.limits) || std::fabs(velocity) > lim.velocity)
     return make_error_code(MotionFault::invalid_command);
   if (velocity == 0.0) return stop();
   const State from{cmd_p_, cmd_v_, cmd_a_, 0.0};
-  const Limits entry = upper(active_limits_, lim);
+  const Limits entry = upper(entry_limits_, lim);
   const std::optional<double> limit =
       config_.rotary ? std::nullopt : (velocity > 0 ? config_.soft_limit_max : config_.soft_limit_min);
   if (limit) {
@@ -222,6 +229,7 @@ std::error_code Axis::move_velocity(double velocity, std::optional<Limits> limit
     mode_ = Mode::velocity;
   }
   active_limits_ = effective(limits);
+  entry_limits_ = entry;
   profile_active_ = true;
   profile_start_ = last_now_;
   profile_hint_ = 0;
@@ -241,7 +249,8 @@ std::error_code Axis::jog(int direction) {
 
 void Axis::plan_stop(const Limits& limits, Mode after) {
   const State from{cmd_p_, cmd_v_, cmd_a_, 0.0};
-  plan_velocity(from, 0.0, limits, upper(active_limits_, limits), profile_);
+  entry_limits_ = upper(entry_limits_, limits);
+  plan_velocity(from, 0.0, limits, entry_limits_, profile_);
   mode_ = after;
   profile_active_ = true;
   profile_start_ = last_now_;
@@ -317,6 +326,7 @@ void Axis::hold_at_actual() {
   cmd_a_ = 0.0;
   target_inc_ = cmd_inc_;
   relative_carry_inc_ = 0.0;
+  entry_limits_ = config_.limits;
   last_drive_cmd_inc_ = fb.position_inc;  // the set-point is the actual: no following error
   status_.busy = false;
 }
@@ -341,6 +351,7 @@ void Axis::finish_profile() {
   }
   const Mode done = mode_;
   mode_ = Mode::hold;
+  entry_limits_ = config_.limits;
   status_.busy = false;
   if (status_.state == AxisState::error) return;
   status_.state = AxisState::standstill;

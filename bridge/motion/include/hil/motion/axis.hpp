@@ -27,7 +27,8 @@ public:
   Axis(AxisConfig config, hil::DrivePtr drive);
 
   // Commands. Each returns {} when accepted, or a hil::MotionFault error code when rejected
-  // (the axis state is then unchanged). They take effect from the next update().
+  // (the axis state is then unchanged). They take effect from the next update(). A move's own
+  // `limits` may only lower the configured ones (else invalid_command).
   std::error_code enable();   ///< request(enable), wait for operation_enabled (enable_timeout)
   std::error_code disable();  ///< request(disable); motion is dropped
   std::error_code reset();    ///< clear the axis fault; request(fault_reset) if the drive is faulted
@@ -76,6 +77,7 @@ private:
   bool profile_active_ = false;
   hil::TimePoint profile_start_{};   ///< the update the profile was planned at (its t = 0)
   Limits active_limits_{};           ///< limits of the active move (stop() brakes under them)
+  Limits entry_limits_{};            ///< upper envelope of the limits the current state was planned under
   std::int64_t last_drive_cmd_inc_ = 0;  ///< command written last cycle (backlash included)
   int home_cycles_ = 0;
   bool home_seen_active_ = false;
