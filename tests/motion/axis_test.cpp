@@ -6,6 +6,7 @@
 
 #include <cmath>
 #include <memory>
+#include <random>
 
 #include "hil/motion/axis.hpp"
 #include "hil/motion/plan.hpp"
@@ -480,6 +481,54 @@ TEST_F(AxisTest, VelocityMoveAndJog) {
   expect_limits(axis->config().limits);
   EXPECT_EQ(axis->status().state, AxisState::standstill);
   EXPECT_TRUE(axis->status().in_position);
+}
+
+TEST_F(AxisTest, RandomCommandStreamKeepsLimitsAndLandsExactly) {
+  AxisConfig c = base_config();
+  c.soft_limit_min = -200.0;
+  c.soft_limit_max = 200.0;
+  make(c);
+  enable();
+  std::mt19937_64 rng(31337);
+  std::uniform_real_distribution<double> pos(-200.0, 200.0), u(0.0, 1.0);
+  std::uniform_int_distribution<int> wait(1, 400), what(0, 9);
+  const Limits& l = c.limits;
+  const double qs_jerk = l.jerk * c.quick_stop_deceleration / l.acceleration;
+  double worst_v = 0, worst_a = 0, worst_j = 0;
+  bool quick = false;
+  for (int k = 0; k < 400; ++k) {
+    const int w = what(rng);
+    std::error_code ec;
+    if (w <= 3) ec = axis->move_absolute(pos(rng));
+    else if (w == 4) ec = axis->move_relative(pos(rng) / 4);
+    else if (w == 5) ec = axis->move_velocity((u(rng) - 0.5) * 2 * l.velocity);
+    else if (w == 6) ec = axis->stop();
+    else if (w == 7) {
+      ec = axis->quick_stop();
+      quick = true;
+    } else if (w == 8) ec = axis->move_absolute(pos(rng), Direction::shortest, Limits{l.velocity * (0.1 + 0.9 * u(rng)), l.acceleration / 2, l.jerk / 2});
+    else ec = axis->jog(u(rng) < 0.5 ? -1 : 1);
+    ASSERT_TRUE(!ec || ec == make_error_code(MotionFault::software_limit)) << ec.message();
+    for (int i = wait(rng); i > 0; --i) {
+      cycle();
+      ASSERT_LE(std::fabs(axis->status().command_position), 200.0 + 1e-9);
+      if (axis->status().state == AxisState::error) {
+        ASSERT_EQ(axis->status().fault.code, make_error_code(MotionFault::software_limit)) << axis->status().fault.text;
+        settle();
+        ASSERT_FALSE(axis->reset());
+      }
+    }
+    worst_v = std::max(worst_v, max_v);
+    worst_a = std::max(worst_a, max_a);
+    worst_j = std::max(worst_j, max_j);
+    reset_maxima();
+  }
+  EXPECT_LE(worst_v, l.velocity * (1 + 1e-9));
+  EXPECT_LE(worst_a, (quick ? c.quick_stop_deceleration : l.acceleration) * (1 + 1e-9));
+  EXPECT_LE(worst_j, (quick ? qs_jerk : l.jerk) * (1 + 1e-6));
+  ASSERT_FALSE(axis->move_absolute(123.456));
+  settle();
+  EXPECT_EQ(drive->written(), 123456);
 }
 
 }  // namespace

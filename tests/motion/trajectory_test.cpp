@@ -178,6 +178,41 @@ TEST(Replan, NewTargetWhileMovingRespectsLimitsAndEndsExactly) {
   }
 }
 
+TEST(Replan, LowerLimitsWhileMovingEnterThemUnderTheOldOnes) {
+  std::mt19937_64 rng(11);
+  std::uniform_real_distribution<double> pos(-100.0, 100.0), k(0.1, 1.0);
+  for (int i = 0; i < 2000; ++i) {
+    const Limits old_l = random_limits(rng, true);
+    const State s = random_state(rng, old_l);
+    const Limits new_l{old_l.velocity * k(rng), old_l.acceleration * k(rng), old_l.jerk * k(rng)};
+    Profile p;
+    const double target = pos(rng);
+    if (i % 2) plan_position(s, target, new_l, old_l, p);
+    else plan_velocity(s, (k(rng) - 0.55) * 2 * new_l.velocity, new_l, old_l, p);
+    SCOPED_TRACE(testing::Message() << "case " << i);
+    // Never beyond the old limits; once the acceleration is back inside the new limit and the
+    // velocity too, never beyond the new ones again.
+    std::size_t h = 0;
+    bool inside = false;
+    State prev = p.sample(0.0, h);
+    for (double t = kDt; t < p.duration() + 2 * kDt; t += kDt) {
+      const State st = p.sample(t, h);
+      ASSERT_LE(std::fabs(st.v), old_l.velocity * (1 + 1e-9));
+      ASSERT_LE(std::fabs(st.a), old_l.acceleration * (1 + 1e-9));
+      ASSERT_LE(std::fabs(st.a - prev.a) / kDt, old_l.jerk * (1 + 1e-6));
+      if (inside) {
+        ASSERT_LE(std::fabs(st.v), new_l.velocity * (1 + 1e-9));
+        ASSERT_LE(std::fabs(st.a), new_l.acceleration * (1 + 1e-9));
+      }
+      if (std::fabs(st.a) <= 1e-9 && std::fabs(st.v) <= new_l.velocity * (1 + 1e-9)) inside = true;
+      prev = st;
+    }
+    if (i % 2) {
+      EXPECT_EQ(p.end().p, target);
+    }
+  }
+}
+
 TEST(Replan, FromRestEqualsTimeOptimal) {
   const Limits l{1.0, 2.0, 10.0};
   Profile a, b;
