@@ -132,6 +132,20 @@ TEST_F(AxisTest, MoveAbsoluteReachesTargetExactlyInIncrementsWithinLimits) {
   EXPECT_NEAR(n * 0.001, t_opt, 0.0015);
 }
 
+TEST_F(AxisTest, TrapezoidalAxis) {
+  AxisConfig c = base_config();
+  c.limits.jerk = std::numeric_limits<double>::infinity();
+  make(c);
+  enable();
+  reset_maxima();
+  ASSERT_FALSE(axis->move_absolute(-7.5));
+  const int n = settle();
+  EXPECT_LE(max_v, c.limits.velocity * (1 + 1e-9));
+  EXPECT_LE(max_a, c.limits.acceleration * (1 + 1e-9));
+  EXPECT_EQ(drive->written(), -7500);
+  EXPECT_NEAR(n * 0.001, 7.5 / 100.0 + 100.0 / 1000.0, 0.0015);  // cruise + one ramp time
+}
+
 TEST_F(AxisTest, RejectsNonsense) {
   make();
   enable();

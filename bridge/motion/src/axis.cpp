@@ -29,6 +29,8 @@ Limits upper(const Limits& a, const Limits& b) {
   return Limits{std::max(a.velocity, b.velocity), std::max(a.acceleration, b.acceleration), std::max(a.jerk, b.jerk)};
 }
 
+constexpr int kHomingStartCycles = 10;
+
 long long to_ms(hil::Duration d) { return std::chrono::duration_cast<std::chrono::milliseconds>(d).count(); }
 
 }  // namespace
@@ -429,7 +431,9 @@ CycleResult Axis::update(const hil::CycleTime& cycle) {
       status_.busy = true;
       ++home_cycles_;
       if (fb.homing_active) home_seen_active_ = true;
-      if (!fb.homing_active && (home_seen_active_ || (home_cycles_ > 2 && fb.referenced))) {
+      // Done when homing_active fell again, or (drives that never show it) when the drive is
+      // referenced and still not homing after kHomingStartCycles.
+      if (!fb.homing_active && (home_seen_active_ || (home_cycles_ > kHomingStartCycles && fb.referenced))) {
         status_.busy = false;
         if (fb.referenced) {
           status_.state = AxisState::standstill;
