@@ -474,10 +474,9 @@ CycleResult Axis::update(const hil::CycleTime& cycle) {
 
   hil::DriveCommand cmd;
   cmd.mode = hil::CommandMode::position;
-  cmd.position_inc = status_.state == AxisState::disabled || status_.state == AxisState::enabling ||
-                             status_.state == AxisState::homing
-                         ? fb.position_inc
-                         : (config_.backlash > 0.0 ? cmd_inc_ + scaling_.to_inc_fast(backlash_offset_) : cmd_inc_);
+  const bool follows_actual = status_.state == AxisState::disabled || status_.state == AxisState::enabling ||
+                              status_.state == AxisState::homing;
+  cmd.position_inc = follows_actual ? fb.position_inc : drive_cmd;
   cmd.velocity_inc_per_s = cmd_v_ * scaling_.inc_per_unit();
   cmd.acceleration_inc_per_s2 = cmd_a_ * scaling_.inc_per_unit();
   drive_->write(cycle, cmd);
