@@ -1,0 +1,132 @@
+// SPDX-License-Identifier: MIT
+// `hilbridge test FILE|DIR...`: run scenarios on virtual time as fast as possible, print pass/fail
+// per scenario and per expectation, write JUnit XML, exit non-zero on any failure.
+#include <algorithm>
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+
+#include <fmt/format.h>
+
+#include "hil/cli/context.hpp"
+#include "hil/runtime/junit.hpp"
+#include "hil/runtime/runner.hpp"
+#include "hil/runtime/scenario_loader.hpp"
+
+namespace hil::cli {
+namespace {
+
+struct TestArgs {
+  std::vector<std::string> paths;
+  std::string junit;
+  bool verbose = false;
+};
+
+std::vector<std::filesystem::path> collect(const std::vector<std::string>& paths, std::string& error) {
+  std::vector<std::filesystem::path> files;
+  for (const auto& p : paths) {
+    std::error_code ec;
+    if (std::filesystem::is_directory(p, ec)) {
+      std::vector<std::filesystem::path> found;
+      for (const auto& e : std::filesystem::recursive_directory_iterator(p, ec)) {
+        const auto ext = e.path().extension();
+        if (e.is_regular_file() && (ext == ".yaml" || ext == ".yml")) found.push_back(e.path());
+      }
+      if (ec) {
+        error = fmt::format("cannot read the folder {}: {}", p, ec.message());
+        return {};
+      }
+      std::sort(found.begin(), found.end());
+      if (found.empty()) {
+        error = fmt::format("no scenario files (*.yaml, *.yml) in {}", p);
+        return {};
+      }
+      files.insert(files.end(), found.begin(), found.end());
+    } else if (std::filesystem::is_regular_file(p, ec)) {
+      files.emplace_back(p);
+    } else {
+      error = fmt::format("{}: no such file or folder", p);
+      return {};
+    }
+  }
+  return files;
+}
+
+int test_command(Context& ctx, const TestArgs& args) {
+  std::string error;
+  const auto files = collect(args.paths, error);
+  if (!error.empty()) {
+    fmt::print(stderr, "error: {}\n", error);
+    return 2;
+  }
+  std::vector<runtime::ScenarioOutcome> outcomes;
+  std::size_t passed = 0;
+  for (const auto& file : files) {
+    runtime::ScenarioOutcome o;
+    o.file = file.string();
+    const auto wall0 = std::chrono::steady_clock::now();
+    auto scenario = runtime::load_scenario(file);
+    if (scenario) {
+      runtime::RunOptions options;
+      options.virtual_time = true;
+      auto r = runtime::run_scenario(*scenario, ctx.transports, options);
+      if (r) o.result = std::move(*r);
+      else o.error = r.error().describe();
+    } else {
+      o.error = scenario.error().describe();
+    }
+    o.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
+    if (!o.result) {
+      fmt::print("ERROR {}\n  {}\n", o.file, o.error);
+    } else {
+      const auto& r = *o.result;
+      fmt::print("{} {} ({}): {:.3f} s simulated in {:.3f} s\n", r.ok ? "PASS " : "FAIL ", r.scenario, o.file,
+                 to_seconds(r.simulated), o.wall_s);
+      for (const auto& e : r.expectations)
+        if (!e.passed || args.verbose)
+          fmt::print("  {} axis {}: {}{}\n", e.passed ? "pass" : "FAIL", e.axis, e.description,
+                     e.passed ? "" : fmt::format("\n       expected {}, {} ({}:{} {})", e.description, e.detail,
+                                                 o.file, e.line, e.path));
+      for (const auto& f : r.failures)
+        if (!f.starts_with("axis ") || f.find(": expected ") == std::string::npos) fmt::print("  FAIL {}\n", f);
+      if (r.ok) ++passed;
+    }
+    outcomes.push_back(std::move(o));
+  }
+  fmt::print("\n{} of {} scenarios passed{}\n", passed, outcomes.size(),
+             passed == outcomes.size() ? "" : fmt::format(", {} failed", outcomes.size() - passed));
+  if (!args.junit.empty()) {
+    std::ofstream out(args.junit, std::ios::trunc);
+    out << runtime::make_junit_xml(outcomes);
+    out.close();
+    if (!out) {
+      fmt::print(stderr, "error: cannot write the JUnit report {}\n", args.junit);
+      return 2;
+    }
+    fmt::print("wrote {}\n", args.junit);
+  }
+  return passed == outcomes.size() ? 0 : 1;
+}
+
+}  // namespace
+
+void register_test_command(Context& ctx) {
+  auto args = std::make_shared<TestArgs>();
+  auto* test = ctx.app.add_subcommand(
+      "test",
+      "Run scenario files as tests: each on virtual time as fast as the CPU allows, checking its\n"
+      "'expect:' entries (position within tolerance at/by a time, a fault code by a time, a state,\n"
+      "no fault, maximum following error). A fault that no 'fault:' expectation of its axis accounts\n"
+      "for, a failed or timed-out program step, or a failed transport report also fails the scenario.\n"
+      "Prints PASS/FAIL per scenario and every failed expectation with its value, e.g.\n"
+      "  axis x: expected position 100.000 +/- 0.010 mm at t=2.000 s, was 99.412 mm (off by 0.588 mm)\n"
+      "Exit status: 0 all passed; 1 a scenario failed or did not load; 2 bad arguments.\n"
+      "Scenario keys: docs/scenarios.md; examples: examples/tests/.");
+  test->add_option("paths", args->paths, "Scenario files, or folders searched recursively for *.yaml / *.yml")
+      ->required();
+  test->add_option("--junit", args->junit, "Write a JUnit XML report to this file (for CI test views)");
+  test->add_flag("-v,--verbose", args->verbose, "List passing expectations too");
+  test->callback([&ctx, args] { ctx.exit_code = test_command(ctx, *args); });
+}
+
+}  // namespace hil::cli

@@ -1,0 +1,63 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+// Watches a run cycle by cycle: fault events (axis supervision and drive faults), maximum
+// following error, and the scenario's expectations, evaluated online so nothing per cycle is
+// stored. Thread: the cycle thread.
+
+#include <optional>
+#include <vector>
+
+#include "hil/runtime/machine.hpp"
+#include "hil/runtime/run_result.hpp"
+#include "hil/runtime/scenario.hpp"
+
+namespace hil::runtime {
+
+class RunMonitor {
+public:
+  RunMonitor(const Scenario& scenario, const Machine& machine);
+
+  /// After each cycle, at scenario time `t`. Never throws.
+  void observe(Duration t) noexcept;
+  /// The latest `at:`/`by:` time of any expectation (a run lasts at least this long).
+  [[nodiscard]] Duration latest_expectation_time() const noexcept { return latest_; }
+  /// Fill axes, faults and expectations of `result`; adds failures for failed expectations and
+  /// for faults no `fault:` expectation of their axis accounts for.
+  void finish(Duration t_end, RunResult& result) const;
+
+  [[nodiscard]] const std::vector<FaultEvent>& faults() const noexcept { return faults_; }
+
+private:
+  struct AxisTrack {
+    const MachineAxis* axis = nullptr;
+    double max_fe = 0.0;
+    Duration max_fe_t{};
+    std::error_code last_axis_fault;
+    std::error_code last_drive_fault;
+  };
+  struct ExpectationState {
+    const Expectation* e = nullptr;
+    std::size_t axis = 0;
+    bool decided = false;
+    bool passed = false;
+    std::string detail;
+    double best_error = 0.0;  ///< position: closest approach so far
+    Duration best_t{};
+    bool best_set = false;
+  };
+  void decide(ExpectationState& s, Duration t, const motion::AxisStatus& st) const;
+  [[nodiscard]] double position_error(std::size_t axis, double position, double target) const;
+  [[nodiscard]] std::string fmt_pos(const ExpectationState& s, double v) const;
+
+  const Scenario& scenario_;
+  const Machine& machine_;
+  std::vector<AxisTrack> tracks_;
+  std::vector<ExpectationState> states_;
+  std::vector<FaultEvent> faults_;
+  Duration latest_{};
+};
+
+/// "position 100.000 +/- 0.010 mm at t=2.000 s" (what was expected, for reports).
+[[nodiscard]] std::string describe(const Expectation& e, const AxisSpec& axis);
+
+}  // namespace hil::runtime

@@ -1,0 +1,179 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+// A scenario as loaded from YAML (docs/scenarios.md documents every key): a machine (axes,
+// each with its scaling, limits, supervision windows and a `drive:` block for its transport),
+// a program (steps run in order on the cycle thread) and expectations (checked while it runs).
+// Pure data; the loader (scenario_loader.hpp) fills it, the runner (runner.hpp) executes it.
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <variant>
+#include <vector>
+
+#include <yaml-cpp/yaml.h>
+
+#include "hil/core/clock.hpp"
+
+namespace hil::runtime {
+
+/// Where a scenario element came from, for messages ("demo.yaml:42: program[3]").
+struct SourceRef {
+  int line = 0;      ///< 1-based; 0 when unknown
+  std::string path;  ///< key path, e.g. "program[3].move_absolute"
+};
+
+enum class FaultReaction : std::uint8_t { quick_stop, stop, disable };
+
+struct AxisSpec {
+  std::string name;
+  std::string units = "mm";
+  std::int64_t inc_per_unit_num = 1000;  ///< drive increments per user unit = num / den, exact
+  std::int64_t inc_per_unit_den = 1;
+  bool rotary = false;
+  double modulo = 360.0;  ///< units per turn (rotary only)
+  // Limits (units/s, units/s², units/s³). jerk 0 = trapezoidal (no jerk limit).
+  double max_velocity = 0.0;
+  double max_acceleration = 0.0;
+  double max_jerk = 0.0;
+  double quick_stop_deceleration = 0.0;  ///< 0 = 4 x max_acceleration
+  double jog_velocity = 0.0;             ///< 0 = max_velocity / 10
+  std::optional<double> soft_limit_min;
+  std::optional<double> soft_limit_max;
+  double backlash = 0.0;  ///< units, compensated on direction reversal
+  // Supervision (units, seconds).
+  double following_error_window = 0.0;  ///< static window; 0 = 10 x in_position window, at least 1 unit
+  bool following_error_dynamic = false; ///< window = clamp(1.5 v / Kv, min, max)
+  double following_error_kv_per_s = 0.0;
+  double following_error_min = 0.0;
+  double following_error_max = 0.0;
+  double standstill_window = 0.0;       ///< 0 = 2 x in_position window
+  double in_position_window = 0.0;      ///< 0 = 0.01 units
+  std::optional<Duration> in_position_timeout;
+  std::optional<Duration> enable_timeout;
+  std::optional<Duration> feedback_timeout;
+  FaultReaction fault_reaction = FaultReaction::quick_stop;
+  YAML::Node drive;            ///< the `drive:` map, handed to the transport factory
+  std::string transport;       ///< drive.transport
+  SourceRef source;
+};
+
+enum class MoveDirection : std::uint8_t { shortest, positive, negative };
+
+/// Optional per-move limits; unset fields fall back to the axis limits.
+struct MoveLimits {
+  std::optional<double> velocity;
+  std::optional<double> acceleration;
+  std::optional<double> jerk;  ///< 0 = trapezoidal
+};
+
+// ---- program steps --------------------------------------------------------------------------
+struct EnableStep { std::vector<std::string> axes; };
+struct DisableStep { std::vector<std::string> axes; };
+struct ResetStep { std::vector<std::string> axes; };
+struct HomeStep { std::vector<std::string> axes; };
+struct MoveAbsoluteStep {
+  std::string axis;
+  double position = 0.0;  ///< units
+  MoveLimits limits;
+  std::optional<MoveDirection> direction;  ///< rotary modulo axes
+};
+struct MoveRelativeStep {
+  std::string axis;
+  double distance = 0.0;  ///< units
+  MoveLimits limits;
+};
+struct MoveVelocityStep {
+  std::string axis;
+  double velocity = 0.0;  ///< signed units/s
+  MoveLimits limits;      ///< acceleration/jerk
+};
+struct JogStep {
+  std::string axis;
+  bool positive = true;  ///< at the axis' jog_velocity
+  Duration duration{};   ///< jog this long, then stop
+};
+struct StopStep { std::vector<std::string> axes; };
+struct QuickStopStep { std::vector<std::string> axes; };
+struct WaitStep { Duration duration{}; };
+struct WaitInPositionStep { std::vector<std::string> axes; };
+
+enum class Quantity : std::uint8_t { position, velocity, following_error };
+enum class Comparison : std::uint8_t { above, below };
+/// `wait_until`: one condition on one axis.
+struct Condition {
+  std::string axis;
+  enum class Kind : std::uint8_t { compare, state, fault, no_motion, in_position } kind = Kind::compare;
+  Quantity quantity = Quantity::position;
+  Comparison comparison = Comparison::above;
+  double value = 0.0;
+  std::string state;       ///< Kind::state: axis state name
+  std::string fault_code;  ///< Kind::fault: "" = any fault, else "category:value"
+};
+struct WaitUntilStep { Condition condition; };
+struct InjectFaultStep {
+  std::string axis;
+  std::string fault;
+  bool active = true;
+};
+struct Step;
+struct ParallelStep { std::vector<Step> steps; };
+
+using StepAction = std::variant<EnableStep, DisableStep, ResetStep, HomeStep, MoveAbsoluteStep, MoveRelativeStep,
+                                MoveVelocityStep, JogStep, StopStep, QuickStopStep, WaitStep, WaitInPositionStep,
+                                WaitUntilStep, InjectFaultStep, ParallelStep>;
+
+struct Step {
+  StepAction action;
+  std::optional<Duration> at;       ///< start no earlier than this scenario time
+  std::optional<Duration> timeout;  ///< fail the run when the step has not completed in time
+  bool wait = true;                 ///< false: start it and go on at once
+  std::string name;                 ///< "move_absolute x" for messages
+  SourceRef source;
+};
+
+// ---- expectations ---------------------------------------------------------------------------
+struct PositionExpectation {
+  double value = 0.0;
+  double tolerance = 0.0;
+  std::optional<Duration> at;  ///< checked at exactly this time
+  std::optional<Duration> by;  ///< inside tolerance at some cycle up to this time
+};
+struct FaultExpectation {
+  std::string code;            ///< "" = any fault; else "motion:1", "cia402:0x7305"
+  std::optional<Duration> by;  ///< the fault must appear no later than this
+};
+struct StateExpectation {
+  std::string state;
+  std::optional<Duration> at;  ///< default: end of run
+};
+struct NoFaultExpectation {};
+struct MaxFollowingErrorExpectation { double value = 0.0; };
+
+using ExpectationKind = std::variant<PositionExpectation, FaultExpectation, StateExpectation, NoFaultExpectation,
+                                     MaxFollowingErrorExpectation>;
+struct Expectation {
+  std::string axis;  ///< one axis (a list in the file becomes one expectation per axis)
+  ExpectationKind kind;
+  SourceRef source;
+};
+
+struct Scenario {
+  std::string file;  ///< as given (for messages, and relative paths of transports)
+  std::string name;
+  std::string description;
+  Duration period{std::chrono::milliseconds(1)};
+  std::optional<Duration> duration;  ///< fixed run length; default: until the program is done and axes rest
+  Duration timeout{std::chrono::seconds(600)};  ///< the run fails when it lasts longer
+  std::vector<AxisSpec> axes;
+  std::vector<Step> program;
+  std::vector<Expectation> expectations;
+  YAML::Node document;  ///< keeps the drive nodes' document alive
+
+  [[nodiscard]] const AxisSpec* find_axis(const std::string& name) const noexcept;
+};
+
+[[nodiscard]] std::string_view to_string(FaultReaction r) noexcept;
+[[nodiscard]] std::string_view to_string(MoveDirection d) noexcept;
+
+}  // namespace hil::runtime

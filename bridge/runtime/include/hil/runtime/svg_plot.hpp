@@ -1,0 +1,54 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+// `hilbridge run --plot FILE.svg`: position (actual and command), velocity and following error
+// over time, one row of three charts per axis, drawn as a self-contained SVG (axes, ticks,
+// labels, legend; no external plotting dependency).
+//
+// PlotRecorder keeps at most `max_points` samples per axis: when full it drops every second
+// sample and halves its sampling rate, so memory stays bounded on long runs while the plot
+// keeps the shape (min/max of a dropped pair are not preserved; the trace CSV has every cycle).
+
+#include <string>
+#include <vector>
+
+#include "hil/runtime/run_observer.hpp"
+
+namespace hil::runtime {
+
+struct PlotSeries {
+  std::string axis;
+  std::string units;
+  std::vector<double> t;         ///< s
+  std::vector<double> position;  ///< units
+  std::vector<double> command;   ///< units
+  std::vector<double> velocity;  ///< units/s
+  std::vector<double> following_error;  ///< units
+};
+
+struct PlotData {
+  std::string title;
+  std::vector<PlotSeries> axes;
+};
+
+class PlotRecorder final : public RunObserver {
+public:
+  explicit PlotRecorder(std::size_t max_points = 4000) : max_points_(max_points < 16 ? 16 : max_points) {}
+  void on_start(const Scenario& scenario, const Machine& machine) override;
+  void on_cycle(Duration t, const Machine& machine) noexcept override;
+  [[nodiscard]] const PlotData& data() const noexcept { return data_; }
+
+private:
+  void decimate();
+  PlotData data_;
+  std::size_t max_points_;
+  std::uint64_t stride_ = 1;
+  std::uint64_t cycle_ = 0;
+};
+
+/// The SVG document (UTF-8 text).
+[[nodiscard]] std::string render_svg(const PlotData& data);
+
+/// "Nice" tick values covering [lo, hi] (steps of 1, 2 or 5 x 10^k), about `target` of them.
+[[nodiscard]] std::vector<double> nice_ticks(double lo, double hi, int target = 6);
+
+}  // namespace hil::runtime

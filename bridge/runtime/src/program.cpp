@@ -1,0 +1,286 @@
+// SPDX-License-Identifier: MIT
+#include "hil/runtime/program.hpp"
+
+#include <cmath>
+
+#include <fmt/format.h>
+
+#include "hil/runtime/scenario_loader.hpp"
+
+namespace hil::runtime {
+namespace {
+
+template <class... F>
+struct Overloaded : F... {
+  using F::operator()...;
+};
+
+motion::Direction to_motion(MoveDirection d) {
+  switch (d) {
+    case MoveDirection::positive: return motion::Direction::positive;
+    case MoveDirection::negative: return motion::Direction::negative;
+    case MoveDirection::shortest: break;
+  }
+  return motion::Direction::shortest;
+}
+
+std::optional<motion::Limits> limits_for(const motion::Axis& a, const MoveLimits& m) {
+  if (!m.velocity && !m.acceleration && !m.jerk) return std::nullopt;
+  motion::Limits l = a.config().limits;
+  if (m.velocity) l.velocity = *m.velocity;
+  if (m.acceleration) l.acceleration = *m.acceleration;
+  if (m.jerk) l.jerk = *m.jerk > 0.0 ? *m.jerk : std::numeric_limits<double>::infinity();
+  return l;
+}
+
+bool fault_matches(const Fault& f, const std::string& code) {
+  if (!f) return false;
+  if (code.empty()) return true;
+  const auto c = parse_fault_code(code);
+  return c && f.code.value() == c->value && c->category == f.code.category().name();
+}
+
+bool at_rest(const motion::AxisStatus& s) {
+  return !s.busy && s.state != motion::AxisState::moving && s.state != motion::AxisState::stopping &&
+         s.state != motion::AxisState::homing;
+}
+
+}  // namespace
+
+Program::Program(const Scenario& scenario, Machine& machine) : scenario_(scenario), machine_(machine) {}
+
+motion::Axis& Program::axis(const std::string& name) { return *machine_.find(name)->axis; }
+
+std::optional<ConfigError> Program::check() const {
+  std::optional<ConfigError> err;
+  auto visit = [&](const auto& self, const Step& s) -> void {
+    if (err) return;
+    if (const auto* p = std::get_if<ParallelStep>(&s.action)) {
+      for (const auto& c : p->steps) self(self, c);
+      return;
+    }
+    const auto* i = std::get_if<InjectFaultStep>(&s.action);
+    if (!i) return;
+    MachineAxis* a = machine_.find(i->axis);
+    if (!a->injectable) {
+      err = ConfigError{scenario_.file, s.source.line, 0, s.source.path + ".inject_fault",
+                        fmt::format("axis '{}' runs on transport '{}', whose drive does not support fault injection "
+                                    "(only mock-backed drives do)", i->axis, a->transport)};
+      return;
+    }
+    const auto names = a->injectable->injectable_faults();
+    for (const auto& n : names)
+      if (n == i->fault) return;
+    std::string list;
+    for (const auto& n : names) list += (list.empty() ? "" : ", ") + n;
+    err = ConfigError{scenario_.file, s.source.line, 0, s.source.path + ".inject_fault.fault",
+                      fmt::format("the drive of axis '{}' has no fault '{}'; it accepts: {}", i->axis, i->fault, list)};
+  };
+  for (const auto& s : scenario_.program) visit(visit, s);
+  return err;
+}
+
+void Program::fail(const Step& s, Duration t, const std::string& what) {
+  if (status_ == Status::failed) return;
+  status_ = Status::failed;
+  error_ = fmt::format("t={:.3f} s: {}:{} {} ({}): {}", to_seconds(t), scenario_.file, s.source.line, s.source.path,
+                       s.name, what);
+}
+
+bool Program::launch(Running& r, Duration t) {
+  const Step& s = *r.step;
+  r.started = t;
+  r.launched = true;
+  auto check = [&](const std::string& name, std::error_code ec) {
+    if (!ec) return true;
+    const auto& st = axis(name).status();
+    fail(s, t, fmt::format("axis {} rejected the command: {} (axis state {}{})", name, ec.message(),
+                           motion::to_string(st.state), st.fault ? ", " + st.fault.describe() : ""));
+    return false;
+  };
+  auto each = [&](const std::vector<std::string>& axes, auto&& fn) {
+    for (const auto& n : axes)
+      if (!check(n, fn(axis(n)))) return false;
+    return true;
+  };
+  return std::visit(
+      Overloaded{
+          [&](const EnableStep& e) { return each(e.axes, [](motion::Axis& a) { return a.enable(); }); },
+          [&](const DisableStep& e) { return each(e.axes, [](motion::Axis& a) { return a.disable(); }); },
+          [&](const ResetStep& e) { return each(e.axes, [](motion::Axis& a) { return a.reset(); }); },
+          [&](const HomeStep& e) { return each(e.axes, [](motion::Axis& a) { return a.home(); }); },
+          [&](const StopStep& e) { return each(e.axes, [](motion::Axis& a) { return a.stop(); }); },
+          [&](const QuickStopStep& e) { return each(e.axes, [](motion::Axis& a) { return a.quick_stop(); }); },
+          [&](const MoveAbsoluteStep& m) {
+            auto& a = axis(m.axis);
+            return check(m.axis, a.move_absolute(m.position, to_motion(m.direction.value_or(MoveDirection::shortest)),
+                                                 limits_for(a, m.limits)));
+          },
+          [&](const MoveRelativeStep& m) {
+            auto& a = axis(m.axis);
+            return check(m.axis, a.move_relative(m.distance, limits_for(a, m.limits)));
+          },
+          [&](const MoveVelocityStep& m) {
+            auto& a = axis(m.axis);
+            return check(m.axis, a.move_velocity(m.velocity, limits_for(a, m.limits)));
+          },
+          [&](const JogStep& j) { return check(j.axis, axis(j.axis).jog(j.positive ? 1 : -1)); },
+          [&](const InjectFaultStep& i) {
+            MachineAxis* a = machine_.find(i.axis);
+            if (!a->injectable || !a->injectable->inject_fault(i.fault, i.active)) {
+              fail(s, t, fmt::format("the drive of axis {} refused fault '{}'", i.axis, i.fault));
+              return false;
+            }
+            return true;
+          },
+          [&](const ParallelStep& p) {
+            r.children.clear();
+            for (const auto& c : p.steps) r.children.push_back(Running{&c, t, false, false, {}});
+            for (auto& child : r.children) {  // launch the children in this very cycle
+              const Check cc = poll(child, t);
+              if (cc == Check::failed) return false;
+              if (cc == Check::done) child.step = nullptr;
+            }
+            return true;
+          },
+          [](const auto&) { return true; },  // waits start nothing
+      },
+      s.action);
+}
+
+Program::Check Program::poll(Running& r, Duration t) {
+  const Step& s = *r.step;
+  if (!r.launched) {
+    if (s.at && t < *s.at) return Check::pending;
+    if (!launch(r, t)) return Check::failed;
+    if (!s.wait && !std::holds_alternative<ParallelStep>(s.action)) return Check::done;
+    if (std::holds_alternative<InjectFaultStep>(s.action)) return Check::done;
+    return Check::pending;  // a command takes effect at the next update: judge it from then on
+  }
+  const Duration timeout = s.timeout.value_or(scenario_.timeout);
+  auto faulted = [&](const std::string& name) {
+    const auto& st = axis(name).status();
+    if (st.state != motion::AxisState::error) return false;
+    fail(s, t, fmt::format("axis {} faulted: {}", name, st.fault.describe()));
+    return true;
+  };
+  auto all = [&](const std::vector<std::string>& axes, auto&& done) {
+    bool ok = true;
+    for (const auto& n : axes) {
+      if (faulted(n)) return Check::failed;
+      ok = ok && done(axis(n).status());
+    }
+    return ok ? Check::done : Check::pending;
+  };
+  using motion::AxisState;
+  Check c = std::visit(
+      Overloaded{
+          [&](const EnableStep& e) {
+            return all(e.axes, [](const motion::AxisStatus& st) {
+              return st.state != AxisState::enabling && st.state != AxisState::disabled;
+            });
+          },
+          [&](const DisableStep& e) {
+            return all(e.axes, [](const motion::AxisStatus& st) { return st.state == AxisState::disabled; });
+          },
+          [&](const ResetStep& e) {
+            for (const auto& n : e.axes)
+              if (axis(n).status().state == AxisState::error) return Check::pending;
+            return Check::done;
+          },
+          [&](const HomeStep& e) {
+            return all(e.axes, [](const motion::AxisStatus& st) { return at_rest(st) && st.referenced; });
+          },
+          [&](const StopStep& e) { return all(e.axes, at_rest); },
+          [&](const QuickStopStep& e) { return all(e.axes, at_rest); },
+          [&](const MoveAbsoluteStep& m) {
+            return all({m.axis}, [](const motion::AxisStatus& st) { return at_rest(st) && st.in_position; });
+          },
+          [&](const MoveRelativeStep& m) {
+            return all({m.axis}, [](const motion::AxisStatus& st) { return at_rest(st) && st.in_position; });
+          },
+          [&](const MoveVelocityStep& m) {
+            const double v = m.velocity;
+            return all({m.axis}, [v](const motion::AxisStatus& st) {
+              return std::abs(st.command_velocity - v) <= 1e-9 * std::max(1.0, std::abs(v)) || !st.busy;
+            });
+          },
+          [&](const JogStep& j) {
+            if (!r.stop_sent) {
+              if (faulted(j.axis)) return Check::failed;
+              if (t - r.started < j.duration) return Check::pending;
+              r.stop_sent = true;
+              if (auto ec = axis(j.axis).stop()) {
+                fail(s, t, fmt::format("axis {} rejected the stop ending the jog: {}", j.axis, ec.message()));
+                return Check::failed;
+              }
+              return Check::pending;
+            }
+            return all({j.axis}, at_rest);
+          },
+          [&](const WaitStep& w) { return t - r.started >= w.duration ? Check::done : Check::pending; },
+          [&](const WaitInPositionStep& w) {
+            return all(w.axes, [](const motion::AxisStatus& st) { return at_rest(st) && st.in_position; });
+          },
+          [&](const WaitUntilStep& w) {
+            const Condition& cond = w.condition;
+            const auto& st = axis(cond.axis).status();
+            bool met = false;
+            switch (cond.kind) {
+              case Condition::Kind::compare: {
+                const double v = cond.quantity == Quantity::position   ? st.position
+                                 : cond.quantity == Quantity::velocity ? st.velocity
+                                                                       : st.following_error;
+                met = cond.comparison == Comparison::above ? v > cond.value : v < cond.value;
+                break;
+              }
+              case Condition::Kind::state: met = cond.state == motion::to_string(st.state); break;
+              case Condition::Kind::fault:
+                met = fault_matches(st.fault, cond.fault_code) ||
+                      fault_matches(axis(cond.axis).drive().feedback().fault, cond.fault_code);
+                break;
+              case Condition::Kind::no_motion: met = at_rest(st); break;
+              case Condition::Kind::in_position: met = at_rest(st) && st.in_position; break;
+            }
+            if (!met && cond.kind != Condition::Kind::fault && cond.kind != Condition::Kind::state &&
+                faulted(cond.axis))
+              return Check::failed;
+            return met ? Check::done : Check::pending;
+          },
+          [&](const InjectFaultStep&) { return Check::done; },
+          [&](const ParallelStep&) {
+            bool done = true;
+            for (auto& child : r.children) {
+              if (child.step == nullptr) continue;  // finished
+              const Check cc = poll(child, t);
+              if (cc == Check::failed) return Check::failed;
+              if (cc == Check::done) child.step = nullptr;
+              else done = false;
+            }
+            return done ? Check::done : Check::pending;
+          },
+      },
+      s.action);
+  if (c == Check::pending && t - r.started > timeout) {
+    fail(s, t, fmt::format("did not complete within {:.3f} s", to_seconds(timeout)));
+    return Check::failed;
+  }
+  return c;
+}
+
+Program::Status Program::step(Duration t) noexcept {
+  if (status_ != Status::running) return status_;
+  // Several steps may complete in one cycle (non-blocking ones, inject_fault); a blocking step
+  // that was just launched waits for the next update, which bounds this loop.
+  while (next_ < scenario_.program.size()) {
+    if (!current_) current_ = Running{&scenario_.program[next_], t, false, false, {}};
+    const Check c = poll(*current_, t);
+    if (c == Check::failed) return status_ = Status::failed;
+    if (c == Check::pending) return status_;
+    current_.reset();
+    ++next_;
+  }
+  return status_ = Status::done;
+}
+
+}  // namespace hil::runtime

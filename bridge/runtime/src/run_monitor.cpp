@@ -1,0 +1,271 @@
+// SPDX-License-Identifier: MIT
+#include "hil/runtime/run_monitor.hpp"
+
+#include <cmath>
+
+#include <fmt/format.h>
+
+#include "hil/runtime/scenario_loader.hpp"
+
+namespace hil::runtime {
+namespace {
+
+template <class... F>
+struct Overloaded : F... {
+  using F::operator()...;
+};
+
+int decimals(double tolerance) {
+  if (tolerance <= 0.0) return 3;
+  return std::clamp(static_cast<int>(std::ceil(-std::log10(tolerance))) + 1, 3, 9);
+}
+
+std::string fault_text(const Fault& f) {
+  return fmt::format("{}:{}{}", f.code.category().name(), f.code.value(),
+                     f.text.empty() ? " " + f.code.message() : " " + f.text);
+}
+
+bool code_matches(const Fault& f, const std::string& code) {
+  if (code.empty()) return true;
+  const auto c = parse_fault_code(code);
+  return c && f.code.value() == c->value && c->category == f.code.category().name();
+}
+
+}  // namespace
+
+std::string describe(const Expectation& e, const AxisSpec& axis) {
+  return std::visit(
+      Overloaded{
+          [&](const PositionExpectation& p) {
+            const int d = decimals(p.tolerance);
+            std::string when = p.at   ? fmt::format(" at t={:.3f} s", to_seconds(*p.at))
+                               : p.by ? fmt::format(" by t={:.3f} s", to_seconds(*p.by))
+                                      : std::string(" at the end of the run");
+            return fmt::format("position {:.{}f} +/- {:.{}f} {}{}", p.value, d, p.tolerance, d, axis.units, when);
+          },
+          [&](const FaultExpectation& f) {
+            return fmt::format("fault {}{}", f.code.empty() ? "(any)" : f.code,
+                               f.by ? fmt::format(" by t={:.3f} s", to_seconds(*f.by)) : std::string());
+          },
+          [&](const StateExpectation& s) {
+            return fmt::format("state {}{}", s.state,
+                               s.at ? fmt::format(" at t={:.3f} s", to_seconds(*s.at)) : " at the end of the run");
+          },
+          [&](const NoFaultExpectation&) { return std::string("no fault"); },
+          [&](const MaxFollowingErrorExpectation& m) {
+            return fmt::format("following error at most {:.{}f} {}", m.value, decimals(m.value), axis.units);
+          },
+      },
+      e.kind);
+}
+
+RunMonitor::RunMonitor(const Scenario& scenario, const Machine& machine) : scenario_(scenario), machine_(machine) {
+  for (const auto& a : machine.axes()) tracks_.push_back(AxisTrack{&a, 0.0, {}, {}, {}});
+  for (const auto& e : scenario.expectations) {
+    ExpectationState s;
+    s.e = &e;
+    for (std::size_t i = 0; i < machine.axes().size(); ++i)
+      if (machine.axes()[i].spec->name == e.axis) s.axis = i;
+    std::visit(Overloaded{
+                   [&](const PositionExpectation& p) {
+                     if (p.at) latest_ = std::max(latest_, *p.at);
+                     if (p.by) latest_ = std::max(latest_, *p.by);
+                   },
+                   [&](const FaultExpectation& f) {
+                     if (f.by) latest_ = std::max(latest_, *f.by);
+                   },
+                   [&](const StateExpectation& st) {
+                     if (st.at) latest_ = std::max(latest_, *st.at);
+                   },
+                   [](const auto&) {},
+               },
+               e.kind);
+    states_.push_back(std::move(s));
+  }
+}
+
+double RunMonitor::position_error(std::size_t axis, double position, double target) const {
+  const AxisSpec& spec = *machine_.axes()[axis].spec;
+  double d = position - target;
+  if (spec.rotary && spec.modulo > 0.0) {
+    d = std::fmod(d, spec.modulo);
+    if (d > spec.modulo / 2) d -= spec.modulo;
+    if (d < -spec.modulo / 2) d += spec.modulo;
+  }
+  return d;
+}
+
+std::string RunMonitor::fmt_pos(const ExpectationState& s, double v) const {
+  const auto& p = std::get<PositionExpectation>(s.e->kind);
+  return fmt::format("{:.{}f} {}", v, decimals(p.tolerance), machine_.axes()[s.axis].spec->units);
+}
+
+void RunMonitor::decide(ExpectationState& s, Duration t, const motion::AxisStatus& st) const {
+  std::visit(Overloaded{
+                 [&](const PositionExpectation& p) {
+                   const double err = position_error(s.axis, st.position, p.value);
+                   s.decided = true;
+                   s.passed = std::abs(err) <= p.tolerance;
+                   if (!s.passed) {
+                     s.detail = fmt::format("was {} (off by {})", fmt_pos(s, st.position), fmt_pos(s, std::abs(err)));
+                     if (p.by && s.best_set)
+                       s.detail += fmt::format("; closest {} off at t={:.3f} s", fmt_pos(s, s.best_error),
+                                               to_seconds(s.best_t));
+                   }
+                 },
+                 [&](const StateExpectation& e) {
+                   s.decided = true;
+                   s.passed = e.state == motion::to_string(st.state);
+                   if (!s.passed)
+                     s.detail = fmt::format("was {} at t={:.3f} s{}", motion::to_string(st.state), to_seconds(t),
+                                            st.fault ? " (" + fault_text(st.fault) + ")" : "");
+                 },
+                 [](const auto&) {},
+             },
+             s.e->kind);
+}
+
+void RunMonitor::observe(Duration t) noexcept {
+  for (auto& tr : tracks_) {
+    const auto& st = tr.axis->axis->status();
+    const double fe = std::abs(st.following_error);
+    if (fe > tr.max_fe) {
+      tr.max_fe = fe;
+      tr.max_fe_t = t;
+    }
+    if (st.fault.code != tr.last_axis_fault) {
+      tr.last_axis_fault = st.fault.code;
+      if (st.fault) faults_.push_back(FaultEvent{t, tr.axis->spec->name, "axis", st.fault});
+    }
+    const Fault& df = tr.axis->axis->drive().feedback().fault;
+    if (df.code != tr.last_drive_fault) {
+      tr.last_drive_fault = df.code;
+      if (df) faults_.push_back(FaultEvent{t, tr.axis->spec->name, "drive", df});
+    }
+  }
+  for (auto& s : states_) {
+    if (s.decided) continue;
+    const auto& st = machine_.axes()[s.axis].axis->status();
+    if (const auto* p = std::get_if<PositionExpectation>(&s.e->kind)) {
+      if (p->at && t >= *p->at) decide(s, t, st);
+      if (p->by && !s.decided) {
+        const double err = std::abs(position_error(s.axis, st.position, p->value));
+        if (!s.best_set || err < s.best_error) {
+          s.best_error = err;
+          s.best_t = t;
+          s.best_set = true;
+        }
+        if (err <= p->tolerance) {
+          s.decided = true;
+          s.passed = true;
+        } else if (t >= *p->by) {
+          decide(s, t, st);
+        }
+      }
+    } else if (const auto* e = std::get_if<StateExpectation>(&s.e->kind)) {
+      if (e->at && t >= *e->at) decide(s, t, st);
+    }
+  }
+}
+
+void RunMonitor::finish(Duration t_end, RunResult& r) const {
+  r.faults = faults_;
+  for (const auto& tr : tracks_) {
+    const auto& st = tr.axis->axis->status();
+    AxisSummary a;
+    a.name = tr.axis->spec->name;
+    a.units = tr.axis->spec->units;
+    a.final_position = st.position;
+    a.final_velocity = st.velocity;
+    a.final_state = motion::to_string(st.state);
+    a.max_following_error = tr.max_fe;
+    a.max_following_error_t = tr.max_fe_t;
+    for (const auto& f : faults_)
+      if (f.axis == a.name) a.faults.push_back(f);
+    r.axes.push_back(std::move(a));
+  }
+  for (const auto& s0 : states_) {
+    ExpectationState s = s0;
+    const AxisSpec& spec = *machine_.axes()[s.axis].spec;
+    const auto& st = machine_.axes()[s.axis].axis->status();
+    const std::string& name = spec.name;
+    std::visit(
+        Overloaded{
+            [&](const PositionExpectation& p) {
+              if (s.decided) return;
+              if (p.at || p.by) {
+                s.decided = true;
+                s.detail = fmt::format("the run ended at t={:.3f} s, before that time", to_seconds(t_end));
+                return;
+              }
+              decide(s, t_end, st);
+            },
+            [&](const StateExpectation& e) {
+              if (s.decided) return;
+              if (e.at) {
+                s.decided = true;
+                s.detail = fmt::format("the run ended at t={:.3f} s, before that time", to_seconds(t_end));
+                return;
+              }
+              decide(s, t_end, st);
+            },
+            [&](const FaultExpectation& f) {
+              s.decided = true;
+              std::string seen;
+              for (const auto& ev : faults_) {
+                if (ev.axis != name) continue;
+                if (code_matches(ev.fault, f.code) && (!f.by || ev.t <= *f.by)) {
+                  s.passed = true;
+                  return;
+                }
+                seen += fmt::format("{}{} at t={:.3f} s", seen.empty() ? "" : "; ", fault_text(ev.fault),
+                                    to_seconds(ev.t));
+              }
+              s.detail = seen.empty() ? std::string("no fault occurred") : "saw " + seen;
+            },
+            [&](const NoFaultExpectation&) {
+              s.decided = true;
+              s.passed = true;
+              for (const auto& ev : faults_) {
+                if (ev.axis != name) continue;
+                s.passed = false;
+                s.detail = fmt::format("faulted at t={:.3f} s: {}", to_seconds(ev.t), fault_text(ev.fault));
+                break;
+              }
+            },
+            [&](const MaxFollowingErrorExpectation& m) {
+              s.decided = true;
+              const AxisTrack& tr = tracks_[s.axis];
+              s.passed = tr.max_fe <= m.value;
+              if (!s.passed)
+                s.detail = fmt::format("reached {:.{}f} {} at t={:.3f} s (over by {:.{}f} {})", tr.max_fe,
+                                       decimals(m.value), spec.units, to_seconds(tr.max_fe_t), tr.max_fe - m.value,
+                                       decimals(m.value), spec.units);
+            },
+        },
+        s.e->kind);
+    ExpectationResult er{name, describe(*s.e, spec), s.passed, s.detail, s.e->source.line, s.e->source.path};
+    if (!er.passed) {
+      r.ok = false;
+      r.failures.push_back(fmt::format("axis {}: expected {}, {}", name, er.description, er.detail));
+    }
+    r.expectations.push_back(std::move(er));
+  }
+  // Faults nobody expected fail the run.
+  for (const auto& tr : tracks_) {
+    const std::string& name = tr.axis->spec->name;
+    bool expected = false;
+    for (const auto& e : scenario_.expectations)
+      if (e.axis == name && std::holds_alternative<FaultExpectation>(e.kind)) expected = true;
+    if (expected) continue;
+    for (const auto& ev : faults_) {
+      if (ev.axis != name) continue;
+      r.ok = false;
+      r.failures.push_back(fmt::format("axis {}: unexpected {} fault at t={:.3f} s: {}", name, ev.source,
+                                       to_seconds(ev.t), fault_text(ev.fault)));
+      break;
+    }
+  }
+}
+
+}  // namespace hil::runtime

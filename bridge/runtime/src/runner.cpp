@@ -1,0 +1,167 @@
+// SPDX-License-Identifier: MIT
+#include "hil/runtime/runner.hpp"
+
+#include <csignal>
+
+#include <asio/io_context.hpp>
+#include <asio/signal_set.hpp>
+#include <fmt/format.h>
+
+#include "hil/runtime/program.hpp"
+#include "hil/runtime/run_monitor.hpp"
+#include "hil/runtime/scheduler.hpp"
+
+namespace hil::runtime {
+namespace {
+
+constexpr Duration interrupt_grace = std::chrono::seconds(2);
+
+bool at_rest(const Machine& m) {
+  for (const auto& a : m.axes()) {
+    const auto& st = a.axis->status();
+    if (st.busy || st.state == motion::AxisState::moving || st.state == motion::AxisState::stopping ||
+        st.state == motion::AxisState::homing || st.state == motion::AxisState::enabling)
+      return false;
+  }
+  return true;
+}
+
+/// The per-cycle logic shared by both schedulers.
+class Session {
+public:
+  Session(const Scenario& s, Machine& m, const RunOptions& o)
+      : scenario_(s), machine_(m), options_(o), program_(s, m), monitor_(s, m) {}
+
+  std::optional<ConfigError> check() const { return program_.check(); }
+
+  CycleControl cycle(const CycleTime& c) noexcept {
+    if (!started_) {
+      started_ = true;
+      start_ = c.now;
+    }
+    const Duration t = c.now - start_;
+    last_ = c;
+    t_ = t;
+    machine_.cycle(c);
+    monitor_.observe(t);
+    for (auto* o : options_.observers) o->on_cycle(t, machine_);
+    if (interrupt_requested_ && !interrupted_) {
+      interrupted_ = true;
+      interrupted_at_ = t;
+      for (auto& a : machine_.axes()) (void)a.axis->quick_stop();
+    }
+    if (interrupted_) return at_rest(machine_) || t - interrupted_at_ > interrupt_grace ? CycleControl::stop
+                                                                                       : CycleControl::proceed;
+    const auto status = program_.step(t);
+    if (status == Program::Status::failed) return CycleControl::stop;
+    if (t >= scenario_.timeout) {
+      timed_out_ = true;
+      return CycleControl::stop;
+    }
+    if (scenario_.duration) return t + c.period > *scenario_.duration ? CycleControl::stop : CycleControl::proceed;
+    if (status == Program::Status::done && at_rest(machine_) && t >= monitor_.latest_expectation_time())
+      return CycleControl::stop;
+    return CycleControl::proceed;
+  }
+
+  void interrupt() noexcept { interrupt_requested_ = true; }
+
+  RunResult finish(const SchedulerStats& stats) {
+    RunResult r;
+    r.scenario = scenario_.name.empty() ? scenario_.file : scenario_.name;
+    r.file = scenario_.file;
+    r.scheduler = stats;
+    r.simulated = t_;
+    r.interrupted = interrupted_;
+    if (program_.status() == Program::Status::failed) {
+      r.ok = false;
+      r.failures.push_back("program failed: " + program_.error());
+    }
+    if (timed_out_) {
+      r.ok = false;
+      r.failures.push_back(fmt::format("timeout: the scenario ran {:.3f} s (timeout {:.3f} s) and was still at step {} "
+                                       "of {}", to_seconds(t_), to_seconds(scenario_.timeout),
+                                       program_.current_step() + 1, scenario_.program.size()));
+    }
+    if (interrupted_) {
+      r.ok = false;
+      r.failures.push_back(fmt::format("interrupted at t={:.3f} s", to_seconds(interrupted_at_)));
+    }
+    monitor_.finish(t_, r);
+    r.reports = machine_.finish(last_);
+    for (const auto& rep : r.reports) {
+      if (rep.report.ok) continue;
+      r.ok = false;
+      r.failures.push_back(fmt::format("transport {} reported a failure{}", rep.transport,
+                                       rep.report.lines.empty() ? "" : ": " + rep.report.lines.front()));
+    }
+    for (auto* o : options_.observers) o->on_finish(r);
+    return r;
+  }
+
+private:
+  const Scenario& scenario_;
+  Machine& machine_;
+  const RunOptions& options_;
+  Program program_;
+  RunMonitor monitor_;
+  bool started_ = false;
+  TimePoint start_{};
+  CycleTime last_{};
+  Duration t_{};
+  bool timed_out_ = false;
+  bool interrupt_requested_ = false;
+  bool interrupted_ = false;
+  Duration interrupted_at_{};
+};
+
+}  // namespace
+
+std::expected<RunResult, ConfigError> run_scenario(const Scenario& scenario, const TransportRegistry& registry,
+                                                   const RunOptions& options) {
+  if (options.virtual_time) {
+    VirtualClock clock;
+    RunEnvironment env{clock, true, nullptr, scenario.file, scenario.period, options.verify_steps};
+    auto machine = Machine::build(scenario, registry, env);
+    if (!machine) return std::unexpected(machine.error());
+    Session session(scenario, *machine, options);
+    if (auto e = session.check()) return std::unexpected(*e);
+    for (auto* o : options.observers) o->on_start(scenario, *machine);
+    VirtualScheduler scheduler(clock, scenario.period);
+    const auto stats = scheduler.run([&](const CycleTime& c) { return session.cycle(c); });
+    return session.finish(stats);
+  }
+  asio::io_context io;
+  SteadyClock clock;
+  RunEnvironment env{clock, false, &io, scenario.file, scenario.period, options.verify_steps};
+  auto machine = Machine::build(scenario, registry, env);
+  if (!machine) return std::unexpected(machine.error());
+  Session session(scenario, *machine, options);
+  if (auto e = session.check()) return std::unexpected(*e);
+  for (auto* o : options.observers) o->on_start(scenario, *machine);
+  AsioScheduler scheduler(io, clock, scenario.period);
+  std::optional<asio::signal_set> signals;
+  if (options.handle_signals) {
+    signals.emplace(io, SIGINT, SIGTERM);
+    signals->async_wait([&](const std::error_code& ec, int) {
+      if (!ec) session.interrupt();
+    });
+  }
+  SchedulerStats stats;
+  bool done = false;
+  scheduler.async_run([&](const CycleTime& c) { return session.cycle(c); },
+                      [&](const SchedulerStats& s) {
+                        stats = s;
+                        done = true;
+                        if (signals) signals->cancel();
+                      });
+  // Transports may keep work (pending socket reads) on the context: run only until the scheduler
+  // is done, let the factories finish, then flush what is ready.
+  while (!done && io.run_one() > 0) {
+  }
+  RunResult r = session.finish(stats);
+  io.poll();
+  return r;
+}
+
+}  // namespace hil::runtime

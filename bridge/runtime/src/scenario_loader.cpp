@@ -1,0 +1,547 @@
+// SPDX-License-Identifier: MIT
+#include "hil/runtime/scenario_loader.hpp"
+
+#include <algorithm>
+#include <cctype>
+#include <charconv>
+#include <cmath>
+#include <fstream>
+#include <sstream>
+
+#include "yaml_reader.hpp"
+
+namespace hil::runtime {
+namespace {
+
+using detail::Field;
+using detail::LoadFailure;
+
+constexpr int max_parallel_depth = 4;
+
+bool valid_axis_name(const std::string& n) {
+  if (n.empty() || n.size() > 32 || n == "all") return false;
+  return std::all_of(n.begin(), n.end(), [](char c) {
+    return std::isalnum(static_cast<unsigned char>(c)) != 0 || c == '_' || c == '-';
+  });
+}
+
+class Loader {
+public:
+  Loader(std::string file) : file_(std::move(file)) {}
+
+  Scenario load(const YAML::Node& root) {
+    Scenario s;
+    s.file = file_;
+    s.document = root;
+    const Field top(file_, root, "", YAML::Mark{});
+    if (!root.IsMap()) top.fail(fmt::format("a scenario is a map with 'machine:' and 'program:', got {}", top.describe()));
+    top.expect_map({"name", "description", "period", "duration", "timeout", "machine", "program", "expect"});
+    if (auto f = top.child("name"); f.present()) s.name = f.as_string("a scenario name");
+    if (auto f = top.child("description"); f.present()) s.description = f.as_string("a text");
+    if (auto f = top.child("period"); f.present()) {
+      s.period = f.as_duration();
+      if (s.period < std::chrono::microseconds(50) || s.period > std::chrono::seconds(1))
+        f.fail(fmt::format("expected a cycle period between 50us and 1s, got {}", f.describe()));
+    }
+    if (auto d = top.optional_duration("duration")) {
+      if (*d <= Duration::zero()) top.child("duration").fail("expected a duration > 0");
+      s.duration = d;
+    }
+    if (auto d = top.optional_duration("timeout")) {
+      if (*d <= Duration::zero()) top.child("timeout").fail("expected a duration > 0");
+      s.timeout = *d;
+    }
+    if (s.duration && *s.duration > s.timeout) s.timeout = *s.duration;
+
+    const Field machine = top.required("machine", "the machine: a map with 'axes:'");
+    machine.expect_map({"axes"});
+    const Field axes = machine.required("axes", "a list of axes");
+    for (const Field& a : axes.items()) s.axes.push_back(load_axis(a, s));
+    if (s.axes.empty()) axes.fail("a machine needs at least one axis");
+    axes_ = &s.axes;
+
+    if (auto p = top.child("program"); p.present())
+      for (const Field& f : p.items()) s.program.push_back(load_step(f, 0));
+    if (auto e = top.child("expect"); e.present())
+      for (const Field& f : e.items()) load_expectation(f, s.expectations);
+    return s;
+  }
+
+private:
+  AxisSpec load_axis(const Field& f, const Scenario& s) {
+    f.expect_map({"name", "units", "inc_per_unit", "rotary", "modulo", "limits", "soft_limits", "backlash",
+                  "supervision", "fault_reaction", "drive"});
+    AxisSpec a;
+    a.source = {f.line(), f.path()};
+    const Field name = f.required("name", "the axis name");
+    a.name = name.as_string("an axis name");
+    if (!valid_axis_name(a.name))
+      name.fail(fmt::format("axis names use letters, digits, '_' and '-' (1..32 characters, not 'all'), got {}",
+                            name.describe()));
+    if (s.find_axis(a.name)) name.fail(fmt::format("axis '{}' is defined twice", a.name));
+    if (auto r = f.child("rotary"); r.present()) a.rotary = r.as_bool();
+    a.units = a.rotary ? "deg" : "mm";
+    if (auto u = f.child("units"); u.present()) a.units = u.as_string("a unit name such as mm or deg");
+    const Field ratio = f.required("inc_per_unit", "drive increments per unit: 1000, 4096/5 or 12.5");
+    const auto r = parse_ratio(ratio.as_string("a ratio"));
+    if (!r) ratio.fail(fmt::format("expected increments per unit as an integer, 'num/den' or a decimal (> 0), got {}",
+                                   ratio.describe()));
+    a.inc_per_unit_num = r->first;
+    a.inc_per_unit_den = r->second;
+    if (auto m = f.child("modulo"); m.present()) {
+      if (!a.rotary) m.fail("'modulo' needs 'rotary: true'");
+      a.modulo = m.as_positive("units per turn");
+    }
+
+    const Field limits = f.required("limits", "a map with velocity, acceleration, ...");
+    limits.expect_map({"velocity", "acceleration", "jerk", "quick_stop_deceleration", "jog_velocity"});
+    a.max_velocity = limits.required("velocity", "units/s").as_positive("a velocity in units/s");
+    a.max_acceleration = limits.required("acceleration", "units/s^2").as_positive("an acceleration in units/s^2");
+    if (auto j = limits.child("jerk"); j.present()) a.max_jerk = j.as_non_negative("a jerk in units/s^3 (0 = trapezoidal)");
+    a.quick_stop_deceleration = limits.optional_positive("quick_stop_deceleration", "a deceleration in units/s^2")
+                                    .value_or(4.0 * a.max_acceleration);
+    if (a.quick_stop_deceleration < a.max_acceleration)
+      limits.child("quick_stop_deceleration")
+          .fail(fmt::format("expected at least limits.acceleration ({}), a quick stop brakes harder than a stop",
+                            a.max_acceleration));
+    a.jog_velocity = limits.optional_positive("jog_velocity", "a jog velocity in units/s").value_or(a.max_velocity / 10.0);
+    if (a.jog_velocity > a.max_velocity)
+      limits.child("jog_velocity").fail(fmt::format("expected at most limits.velocity ({})", a.max_velocity));
+
+    if (auto sl = f.child("soft_limits"); sl.present()) {
+      sl.expect_map({"min", "max"});
+      if (a.rotary) sl.fail("soft limits apply to linear axes only");
+      a.soft_limit_min = sl.optional_number("min", "a position in units");
+      a.soft_limit_max = sl.optional_number("max", "a position in units");
+      if (a.soft_limit_min && a.soft_limit_max && *a.soft_limit_min >= *a.soft_limit_max)
+        sl.child("max").fail(fmt::format("expected max > min ({})", *a.soft_limit_min));
+    }
+    if (auto b = f.child("backlash"); b.present()) a.backlash = b.as_non_negative("a backlash in units");
+    if (auto sv = f.child("supervision"); sv.present()) {
+      sv.expect_map({"following_error", "standstill", "in_position", "in_position_timeout", "enable_timeout",
+                     "feedback_timeout"});
+      if (auto w = sv.child("following_error"); w.present()) {
+        if (w.node().IsMap()) {
+          w.expect_map({"kv", "min", "max"});
+          a.following_error_dynamic = true;
+          a.following_error_kv_per_s = w.required("kv", "position loop gain Kv in 1/s").as_positive("a gain in 1/s");
+          a.following_error_min = w.required("min", "smallest window in units").as_positive("a window in units");
+          a.following_error_max = w.required("max", "largest window in units").as_positive("a window in units");
+          if (a.following_error_max < a.following_error_min)
+            w.child("max").fail(fmt::format("expected max >= min ({})", a.following_error_min));
+        } else {
+          a.following_error_window = w.as_positive("a window in units, or a map {kv, min, max}");
+        }
+      }
+      if (auto w = sv.child("standstill"); w.present()) a.standstill_window = w.as_positive("a window in units");
+      if (auto w = sv.child("in_position"); w.present()) a.in_position_window = w.as_positive("a window in units");
+      a.in_position_timeout = sv.optional_duration("in_position_timeout");
+      a.enable_timeout = sv.optional_duration("enable_timeout");
+      a.feedback_timeout = sv.optional_duration("feedback_timeout");
+    }
+    if (a.in_position_window <= 0.0) a.in_position_window = 0.01;
+    if (a.standstill_window <= 0.0) a.standstill_window = std::max(2.0 * a.in_position_window, 1.0 / ratio_value(a));
+    if (a.standstill_window < a.in_position_window)
+      f.child("supervision").child("standstill")
+          .fail(fmt::format("expected a standstill window >= the in_position window ({})", a.in_position_window));
+    if (!a.following_error_dynamic && a.following_error_window <= 0.0)
+      a.following_error_window = std::max(10.0 * a.in_position_window, 1.0);
+    if (auto r2 = f.child("fault_reaction"); r2.present())
+      a.fault_reaction = static_cast<FaultReaction>(r2.as_enum({"quick_stop", "stop", "disable"}));
+
+    const Field drive = f.required("drive", "a map with 'transport:' and the transport's keys");
+    if (!drive.node().IsMap()) drive.fail(fmt::format("expected a map with 'transport:', got {}", drive.describe()));
+    a.transport = drive.required("transport", "the transport name, e.g. sim, canopen, modbus, stepdir")
+                      .as_string("a transport name");
+    a.drive = drive.node();
+    return a;
+  }
+
+  static double ratio_value(const AxisSpec& a) {
+    return static_cast<double>(a.inc_per_unit_num) / static_cast<double>(a.inc_per_unit_den);
+  }
+
+  std::string axis_name(const Field& f) const {
+    const std::string n = f.as_string("an axis name");
+    for (const auto& a : *axes_)
+      if (a.name == n) return n;
+    std::string list;
+    for (const auto& a : *axes_) list += (list.empty() ? "" : ", ") + a.name;
+    f.fail(fmt::format("unknown axis '{}'; the machine has: {}", n, list));
+  }
+
+  /// A name, a list of names, or "all".
+  std::vector<std::string> axis_list(const Field& f) const {
+    std::vector<std::string> out;
+    if (f.node().IsScalar() && f.node().Scalar() == "all") {
+      for (const auto& a : *axes_) out.push_back(a.name);
+      return out;
+    }
+    if (f.node().IsSequence()) {
+      for (const Field& i : f.items()) out.push_back(axis_name(i));
+      if (out.empty()) f.fail("expected at least one axis name");
+      return out;
+    }
+    if (!f.node().IsScalar()) f.fail(fmt::format("expected an axis name, a list of names or 'all', got {}", f.describe()));
+    out.push_back(axis_name(f));
+    return out;
+  }
+
+  MoveLimits move_limits(const Field& f, bool with_velocity = true) const {
+    MoveLimits l;
+    if (with_velocity) l.velocity = f.optional_positive("velocity", "a velocity in units/s");
+    l.acceleration = f.optional_positive("acceleration", "an acceleration in units/s^2");
+    if (auto j = f.child("jerk"); j.present()) l.jerk = j.as_non_negative("a jerk in units/s^3 (0 = trapezoidal)");
+    return l;
+  }
+
+  static constexpr std::string_view step_keys[] = {
+      "enable", "disable", "reset", "home", "move_absolute", "move_relative", "move_velocity", "jog", "stop",
+      "quick_stop", "wait", "wait_in_position", "wait_until", "inject_fault", "parallel"};
+
+  Step load_step(const Field& f, int depth) {
+    if (!f.node().IsMap())
+      f.fail(fmt::format("expected a step: a map with one action ({}), got {}", "enable, move_absolute, wait, ...",
+                         f.describe()));
+    const auto keys = f.expect_map({"enable", "disable", "reset", "home", "move_absolute", "move_relative",
+                                    "move_velocity", "jog", "stop", "quick_stop", "wait", "wait_in_position",
+                                    "wait_until", "inject_fault", "parallel", "at", "timeout", "blocking"});
+    std::string action;
+    for (const auto& k : keys) {
+      if (k == "at" || k == "timeout" || k == "blocking") continue;
+      if (!action.empty())
+        f.child(k).fail(fmt::format("a step has exactly one action; this one has '{}' and '{}' (use 'parallel:' to "
+                                    "start several at once)", action, k));
+      action = k;
+    }
+    if (action.empty()) {
+      std::string list;
+      for (auto k : step_keys) list += (list.empty() ? "" : ", ") + std::string(k);
+      f.fail(fmt::format("a step needs one action: {}", list));
+    }
+    Step st;
+    st.source = {f.line(), f.path()};
+    st.at = f.optional_duration("at");
+    st.timeout = f.optional_duration("timeout");
+    if (auto w = f.child("blocking"); w.present()) st.wait = w.as_bool();
+    const Field v = f.child(action);
+    st.name = action;
+    if (action == "enable") st.action = EnableStep{axis_list(v)};
+    else if (action == "disable") st.action = DisableStep{axis_list(v)};
+    else if (action == "reset") st.action = ResetStep{axis_list(v)};
+    else if (action == "home") st.action = HomeStep{axis_list(v)};
+    else if (action == "quick_stop") st.action = QuickStopStep{axis_list(v)};
+    else if (action == "wait_in_position") st.action = WaitInPositionStep{axis_list(v)};
+    else if (action == "stop") {
+      st.action = StopStep{axis_list(v)};
+    } else if (action == "wait") {
+      st.action = WaitStep{v.as_duration()};
+    } else if (action == "move_absolute") {
+      v.expect_map({"axis", "position", "velocity", "acceleration", "jerk", "direction"});
+      MoveAbsoluteStep m;
+      m.axis = axis_name(v.required("axis", "the axis to move"));
+      m.position = v.required("position", "the target in units").as_number("a position in units");
+      m.limits = move_limits(v);
+      if (auto d = v.child("direction"); d.present()) {
+        const AxisSpec* spec = find(m.axis);
+        if (!spec->rotary) d.fail("'direction' applies to rotary axes only");
+        m.direction = static_cast<MoveDirection>(d.as_enum({"shortest", "positive", "negative"}));
+      }
+      st.name += " " + m.axis;
+      st.action = m;
+    } else if (action == "move_relative") {
+      v.expect_map({"axis", "distance", "velocity", "acceleration", "jerk"});
+      MoveRelativeStep m;
+      m.axis = axis_name(v.required("axis", "the axis to move"));
+      m.distance = v.required("distance", "the distance in units").as_number("a distance in units");
+      m.limits = move_limits(v);
+      st.name += " " + m.axis;
+      st.action = m;
+    } else if (action == "move_velocity") {
+      v.expect_map({"axis", "velocity", "acceleration", "jerk"});
+      MoveVelocityStep m;
+      m.axis = axis_name(v.required("axis", "the axis to move"));
+      m.velocity = v.required("velocity", "a signed velocity in units/s").as_number("a velocity in units/s");
+      m.limits = move_limits(v, false);
+      st.name += " " + m.axis;
+      st.action = m;
+    } else if (action == "jog") {
+      v.expect_map({"axis", "direction", "duration"});
+      JogStep j;
+      j.axis = axis_name(v.required("axis", "the axis to jog"));
+      j.positive = v.required("direction", "positive or negative").as_enum({"positive", "negative"}) == 0;
+      j.duration = v.required("duration", "how long to jog").as_duration();
+      st.name += " " + j.axis;
+      st.action = j;
+    } else if (action == "wait_until") {
+      st.action = WaitUntilStep{load_condition(v)};
+    } else if (action == "inject_fault") {
+      v.expect_map({"axis", "fault", "active"});
+      InjectFaultStep i;
+      i.axis = axis_name(v.required("axis", "the axis whose drive gets the fault"));
+      i.fault = v.required("fault", "a fault name the drive accepts (sim: encoder, not_ready, following_blowup)")
+                    .as_string("a fault name");
+      if (auto a = v.child("active"); a.present()) i.active = a.as_bool();
+      st.name += " " + i.axis + " " + i.fault;
+      st.action = i;
+    } else if (action == "parallel") {
+      if (depth >= max_parallel_depth) v.fail(fmt::format("'parallel' nested deeper than {} levels", max_parallel_depth));
+      ParallelStep p;
+      for (const Field& i : v.items()) p.steps.push_back(load_step(i, depth + 1));
+      if (p.steps.empty()) v.fail("expected at least one step in 'parallel'");
+      st.action = std::move(p);
+    }
+    return st;
+  }
+
+  Condition load_condition(const Field& v) {
+    const auto keys = v.expect_map({"axis", "position_above", "position_below", "velocity_above", "velocity_below",
+                                    "following_error_above", "following_error_below", "state", "fault", "standstill",
+                                    "in_position"});
+    Condition c;
+    c.axis = axis_name(v.required("axis", "the axis to watch"));
+    std::string kind;
+    for (const auto& k : keys) {
+      if (k == "axis") continue;
+      if (!kind.empty()) v.child(k).fail(fmt::format("one condition per wait_until; got '{}' and '{}'", kind, k));
+      kind = k;
+    }
+    if (kind.empty())
+      v.fail("a condition needs one of: position_above, position_below, velocity_above, velocity_below, "
+             "following_error_above, following_error_below, state, fault, standstill, in_position");
+    const Field x = v.child(kind);
+    auto compare = [&](Quantity q, Comparison cmp) {
+      c.kind = Condition::Kind::compare;
+      c.quantity = q;
+      c.comparison = cmp;
+      c.value = x.as_number("a number in units (or units/s)");
+    };
+    if (kind == "position_above") compare(Quantity::position, Comparison::above);
+    else if (kind == "position_below") compare(Quantity::position, Comparison::below);
+    else if (kind == "velocity_above") compare(Quantity::velocity, Comparison::above);
+    else if (kind == "velocity_below") compare(Quantity::velocity, Comparison::below);
+    else if (kind == "following_error_above") compare(Quantity::following_error, Comparison::above);
+    else if (kind == "following_error_below") compare(Quantity::following_error, Comparison::below);
+    else if (kind == "state") {
+      c.kind = Condition::Kind::state;
+      c.state = state_name(x);
+    } else if (kind == "fault") {
+      c.kind = Condition::Kind::fault;
+      c.fault_code = fault_code_or_any(x);
+    } else if (kind == "standstill" || kind == "in_position") {
+      if (!x.as_bool()) x.fail(fmt::format("'{}' takes 'true' only", kind));
+      c.kind = kind == "standstill" ? Condition::Kind::no_motion : Condition::Kind::in_position;
+    }
+    return c;
+  }
+
+  static std::string state_name(const Field& x) {
+    constexpr std::string_view names[] = {"disabled", "enabling", "standstill", "moving", "stopping", "homing", "error"};
+    const std::string n = x.as_string("an axis state name");
+    for (auto k : names)
+      if (k == n) return n;
+    x.fail(fmt::format("expected an axis state: disabled, enabling, standstill, moving, stopping, homing, error; got {}",
+                       x.describe()));
+  }
+
+  static std::string fault_code_or_any(const Field& x) {
+    if (!x.node().IsScalar()) x.fail(fmt::format("expected a fault code such as motion:1 or cia402:0x7305, or 'any'; got {}", x.describe()));
+    const std::string s = x.node().Scalar();
+    if (s == "any" || s == "true") return "";
+    if (!parse_fault_code(s))
+      x.fail(fmt::format("expected a fault code 'category:number' such as motion:1 or cia402:0x7305, or 'any'; got {}",
+                         x.describe()));
+    return s;
+  }
+
+  void load_expectation(const Field& f, std::vector<Expectation>& out) {
+    const auto keys = f.expect_map({"axis", "position", "tolerance", "at", "by", "fault", "state", "no_fault",
+                                    "max_following_error"});
+    const auto axes = axis_list(f.required("axis", "an axis name, a list or 'all'"));
+    std::string kind;
+    for (const auto& k : keys) {
+      if (k == "axis" || k == "tolerance" || k == "at" || k == "by") continue;
+      if (!kind.empty()) f.child(k).fail(fmt::format("one expectation per entry; got '{}' and '{}'", kind, k));
+      kind = k;
+    }
+    if (kind.empty()) f.fail("an expectation needs one of: position, fault, state, no_fault, max_following_error");
+    auto only = [&](std::initializer_list<std::string_view> allowed) {
+      for (std::string_view k : {"tolerance", "at", "by"}) {
+        if (std::find(allowed.begin(), allowed.end(), k) != allowed.end()) continue;
+        if (f.child(std::string(k)).present())
+          f.child(std::string(k)).fail(fmt::format("'{}' does not apply to a '{}' expectation", k, kind));
+      }
+    };
+    const Field x = f.child(kind);
+    ExpectationKind e;
+    if (kind == "position") {
+      only({"tolerance", "at", "by"});
+      PositionExpectation p;
+      p.value = x.as_number("a position in units");
+      p.at = f.optional_duration("at");
+      p.by = f.optional_duration("by");
+      if (p.at && p.by) f.child("by").fail("use either 'at' (checked at that instant) or 'by' (reached no later than)");
+      if (auto t = f.child("tolerance"); t.present()) {
+        p.tolerance = t.as_positive("a tolerance in units");
+      } else {
+        const AxisSpec* a = find(axes.front());
+        if (a->in_position_window <= 0.0)
+          f.fail("missing key 'tolerance' (the axis has no supervision.in_position window to default to)");
+        p.tolerance = a->in_position_window;
+      }
+      e = p;
+    } else if (kind == "fault") {
+      only({"by"});
+      e = FaultExpectation{fault_code_or_any(x), f.optional_duration("by")};
+    } else if (kind == "state") {
+      only({"at"});
+      e = StateExpectation{state_name(x), f.optional_duration("at")};
+    } else if (kind == "no_fault") {
+      only({});
+      if (!x.as_bool()) x.fail("'no_fault' takes 'true' only (use 'fault:' to expect a fault)");
+      e = NoFaultExpectation{};
+    } else {
+      only({});
+      e = MaxFollowingErrorExpectation{x.as_positive("a following error in units")};
+    }
+    for (const auto& a : axes) out.push_back(Expectation{a, e, SourceRef{f.line(), f.path()}});
+  }
+
+  const AxisSpec* find(const std::string& name) const {
+    for (const auto& a : *axes_)
+      if (a.name == name) return &a;
+    return nullptr;
+  }
+
+  std::string file_;
+  const std::vector<AxisSpec>* axes_ = nullptr;
+};
+
+}  // namespace
+
+const AxisSpec* Scenario::find_axis(const std::string& n) const noexcept {
+  for (const auto& a : axes)
+    if (a.name == n) return &a;
+  return nullptr;
+}
+
+std::string_view to_string(FaultReaction r) noexcept {
+  switch (r) {
+    case FaultReaction::quick_stop: return "quick_stop";
+    case FaultReaction::stop: return "stop";
+    case FaultReaction::disable: return "disable";
+  }
+  return "?";
+}
+
+std::string_view to_string(MoveDirection d) noexcept {
+  switch (d) {
+    case MoveDirection::positive: return "positive";
+    case MoveDirection::negative: return "negative";
+    case MoveDirection::shortest: return "shortest";
+  }
+  return "?";
+}
+
+std::optional<std::pair<std::int64_t, std::int64_t>> parse_ratio(std::string_view text) {
+  constexpr std::int64_t limit = std::int64_t{1} << 40;
+  auto integer = [](std::string_view t) -> std::optional<std::int64_t> {
+    std::int64_t v = 0;
+    const auto [end, ec] = std::from_chars(t.data(), t.data() + t.size(), v);
+    if (ec != std::errc{} || end != t.data() + t.size() || v <= 0 || v > limit) return std::nullopt;
+    return v;
+  };
+  if (const auto slash = text.find('/'); slash != std::string_view::npos) {
+    auto n = integer(text.substr(0, slash));
+    auto d = integer(text.substr(slash + 1));
+    if (!n || !d) return std::nullopt;
+    return std::pair{*n, *d};
+  }
+  if (const auto dot = text.find('.'); dot != std::string_view::npos) {
+    const std::string_view frac = text.substr(dot + 1);
+    if (frac.empty() || frac.size() > 9) return std::nullopt;
+    std::int64_t den = 1;
+    for (std::size_t i = 0; i < frac.size(); ++i) den *= 10;
+    std::string digits(text.substr(0, dot));
+    digits += frac;
+    while (digits.size() > 1 && digits.front() == '0') digits.erase(digits.begin());
+    auto n = integer(digits);
+    if (!n) return std::nullopt;
+    return std::pair{*n, den};
+  }
+  auto n = integer(text);
+  if (!n) return std::nullopt;
+  return std::pair{*n, std::int64_t{1}};
+}
+
+std::optional<Duration> parse_duration(std::string_view text) {
+  auto trim = [](std::string_view s) {
+    while (!s.empty() && std::isspace(static_cast<unsigned char>(s.front()))) s.remove_prefix(1);
+    while (!s.empty() && std::isspace(static_cast<unsigned char>(s.back()))) s.remove_suffix(1);
+    return s;
+  };
+  text = trim(text);
+  double value = 0.0;
+  const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
+  if (ec != std::errc{} || end == text.data()) return std::nullopt;
+  const std::string_view unit = trim(std::string_view(end, static_cast<std::size_t>(text.data() + text.size() - end)));
+  double scale = 1.0;
+  if (unit.empty() || unit == "s") scale = 1.0;
+  else if (unit == "ms") scale = 1e-3;
+  else if (unit == "us") scale = 1e-6;
+  else if (unit == "min") scale = 60.0;
+  else return std::nullopt;
+  const double seconds = value * scale;
+  if (!std::isfinite(seconds) || seconds < 0.0 || seconds > 10.0 * 86400.0) return std::nullopt;
+  return Duration{std::llround(seconds * 1e9)};  // round: 100us must not become 99999ns
+}
+
+std::optional<FaultCode> parse_fault_code(std::string_view text) {
+  const auto colon = text.find(':');
+  if (colon == std::string_view::npos || colon == 0) return std::nullopt;
+  FaultCode c;
+  c.category = std::string(text.substr(0, colon));
+  for (char ch : c.category)
+    if (!(std::isalnum(static_cast<unsigned char>(ch)) || ch == '_' || ch == '-')) return std::nullopt;
+  std::string_view num = text.substr(colon + 1);
+  int base = 10;
+  if (num.starts_with("0x") || num.starts_with("0X")) {
+    base = 16;
+    num.remove_prefix(2);
+  }
+  if (num.empty()) return std::nullopt;
+  const auto [end, ec] = std::from_chars(num.data(), num.data() + num.size(), c.value, base);
+  if (ec != std::errc{} || end != num.data() + num.size()) return std::nullopt;
+  return c;
+}
+
+std::expected<Scenario, ConfigError> parse_scenario(std::string_view text, const std::string& file_name) {
+  YAML::Node root;
+  try {
+    root = YAML::Load(std::string(text));
+  } catch (const YAML::Exception& e) {
+    return std::unexpected(ConfigError{file_name, e.mark.line >= 0 ? e.mark.line + 1 : 0,
+                                       e.mark.column >= 0 ? e.mark.column + 1 : 0, "",
+                                       fmt::format("not valid YAML: {}", e.msg)});
+  }
+  try {
+    return Loader(file_name).load(root);
+  } catch (const LoadFailure& f) {
+    return std::unexpected(f.error);
+  } catch (const YAML::Exception& e) {  // defensive: a yaml-cpp accessor we did not guard
+    return std::unexpected(ConfigError{file_name, e.mark.line >= 0 ? e.mark.line + 1 : 0,
+                                       e.mark.column >= 0 ? e.mark.column + 1 : 0, "", e.msg});
+  }
+}
+
+std::expected<Scenario, ConfigError> load_scenario(const std::filesystem::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  if (!in)
+    return std::unexpected(ConfigError{file.string(), 0, 0, "", "cannot open the scenario file (does it exist?)"});
+  std::ostringstream ss;
+  ss << in.rdbuf();
+  if (in.bad()) return std::unexpected(ConfigError{file.string(), 0, 0, "", "cannot read the scenario file"});
+  return parse_scenario(ss.str(), file.string());
+}
+
+}  // namespace hil::runtime

@@ -1,0 +1,215 @@
+// SPDX-License-Identifier: MIT
+#include "hil/runtime/svg_plot.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include <fmt/format.h>
+
+#include "hil/runtime/xml_escape.hpp"
+
+namespace hil::runtime {
+
+void PlotRecorder::on_start(const Scenario& scenario, const Machine& machine) {
+  data_.title = scenario.name.empty() ? scenario.file : scenario.name;
+  data_.axes.clear();
+  for (const auto& a : machine.axes()) {
+    PlotSeries s;
+    s.axis = a.spec->name;
+    s.units = a.spec->units;
+    data_.axes.push_back(std::move(s));
+  }
+}
+
+void PlotRecorder::on_cycle(Duration t, const Machine& machine) noexcept {
+  if (cycle_++ % stride_ != 0) return;
+  try {
+    const auto& axes = machine.axes();
+    for (std::size_t i = 0; i < axes.size() && i < data_.axes.size(); ++i) {
+      const auto& st = axes[i].axis->status();
+      auto& s = data_.axes[i];
+      s.t.push_back(to_seconds(t));
+      s.position.push_back(st.position);
+      s.command.push_back(st.command_position);
+      s.velocity.push_back(st.velocity);
+      s.following_error.push_back(st.following_error);
+    }
+    if (!data_.axes.empty() && data_.axes.front().t.size() >= max_points_) decimate();
+  } catch (...) {  // out of memory: stop recording rather than disturb the cycle
+    stride_ = ~std::uint64_t{0};
+  }
+}
+
+void PlotRecorder::decimate() {
+  auto halve = [](std::vector<double>& v) {
+    std::size_t j = 0;
+    for (std::size_t i = 0; i < v.size(); i += 2) v[j++] = v[i];
+    v.resize(j);
+  };
+  for (auto& s : data_.axes) {
+    halve(s.t);
+    halve(s.position);
+    halve(s.command);
+    halve(s.velocity);
+    halve(s.following_error);
+  }
+  stride_ *= 2;
+}
+
+std::vector<double> nice_ticks(double lo, double hi, int target) {
+  std::vector<double> out;
+  if (!std::isfinite(lo) || !std::isfinite(hi) || hi <= lo || target < 2) return out;
+  const double raw = (hi - lo) / target;
+  const double mag = std::pow(10.0, std::floor(std::log10(raw)));
+  double step = mag;
+  for (double m : {1.0, 2.0, 5.0, 10.0}) {
+    step = m * mag;
+    if (step >= raw) break;
+  }
+  const double first = std::ceil(lo / step - 1e-9) * step;
+  for (double v = first; v <= hi + step * 1e-9 && out.size() < 100; v += step)
+    out.push_back(std::abs(v) < step * 1e-9 ? 0.0 : v);
+  return out;
+}
+
+namespace {
+
+constexpr double chart_w = 380, chart_h = 210;    // one chart, including its margins
+constexpr double ml = 64, mr = 14, mt = 26, mb = 38;  // margins inside a chart
+constexpr double title_h = 44;
+
+struct Range {
+  double lo, hi;
+};
+
+Range range_of(std::initializer_list<const std::vector<double>*> vs) {
+  double lo = INFINITY, hi = -INFINITY;
+  for (const auto* v : vs)
+    for (double x : *v)
+      if (std::isfinite(x)) {
+        lo = std::min(lo, x);
+        hi = std::max(hi, x);
+      }
+  if (!std::isfinite(lo)) return {-1, 1};
+  if (hi - lo < 1e-12) {
+    const double pad = std::max(std::abs(lo) * 0.1, 1e-3);
+    return {lo - pad, hi + pad};
+  }
+  const double pad = (hi - lo) * 0.05;
+  return {lo - pad, hi + pad};
+}
+
+std::string tick_label(double v, double step) {
+  const int decimals = step >= 1.0 ? 0 : std::min(6, static_cast<int>(std::ceil(-std::log10(step) - 1e-9)));
+  return fmt::format("{:.{}f}", v, decimals);
+}
+
+struct Line {
+  const std::vector<double>* values;
+  const char* label;
+  const char* color;
+  bool dashed;
+};
+
+void chart(std::string& svg, double x0, double y0, const std::string& title, const std::vector<double>& t,
+           const std::vector<Line>& lines, double t_end) {
+  const double pw = chart_w - ml - mr, ph = chart_h - mt - mb;
+  const double px = x0 + ml, py = y0 + mt;
+  Range yr{0, 1};
+  if (lines.size() == 1) yr = range_of({lines[0].values});
+  else yr = range_of({lines[0].values, lines[1].values});
+  const Range tr{0.0, std::max(t_end, 1e-3)};
+  auto X = [&](double v) { return px + (v - tr.lo) / (tr.hi - tr.lo) * pw; };
+  auto Y = [&](double v) { return py + ph - (v - yr.lo) / (yr.hi - yr.lo) * ph; };
+
+  svg += fmt::format("<g class=\"chart\">\n<text x=\"{:.1f}\" y=\"{:.1f}\" class=\"ctitle\">{}</text>\n", px,
+                     y0 + 16, xml_escape(title));
+  svg += fmt::format("<rect x=\"{:.1f}\" y=\"{:.1f}\" width=\"{:.1f}\" height=\"{:.1f}\" class=\"frame\"/>\n", px, py,
+                     pw, ph);
+  const auto yt = nice_ticks(yr.lo, yr.hi, 5);
+  const double ystep = yt.size() > 1 ? yt[1] - yt[0] : 1.0;
+  for (double v : yt) {
+    const double y = Y(v);
+    svg += fmt::format("<line x1=\"{:.1f}\" y1=\"{:.1f}\" x2=\"{:.1f}\" y2=\"{:.1f}\" class=\"grid\"/>\n", px, y,
+                       px + pw, y);
+    svg += fmt::format("<line x1=\"{:.1f}\" y1=\"{:.1f}\" x2=\"{:.1f}\" y2=\"{:.1f}\" class=\"tick\"/>\n", px - 4, y,
+                       px, y);
+    svg += fmt::format("<text x=\"{:.1f}\" y=\"{:.1f}\" class=\"ylabel\">{}</text>\n", px - 6, y + 4,
+                       tick_label(v, ystep));
+  }
+  const auto xt = nice_ticks(tr.lo, tr.hi, 6);
+  const double xstep = xt.size() > 1 ? xt[1] - xt[0] : 1.0;
+  for (double v : xt) {
+    const double x = X(v);
+    svg += fmt::format("<line x1=\"{:.1f}\" y1=\"{:.1f}\" x2=\"{:.1f}\" y2=\"{:.1f}\" class=\"grid\"/>\n", x, py, x,
+                       py + ph);
+    svg += fmt::format("<line x1=\"{:.1f}\" y1=\"{:.1f}\" x2=\"{:.1f}\" y2=\"{:.1f}\" class=\"tick\"/>\n", x, py + ph,
+                       x, py + ph + 4);
+    svg += fmt::format("<text x=\"{:.1f}\" y=\"{:.1f}\" class=\"xlabel\">{}</text>\n", x, py + ph + 16,
+                       tick_label(v, xstep));
+  }
+  svg += fmt::format("<text x=\"{:.1f}\" y=\"{:.1f}\" class=\"xlabel\">t [s]</text>\n", px + pw / 2, py + ph + 32);
+  for (const auto& l : lines) {
+    std::string pts;
+    pts.reserve(t.size() * 16);
+    for (std::size_t i = 0; i < t.size() && i < l.values->size(); ++i) {
+      const double v = (*l.values)[i];
+      if (!std::isfinite(v)) continue;
+      fmt::format_to(std::back_inserter(pts), "{:.1f},{:.1f} ", X(t[i]), Y(v));
+    }
+    svg += fmt::format("<polyline fill=\"none\" stroke=\"{}\" stroke-width=\"1.5\"{} points=\"{}\"/>\n", l.color,
+                       l.dashed ? " stroke-dasharray=\"5,3\"" : "", pts);
+  }
+  // Legend, top right inside the plot area.
+  double ly = py + 14;
+  const double lx = px + pw - 110;
+  svg += fmt::format("<rect x=\"{:.1f}\" y=\"{:.1f}\" width=\"104\" height=\"{:.1f}\" class=\"legend\"/>\n", lx - 4,
+                     py + 4, 16.0 * static_cast<double>(lines.size()) + 4);
+  for (const auto& l : lines) {
+    svg += fmt::format("<line x1=\"{:.1f}\" y1=\"{:.1f}\" x2=\"{:.1f}\" y2=\"{:.1f}\" stroke=\"{}\" "
+                       "stroke-width=\"2\"{}/>\n",
+                       lx, ly - 4, lx + 20, ly - 4, l.color, l.dashed ? " stroke-dasharray=\"5,3\"" : "");
+    svg += fmt::format("<text x=\"{:.1f}\" y=\"{:.1f}\" class=\"ltext\">{}</text>\n", lx + 26, ly, l.label);
+    ly += 16;
+  }
+  svg += "</g>\n";
+}
+
+}  // namespace
+
+std::string render_svg(const PlotData& data) {
+  const double width = 3 * chart_w + 20;
+  const double height = title_h + chart_h * static_cast<double>(std::max<std::size_t>(1, data.axes.size())) + 10;
+  double t_end = 0.0;
+  for (const auto& s : data.axes)
+    if (!s.t.empty()) t_end = std::max(t_end, s.t.back());
+  std::string svg = fmt::format(
+      "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n"
+      "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{0:.0f}\" height=\"{1:.0f}\" viewBox=\"0 0 {0:.0f} {1:.0f}\" "
+      "font-family=\"sans-serif\">\n"
+      "<style>\n"
+      ".title{{font-size:18px;font-weight:bold}} .ctitle{{font-size:13px;font-weight:bold}}\n"
+      ".frame{{fill:#fff;stroke:#333;stroke-width:1}} .grid{{stroke:#ddd;stroke-width:0.7}}\n"
+      ".tick{{stroke:#333;stroke-width:1}} .xlabel{{font-size:11px;text-anchor:middle}}\n"
+      ".ylabel{{font-size:11px;text-anchor:end}} .legend{{fill:#fff;fill-opacity:0.85;stroke:#999}}\n"
+      ".ltext{{font-size:11px}}\n"
+      "</style>\n"
+      "<rect width=\"100%\" height=\"100%\" fill=\"#fafafa\"/>\n"
+      "<text x=\"10\" y=\"28\" class=\"title\">{2}</text>\n",
+      width, height, xml_escape(data.title.empty() ? "hilbridge run" : "hilbridge run: " + data.title));
+  double y = title_h;
+  for (const auto& s : data.axes) {
+    const std::string u = xml_escape(s.units);
+    chart(svg, 10, y, fmt::format("{}: position [{}]", s.axis, s.units), s.t,
+          {{&s.position, "actual", "#1f77b4", false}, {&s.command, "command", "#ff7f0e", true}}, t_end);
+    chart(svg, 10 + chart_w, y, fmt::format("{}: velocity [{}/s]", s.axis, s.units), s.t,
+          {{&s.velocity, "actual", "#2ca02c", false}}, t_end);
+    chart(svg, 10 + 2 * chart_w, y, fmt::format("{}: following error [{}]", s.axis, s.units), s.t,
+          {{&s.following_error, "command - actual", "#d62728", false}}, t_end);
+    y += chart_h;
+  }
+  svg += "</svg>\n";
+  return svg;
+}
+
+}  // namespace hil::runtime

@@ -1,0 +1,61 @@
+// SPDX-License-Identifier: MIT
+#include "hil/runtime/trace_csv.hpp"
+
+#include <cerrno>
+
+#include <fmt/format.h>
+
+namespace hil::runtime {
+
+std::error_code TraceCsvWriter::open(const std::filesystem::path& path) {
+  file_.reset(std::fopen(path.c_str(), "w"));
+  if (!file_) return {errno, std::generic_category()};
+  std::setvbuf(file_.get(), nullptr, _IOFBF, 1 << 16);
+  return {};
+}
+
+void TraceCsvWriter::on_start(const Scenario&, const Machine& machine) {
+  if (!file_) return;
+  std::string h = "t_s";
+  for (const auto& a : machine.axes()) {
+    const std::string& n = a.spec->name;
+    const std::string& u = a.spec->units;
+    h += fmt::format(",{0}_position_{1},{0}_command_{1},{0}_velocity_{1}_per_s,{0}_following_error_{1},{0}_state,"
+                     "{0}_fault",
+                     n, u);
+  }
+  h += '\n';
+  if (std::fputs(h.c_str(), file_.get()) < 0 && !error_) error_ = {errno, std::generic_category()};
+}
+
+void TraceCsvWriter::on_cycle(Duration t, const Machine& machine) noexcept {
+  if (!file_ || error_) return;
+  try {
+    line_.clear();
+    fmt::format_to(std::back_inserter(line_), "{:.6f}", to_seconds(t));
+    for (const auto& a : machine.axes()) {
+      const auto& st = a.axis->status();
+      fmt::format_to(std::back_inserter(line_), ",{:.6f},{:.6f},{:.6f},{:.6f},{},", st.position, st.command_position,
+                     st.velocity, st.following_error, motion::to_string(st.state));
+      if (st.fault) fmt::format_to(std::back_inserter(line_), "{}:{}", st.fault.code.category().name(), st.fault.code.value());
+    }
+    line_ += '\n';
+    if (std::fwrite(line_.data(), 1, line_.size(), file_.get()) != line_.size()) error_ = {errno, std::generic_category()};
+    ++rows_;
+  } catch (...) {
+    error_ = std::make_error_code(std::errc::not_enough_memory);
+  }
+}
+
+void TraceCsvWriter::on_finish(const RunResult&) {
+  if (file_ && std::fflush(file_.get()) != 0 && !error_) error_ = {errno, std::generic_category()};
+}
+
+std::error_code TraceCsvWriter::close() {
+  if (file_) {
+    if (std::fclose(file_.release()) != 0 && !error_) error_ = {errno, std::generic_category()};
+  }
+  return error_;
+}
+
+}  // namespace hil::runtime

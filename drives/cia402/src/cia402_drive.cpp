@@ -1,0 +1,177 @@
+// SPDX-License-Identifier: MIT
+#include "hil/cia402/cia402_drive.hpp"
+
+#include <cmath>
+#include <limits>
+
+#include <fmt/format.h>
+
+#include "hil/cia402/error_code.hpp"
+
+namespace hil::cia402 {
+namespace {
+constexpr std::uint16_t k_cw = 0x6040, k_sw = 0x6041, k_mode = 0x6060, k_mode_display = 0x6061, k_error = 0x603F,
+                        k_target_pos = 0x607A, k_target_vel = 0x60FF, k_actual_pos = 0x6064, k_actual_vel = 0x606C;
+
+std::int32_t clamp32(double v) {
+  if (!std::isfinite(v)) return 0;
+  if (v > std::numeric_limits<std::int32_t>::max()) return std::numeric_limits<std::int32_t>::max();
+  if (v < std::numeric_limits<std::int32_t>::min()) return std::numeric_limits<std::int32_t>::min();
+  return static_cast<std::int32_t>(std::lround(v));
+}
+}  // namespace
+
+Cia402Drive::Cia402Drive(Network& network, canopen::NodeId node, DriveOptions options)
+    : network_(network), node_(node), options_(std::move(options)) {
+  if (options_.name.empty()) options_.name = fmt::format("canopen:{}/{}", network_.channel().name(), node);
+  network_.attach(node, this);
+}
+
+Cia402Drive::~Cia402Drive() { network_.detach(node_); }
+
+DriveCapabilities Cia402Drive::capabilities() const noexcept {
+  DriveCapabilities c;
+  c.closed_loop = true;
+  c.velocity_mode = true;
+  c.homing = options_.homing;
+  c.min_period = std::chrono::microseconds(250);
+  return c;
+}
+
+void Cia402Drive::on_boot(std::error_code ec) {
+  booted_ = !ec;
+  boot_error_ = ec;
+  if (ec) {
+    const auto& st = network_.master().status(node_);
+    set_fault(ec, fmt::format("node {} boot-up failed: {}{}{}: check the node-ID, wiring and EDS", node_, ec.message(),
+                              st.detail.empty() ? "" : ": ", st.detail));
+  }
+}
+
+void Cia402Drive::on_emcy(std::uint16_t code, std::uint8_t) { emcy_code_ = code; }
+
+void Cia402Drive::on_heartbeat_lost(Duration) {
+  heartbeat_lost_ = true;
+  const auto ms = std::chrono::duration_cast<std::chrono::milliseconds>(
+                      network_.master().options().boot_timeout).count();
+  (void)ms;
+  set_fault(make_error_code(ErrorCode::heartbeat),
+            fmt::format("{} (node {}): no heartbeat within the consumer time; check the cable and the node's power",
+                        describe(0x8130), node_));
+}
+
+void Cia402Drive::on_heartbeat_resumed() { /* stays latched until fault_reset */ }
+
+void Cia402Drive::set_fault(std::error_code code, std::string text) {
+  feedback_.fault.code = code;
+  feedback_.fault.text = std::move(text);
+}
+
+void Cia402Drive::read(const CycleTime& cycle) {
+  auto& master = network_.master();
+  const auto& st = master.status(node_);
+  auto& img = master.image(node_);
+  if (st.last_rpdo) last_feedback_ = st.last_rpdo;
+  feedback_.age = last_feedback_ ? cycle.now - *last_feedback_ : Duration::max();
+  if (boot_error_) {
+    feedback_.state = DriveState::not_ready;
+    return;
+  }
+  if (!booted_ || !last_feedback_) {
+    feedback_.state = DriveState::not_ready;
+    return;
+  }
+  statusword_ = static_cast<std::uint16_t>(img.get_int(k_sw, 0));
+  feedback_.position_inc = img.get_int(k_actual_pos, 0);
+  feedback_.velocity_inc_per_s = static_cast<double>(img.get_int(k_actual_vel, 0));
+  const auto state = decode_state(statusword_);
+  if (heartbeat_lost_) {
+    feedback_.state = DriveState::fault;
+    return;
+  }
+  feedback_.state = state;
+  if (state == DriveState::fault || state == DriveState::fault_reaction_active) {
+    auto code = static_cast<std::uint16_t>(img.get_int(k_error, 0));
+    if (code == 0) code = emcy_code_;
+    if (!feedback_.fault || feedback_.fault.code.value() != code)
+      set_fault(make_cia402_error(code), fmt::format("{} (node {}): see the drive's error history 0x1003", describe(code), node_));
+  } else if (feedback_.age > options_.stale_after && feedback_.state != DriveState::not_ready) {
+    feedback_.state = DriveState::fault;
+    set_fault(make_error_code(MotionFault::drive_lost),
+              fmt::format("node {}: no process data for {} ms (SYNC or PDO lost)", node_,
+                          std::chrono::duration_cast<std::chrono::milliseconds>(feedback_.age).count()));
+  } else if (feedback_.fault && state != DriveState::fault) {
+    feedback_.fault = {};
+  }
+  const auto mode_display = static_cast<Mode>(img.get_int(k_mode_display, 0));
+  if (homing_started_ && mode_display == Mode::homing) {
+    const bool attained = (statusword_ & sw::op_specific_12) != 0;
+    const bool reached = (statusword_ & sw::target_reached) != 0;
+    const bool error = (statusword_ & sw::op_specific_13) != 0;
+    if (attained && reached) {
+      feedback_.referenced = true;
+      feedback_.homing_active = false;
+      homing_started_ = homing_requested_ = false;
+    } else if (error || cycle.now > homing_deadline_) {
+      feedback_.homing_active = false;
+      homing_started_ = homing_requested_ = false;
+      set_fault(make_error_code(MotionFault::invalid_command),
+                fmt::format("node {}: homing {} (method 0x6098)", node_, error ? "error reported by the drive" : "timed out"));
+    }
+  }
+}
+
+void Cia402Drive::write(const CycleTime& cycle, const DriveCommand& command) {
+  auto& img = network_.master().image(node_);
+  const auto state = feedback_.state;
+  std::uint16_t cwv = controlword_toward(state, goal_, controlword_);
+  if (heartbeat_lost_) cwv = cw::cmd_disable_voltage;
+  Mode mode = command.mode == CommandMode::velocity ? Mode::cyclic_sync_velocity : Mode::cyclic_sync_position;
+  std::int64_t target = command.position_inc;
+  double velocity = command.velocity_inc_per_s;
+  if (homing_requested_) {
+    mode = Mode::homing;
+    const auto display = static_cast<Mode>(img.get_int(k_mode_display, 0));
+    if (state == DriveState::operation_enabled && display == Mode::homing) {
+      if (!homing_started_ && (controlword_ & cw::new_set_point) == 0) {
+        homing_started_ = true;
+        homing_deadline_ = cycle.now + options_.homing_timeout;
+      }
+      else if (homing_started_) cwv |= cw::new_set_point;  // bit 4 rising one cycle later: start homing
+    }
+  }
+  if (state != DriveState::operation_enabled) {
+    // Hold the actual position so enabling never makes the axis jump.
+    target = feedback_.position_inc;
+    velocity = 0.0;
+  }
+  img.set_int(k_cw, 0, cwv);
+  img.set_int(k_mode, 0, static_cast<std::int8_t>(mode));
+  img.set_int(k_target_pos, 0, clamp32(static_cast<double>(target)));
+  img.set_int(k_target_vel, 0, clamp32(velocity));
+  controlword_ = cwv;
+}
+
+bool Cia402Drive::request(DriveRequest r) {
+  switch (r) {
+    case DriveRequest::enable: goal_ = DriveState::operation_enabled; return true;
+    case DriveRequest::disable: goal_ = DriveState::switch_on_disabled; return true;
+    case DriveRequest::quick_stop: goal_ = DriveState::quick_stop_active; return true;
+    case DriveRequest::fault_reset:
+      heartbeat_lost_ = false;
+      emcy_code_ = 0;
+      feedback_.fault = {};
+      if (goal_ == DriveState::operation_enabled) goal_ = DriveState::switch_on_disabled;
+      return true;
+    case DriveRequest::home:
+      if (!options_.homing) return false;
+      homing_requested_ = true;
+      homing_started_ = false;
+      feedback_.homing_active = true;
+      feedback_.referenced = false;
+      return true;
+  }
+  return false;
+}
+
+}  // namespace hil::cia402

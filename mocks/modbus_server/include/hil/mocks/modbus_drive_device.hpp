@@ -1,0 +1,66 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+// The simulated drive behind the Modbus drive server: a register table laid out by a profile,
+// the profile's device-side state machine (CiA 402 FSA or vendor bits) and the plant model.
+// Requests go through the pure request handler; the device reacts to control-word writes at
+// once and steps the plant when told. Not thread-safe: ModbusDriveServer serialises access.
+
+#include <cstdint>
+#include <span>
+
+#include "hil/core/clock.hpp"
+#include "hil/core/drive.hpp"
+#include "hil/core/fault.hpp"
+#include "hil/mocks/plant.hpp"
+#include "hil/modbus/profile.hpp"
+#include "hil/modbus/request_handler.hpp"
+
+namespace hil::mocks {
+
+struct DriveDeviceConfig {
+  PlantConfig plant{};
+  double quick_stop_deceleration_inc_per_s2 = 1.0e8;
+  double standstill_velocity_inc_per_s = 10.0;  ///< |v| below this ends quick_stop_active
+  std::int64_t target_window_inc = 10;          ///< CiA 402 status bit 10 "target reached"
+};
+
+class DriveDevice {
+public:
+  DriveDevice(modbus::Profile profile, DriveDeviceConfig config = {});
+
+  /// Serve one request ADU (see modbus::handle_request); control-word writes take effect at once.
+  modbus::HandleResult handle(std::span<const std::uint8_t> adu, std::span<std::uint8_t> out,
+                              const modbus::HandlerOptions& options) noexcept;
+
+  /// Advance the plant and the state machine by `dt` and refresh the feedback registers.
+  void step(Duration dt) noexcept;
+
+  /// Start/stop a plant fault (the drive enters fault; the fault-code register names it).
+  void inject(PlantFault fault, bool active) noexcept;
+
+  [[nodiscard]] DriveState state() const noexcept { return state_; }
+  [[nodiscard]] const Plant& plant() const noexcept { return plant_; }
+  [[nodiscard]] const modbus::Profile& profile() const noexcept { return profile_; }
+  [[nodiscard]] modbus::RegisterTable& table() noexcept { return table_; }
+  /// The fault-code register value for a plant fault (CiA 402 error codes for cia402 profiles:
+  /// encoder 0x7305, not_ready 0x3100, following 0x8611; the plant fault number otherwise).
+  [[nodiscard]] std::uint32_t fault_code_for(PlantFault f) const noexcept;
+
+private:
+  [[nodiscard]] std::int64_t read_field(modbus::FieldRole r) const noexcept;
+  void write_field(modbus::FieldRole r, std::int64_t raw) noexcept;
+  void apply_control(bool stopped) noexcept;
+  void publish() noexcept;
+
+  modbus::Profile profile_;
+  DriveDeviceConfig config_;
+  modbus::RegisterTable table_;
+  Plant plant_;
+  DriveState state_ = DriveState::not_ready;
+  std::uint16_t prev_cw_ = 0;
+  std::uint32_t latched_fault_code_ = 0;
+  double hold_position_inc_ = 0.0;
+  double qs_velocity_ = 0.0;
+};
+
+}  // namespace hil::mocks

@@ -1,0 +1,268 @@
+// SPDX-License-Identifier: MIT
+#include "hil/can/socketcand_server.hpp"
+
+#include <array>
+#include <chrono>
+#include <vector>
+
+#include <asio/write.hpp>
+
+namespace hil::can::socketcand {
+
+struct Server::Shared {
+  const Clock& clock;
+  BusOpener opener;
+  ServerOptions options;
+  ServerStats stats;
+  std::vector<std::weak_ptr<Session>> sessions;
+  bool closed = false;
+};
+
+class Server::Session : public std::enable_shared_from_this<Server::Session> {
+public:
+  Session(asio::ip::tcp::socket socket, std::shared_ptr<Shared> shared)
+      : socket_(std::move(socket)), shared_(std::move(shared)) {
+    std::error_code ec;
+    const auto ep = socket_.remote_endpoint(ec);
+    peer_ = ec ? std::string("unknown") : ep.address().to_string() + ":" + std::to_string(ep.port());
+    socket_.set_option(asio::ip::tcp::no_delay(true), ec);  // one frame per element: no Nagle delay
+  }
+
+  void start() {
+    ++shared_->stats.active;
+    write(hi_element);
+    read();
+  }
+
+  void close() {
+    if (closed_) return;
+    closed_ = true;
+    --shared_->stats.active;
+    std::error_code ec;
+    socket_.shutdown(asio::ip::tcp::socket::shutdown_both, ec);
+    socket_.close(ec);
+    channel_.reset();  // leave the bus now, not when the last handler lets go
+  }
+
+private:
+  enum class State { no_bus, bcm, raw };
+
+  void read() {
+    socket_.async_read_some(asio::buffer(rx_), [self = shared_from_this()](const std::error_code& ec, std::size_t n) {
+      if (self->closed_) return;
+      if (ec) {
+        self->close();  // EOF or reset, possibly mid-element: the partial element is discarded
+        return;
+      }
+      self->splitter_.feed(std::string_view(self->rx_.data(), n));
+      ElementSplitter::Item item;
+      while (!self->closed_ && self->splitter_.next(item)) {
+        if (item.error) {
+          self->protocol_error(item.error, "");
+          continue;
+        }
+        self->handle(item.element);
+      }
+      if (!self->closed_) self->read();
+    });
+  }
+
+  void protocol_error(std::error_code ec, std::string_view element) {
+    ++shared_->stats.protocol_errors;
+    std::string text(ec.message());
+    if (!element.empty()) {
+      text += " in '";
+      text.append(element.substr(0, 64));
+      text += "'";
+    }
+    std::string out;
+    format_error_text(out, text);
+    write(out);
+  }
+
+  void handle(std::string_view text) {
+    auto parsed = parse_element(text);
+    if (!parsed) {
+      protocol_error(parsed.error(), text);
+      return;
+    }
+    const Element& e = *parsed;
+    if (std::holds_alternative<Echo>(e)) {
+      write("< echo >");
+    } else if (const auto* open = std::get_if<Open>(&e)) {
+      if (state_ != State::no_bus) {
+        reply_error("a bus is already open in this session");
+        return;
+      }
+      auto ch = shared_->opener(open->bus, peer_);
+      if (!ch) {
+        ++shared_->stats.bus_open_failures;
+        reply_error("could not open bus");  // the daemon's words; it then closes the connection
+        close_after_write_ = true;
+        return;
+      }
+      channel_ = std::move(*ch);
+      channel_->set_receive_handler([this](const Frame& f, TimePoint t) { on_bus_frame(f, t); });
+      state_ = State::bcm;
+      write(ok_element);
+    } else if (const auto* mode = std::get_if<SwitchMode>(&e)) {
+      if (state_ == State::no_bus) {
+        reply_error("open a bus first: < open NAME >");
+      } else if (mode->mode == Mode::raw || mode->mode == Mode::bcm) {
+        state_ = mode->mode == Mode::raw ? State::raw : State::bcm;
+        write(ok_element);
+      } else {
+        reply_error("control and isotp modes are not supported by hilbridge");
+      }
+    } else if (const auto* send = std::get_if<Send>(&e)) {
+      if (state_ == State::no_bus) {
+        reply_error("open a bus first: < open NAME >");
+        return;
+      }
+      if (auto ec = channel_->send(send->frame)) {
+        ++shared_->stats.send_failures;
+        reply_error("send failed: " + ec.message());
+        return;
+      }
+      ++shared_->stats.frames_from_clients;
+    } else if (const auto* other = std::get_if<Other>(&e)) {
+      reply_error("command '" + other->command + "' is not supported by hilbridge (raw mode only)");
+    } else {
+      reply_error("unexpected element from a client");
+    }
+  }
+
+  void reply_error(std::string_view text) {
+    ++shared_->stats.protocol_errors;
+    std::string out;
+    format_error_text(out, text);
+    write(out);
+  }
+
+  void on_bus_frame(const Frame& f, TimePoint t) {
+    if (closed_ || state_ != State::raw) return;
+    if (f.rtr) {
+      ++shared_->stats.rtr_not_forwarded;
+      return;
+    }
+    if (pending_.size() >= shared_->options.max_output_bytes) {
+      ++shared_->stats.dropped_slow_client;
+      return;
+    }
+    if (format_rx_frame(pending_, f, shared_->options.to_wire_time(t))) ++shared_->stats.frames_to_clients;
+    flush();
+  }
+
+  void write(std::string_view text) {
+    pending_.append(text);
+    flush();
+  }
+
+  void flush() {
+    if (writing_ || closed_ || pending_.empty()) return;
+    writing_ = true;
+    outbox_.swap(pending_);
+    pending_.clear();
+    asio::async_write(socket_, asio::buffer(outbox_), [self = shared_from_this()](const std::error_code& ec, std::size_t) {
+      self->writing_ = false;
+      self->outbox_.clear();
+      if (self->closed_) return;
+      if (ec) {
+        self->close();
+        return;
+      }
+      if (self->close_after_write_ && self->pending_.empty()) {
+        self->close();
+        return;
+      }
+      self->flush();
+    });
+  }
+
+  asio::ip::tcp::socket socket_;
+  std::shared_ptr<Shared> shared_;
+  std::string peer_;
+  std::array<char, 4096> rx_{};
+  ElementSplitter splitter_;
+  State state_ = State::no_bus;
+  std::unique_ptr<Channel> channel_;
+  std::string pending_;
+  std::string outbox_;
+  bool writing_ = false;
+  bool closed_ = false;
+  bool close_after_write_ = false;
+};
+
+Server::Server(asio::any_io_executor executor, const Clock& clock, BusOpener opener, ServerOptions options)
+    : shared_(std::make_shared<Shared>(Shared{clock, std::move(opener), std::move(options), {}, {}, false})),
+      acceptor_(std::move(executor)) {
+  if (!shared_->options.to_wire_time) {
+    const auto offset = std::chrono::duration_cast<Duration>(std::chrono::system_clock::now().time_since_epoch()) -
+                        clock.now().time_since_epoch();
+    shared_->options.to_wire_time = [offset](TimePoint t) {
+      const auto ns = (t.time_since_epoch() + offset).count();
+      return Timestamp{ns / 1'000'000'000, static_cast<std::uint32_t>((ns % 1'000'000'000) / 1000)};
+    };
+  }
+}
+
+Server::~Server() { close(); }
+
+std::error_code Server::listen(const asio::ip::tcp::endpoint& endpoint) {
+  std::error_code ec;
+  acceptor_.open(endpoint.protocol(), ec);
+  if (ec) return ec;
+  acceptor_.set_option(asio::socket_base::reuse_address(true), ec);
+  acceptor_.bind(endpoint, ec);
+  if (ec) {
+    acceptor_.close();
+    return ec;
+  }
+  acceptor_.listen(asio::socket_base::max_listen_connections, ec);
+  if (ec) {
+    acceptor_.close();
+    return ec;
+  }
+  shared_->closed = false;
+  accept();
+  return {};
+}
+
+asio::ip::tcp::endpoint Server::local_endpoint() const {
+  std::error_code ec;
+  return acceptor_.local_endpoint(ec);
+}
+
+const ServerStats& Server::stats() const noexcept { return shared_->stats; }
+
+void Server::accept() {
+  acceptor_.async_accept([this, shared = shared_](const std::error_code& ec, asio::ip::tcp::socket socket) {
+    if (shared->closed || ec == asio::error::operation_aborted) return;  // `this` may be gone
+    if (!ec) {
+      std::erase_if(shared->sessions, [](const std::weak_ptr<Session>& w) { return w.expired(); });
+      if (shared->stats.active >= shared->options.max_clients) {
+        ++shared->stats.refused;
+        std::error_code ignored;
+        socket.write_some(asio::buffer(std::string_view("< error too many clients >")), ignored);
+        socket.close(ignored);
+      } else {
+        ++shared->stats.accepted;
+        auto session = std::make_shared<Session>(std::move(socket), shared);
+        shared->sessions.push_back(session);
+        session->start();
+      }
+    }
+    accept();
+  });
+}
+
+void Server::close() {
+  shared_->closed = true;
+  std::error_code ec;
+  acceptor_.close(ec);
+  for (auto& w : shared_->sessions)
+    if (auto s = w.lock()) s->close();
+  shared_->sessions.clear();
+}
+
+}  // namespace hil::can::socketcand
