@@ -150,6 +150,8 @@ TEST_F(AxisTest, RejectsNonsense) {
   make();
   enable();
   EXPECT_EQ(axis->move_absolute(std::nan("")), make_error_code(MotionFault::invalid_command));
+  EXPECT_EQ(axis->move_relative(1e300), make_error_code(MotionFault::invalid_command));
+  EXPECT_EQ(axis->move_absolute(-1e13), make_error_code(MotionFault::invalid_command));  // 1e16 increments
   EXPECT_EQ(axis->move_absolute(1.0, Direction::shortest, Limits{-1.0, 1.0, 1.0}), make_error_code(MotionFault::invalid_command));
   EXPECT_EQ(axis->move_velocity(101.0), make_error_code(MotionFault::invalid_command));
   EXPECT_EQ(axis->move_absolute(1.0, Direction::shortest, Limits{100.0, 1001.0, 20000.0}),

@@ -31,6 +31,9 @@ Limits upper(const Limits& a, const Limits& b) {
 
 constexpr int kHomingStartCycles = 10;
 
+// Positions and distances must stay far inside int64 increments (and exact in a double).
+bool in_range(double units, const Scaling& s) { return std::isfinite(units) && std::fabs(units * s.inc_per_unit()) < 1e15; }
+
 long long to_ms(hil::Duration d) { return std::chrono::duration_cast<std::chrono::milliseconds>(d).count(); }
 
 }  // namespace
@@ -172,7 +175,8 @@ std::error_code Axis::start_position(std::int64_t target_inc, const Limits& limi
 std::error_code Axis::move_absolute(double position, Direction direction, std::optional<Limits> limits) {
   if (auto ec = check_can_move()) return ec;
   const Limits lim = effective(limits);
-  if (!std::isfinite(position) || !valid_limits(lim, config_.limits)) return make_error_code(MotionFault::invalid_command);
+  if (!in_range(position, scaling_) || !valid_limits(lim, config_.limits))
+    return make_error_code(MotionFault::invalid_command);
   std::int64_t target = 0;
   if (config_.rotary) {
     const int dir = direction == Direction::positive ? 1 : direction == Direction::negative ? -1 : 0;
@@ -191,7 +195,8 @@ std::error_code Axis::move_absolute(double position, Direction direction, std::o
 std::error_code Axis::move_relative(double distance, std::optional<Limits> limits) {
   if (auto ec = check_can_move()) return ec;
   const Limits lim = effective(limits);
-  if (!std::isfinite(distance) || !valid_limits(lim, config_.limits)) return make_error_code(MotionFault::invalid_command);
+  if (!in_range(distance, scaling_) || !valid_limits(lim, config_.limits))
+    return make_error_code(MotionFault::invalid_command);
   const std::int64_t base = mode_ == Mode::position ? target_inc_ : cmd_inc_;
   double carry = mode_ == Mode::position || status_.state == AxisState::standstill ? relative_carry_inc_ : 0.0;
   const std::int64_t target = base + scaling_.delta_to_inc(distance, carry);

@@ -71,6 +71,7 @@ double Scaling::to_units(std::int64_t inc) const noexcept {
 std::int64_t Scaling::delta_to_inc(double distance, double& carry_inc) const noexcept {
   // Exact integer part via to_inc on the integer part of the distance; fraction via double.
   const double di = std::trunc(distance);
+  if (!std::isfinite(distance) || std::fabs(di) >= 9.0e18) return 0;  // callers reject these first
   const double df = distance - di;
   const i128 big = static_cast<i128>(static_cast<std::int64_t>(di)) * num_;
   const i128 q = big / den_;
