@@ -213,6 +213,26 @@ TEST(Replan, LowerLimitsWhileMovingEnterThemUnderTheOldOnes) {
   }
 }
 
+TEST(Replan, TargetJustBeyondTheBrakingPointSlowsWithoutStopping) {
+  const Limits l{1.0, 2.0, 10.0};
+  Profile decel;
+  plan_rest_to_rest(0.0, 3.0, l, decel);
+  const State s = decel.sample(decel.duration() - 0.4);  // braking: v > 0, a < 0
+  ASSERT_GT(s.v, 0.0);
+  ASSERT_LT(s.a, 0.0);
+  const double target = 3.05;  // a little beyond where it would stop
+  Profile p;
+  plan_position(s, target, l, p);
+  EXPECT_EQ(p.end().p, target);
+  const Sampled smp = sample_profile(p, p.duration());
+  expect_within(smp, l);
+  for (double t = kDt; t < p.duration() - kDt; t += kDt) ASSERT_GT(p.sample(t).v, 0.0) << t;  // never stops on the way
+  // Faster than braking to rest and starting again.
+  Profile stop_and_go;
+  plan_velocity(s, 0.0, l, stop_and_go);
+  EXPECT_LT(p.duration(), stop_and_go.duration() + rest_to_rest_duration(target - stop_and_go.end().p, l));
+}
+
 TEST(Replan, FromRestEqualsTimeOptimal) {
   const Limits l{1.0, 2.0, 10.0};
   Profile a, b;
