@@ -33,7 +33,7 @@ AxisConfig base_config() {
 }
 
 class AxisTest : public ::testing::Test {
-protected:
+ protected:
   void make(AxisConfig c = base_config()) {
     ASSERT_TRUE(validate(c).has_value()) << validate(c).error();
     auto d = std::make_unique<TestDrive>();
@@ -152,7 +152,8 @@ TEST_F(AxisTest, RejectsNonsense) {
   EXPECT_EQ(axis->move_absolute(std::nan("")), make_error_code(MotionFault::invalid_command));
   EXPECT_EQ(axis->move_relative(1e300), make_error_code(MotionFault::invalid_command));
   EXPECT_EQ(axis->move_absolute(-1e13), make_error_code(MotionFault::invalid_command));  // 1e16 increments
-  EXPECT_EQ(axis->move_absolute(1.0, Direction::shortest, Limits{-1.0, 1.0, 1.0}), make_error_code(MotionFault::invalid_command));
+  EXPECT_EQ(axis->move_absolute(1.0, Direction::shortest, Limits{-1.0, 1.0, 1.0}),
+            make_error_code(MotionFault::invalid_command));
   EXPECT_EQ(axis->move_velocity(101.0), make_error_code(MotionFault::invalid_command));
   EXPECT_EQ(axis->move_absolute(1.0, Direction::shortest, Limits{100.0, 1001.0, 20000.0}),
             make_error_code(MotionFault::invalid_command));  // above the machine's acceleration
@@ -515,15 +516,22 @@ TEST_F(AxisTest, RandomCommandStreamKeepsLimitsAndLandsExactly) {
   for (int k = 0; k < 400; ++k) {
     const int w = what(rng);
     std::error_code ec;
-    if (w <= 3) ec = axis->move_absolute(pos(rng));
-    else if (w == 4) ec = axis->move_relative(pos(rng) / 4);
-    else if (w == 5) ec = axis->move_velocity((u(rng) - 0.5) * 2 * l.velocity);
-    else if (w == 6) ec = axis->stop();
+    if (w <= 3)
+      ec = axis->move_absolute(pos(rng));
+    else if (w == 4)
+      ec = axis->move_relative(pos(rng) / 4);
+    else if (w == 5)
+      ec = axis->move_velocity((u(rng) - 0.5) * 2 * l.velocity);
+    else if (w == 6)
+      ec = axis->stop();
     else if (w == 7) {
       ec = axis->quick_stop();
       quick = true;
-    } else if (w == 8) ec = axis->move_absolute(pos(rng), Direction::shortest, Limits{l.velocity * (0.1 + 0.9 * u(rng)), l.acceleration / 2, l.jerk / 2});
-    else ec = axis->jog(u(rng) < 0.5 ? -1 : 1);
+    } else if (w == 8)
+      ec = axis->move_absolute(pos(rng), Direction::shortest,
+                               Limits{l.velocity * (0.1 + 0.9 * u(rng)), l.acceleration / 2, l.jerk / 2});
+    else
+      ec = axis->jog(u(rng) < 0.5 ? -1 : 1);
     ASSERT_TRUE(!ec || ec == make_error_code(MotionFault::software_limit)) << ec.message();
     for (int i = wait(rng); i > 0; --i) {
       cycle();

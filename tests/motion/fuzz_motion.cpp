@@ -95,23 +95,44 @@ void fuzz_axis(Reader& r) {
   axis.update({now, period});
   axis.enable();
   bool pushed = false;
-  double v_envelope = c.limits.velocity;  // highest velocity limit of any accepted move  // the actual position was moved behind the axis' back
+  double v_envelope = c.limits.velocity;  // highest velocity limit of any accepted move  // the actual position was
+                                          // moved behind the axis' back
   while (r.n > 0) {
     const std::uint8_t op = r.byte();
     std::optional<Limits> lim;
     if (op & 0x80) lim = Limits{r.raw(), r.raw(), r.raw()};
     std::error_code ec;
     switch (op & 0x0f) {
-      case 0: ec = axis.move_absolute(r.raw(), static_cast<Direction>(r.byte() % 3), lim); break;
-      case 1: ec = axis.move_relative(r.raw(), lim); break;
-      case 2: ec = axis.move_velocity(r.raw(), lim); break;
-      case 3: ec = axis.jog(static_cast<int>(r.byte() % 3) - 1); break;
-      case 4: ec = axis.stop(); break;
-      case 5: ec = axis.quick_stop(); break;
-      case 6: ec = axis.reset(); break;
-      case 7: ec = axis.enable(); break;
-      case 8: ec = axis.disable(); break;
-      case 9: ec = axis.home(); break;
+      case 0:
+        ec = axis.move_absolute(r.raw(), static_cast<Direction>(r.byte() % 3), lim);
+        break;
+      case 1:
+        ec = axis.move_relative(r.raw(), lim);
+        break;
+      case 2:
+        ec = axis.move_velocity(r.raw(), lim);
+        break;
+      case 3:
+        ec = axis.jog(static_cast<int>(r.byte() % 3) - 1);
+        break;
+      case 4:
+        ec = axis.stop();
+        break;
+      case 5:
+        ec = axis.quick_stop();
+        break;
+      case 6:
+        ec = axis.reset();
+        break;
+      case 7:
+        ec = axis.enable();
+        break;
+      case 8:
+        ec = axis.disable();
+        break;
+      case 9:
+        ec = axis.home();
+        break;
       case 10:
         d->follow = !d->follow;
         pushed = true;
@@ -120,7 +141,8 @@ void fuzz_axis(Reader& r) {
         d->position += static_cast<std::int8_t>(r.byte());
         pushed = true;
         break;
-      default: break;
+      default:
+        break;
     }
     if (g_trace) {
       std::fprintf(stderr, "op %d ec %d lim %s state %s\n", op & 0x0f, ec.value(), lim ? "custom" : "-",
@@ -149,7 +171,9 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   g_data = data;
   g_size = size;
   Reader r{data, size};
-  if (r.byte() & 1) fuzz_planner(r);
-  else fuzz_axis(r);
+  if (r.byte() & 1)
+    fuzz_planner(r);
+  else
+    fuzz_axis(r);
   return 0;
 }

@@ -91,8 +91,8 @@ TEST(RestToRest, RandomMovesRespectLimitsReachTargetAndAreTimeOptimal) {
     ASSERT_NEAR(rest_to_rest_duration(to - from, l), ref, 1e-9 * std::max(1.0, ref));
     if (ref > 60.0) continue;  // keep sampling cheap
     const Sampled s = sample_profile(p, p.duration());
-    SCOPED_TRACE(testing::Message() << "move " << i << " from " << from << " to " << to << " v " << l.velocity
-                                    << " a " << l.acceleration << " j " << l.jerk);
+    SCOPED_TRACE(testing::Message() << "move " << i << " from " << from << " to " << to << " v " << l.velocity << " a "
+                                    << l.acceleration << " j " << l.jerk);
     expect_within(s, l, true);
     // Sampled arrival: the first cycle at which the set-point is the target, within one cycle of the optimum.
     const auto arrival_cycle = static_cast<long>(std::ceil(p.duration() / kDt - 1e-9));
@@ -126,7 +126,7 @@ TEST(RestToRest, TrapezoidWhenJerkInfinite) {
   const Sampled s = sample_profile(p, p.duration());
   expect_within(s, l, false);
   EXPECT_NEAR(p.sample(0.25).v, 1.0, 1e-12);  // a = 4 from t = 0
-  plan_rest_to_rest(0.0, 0.25, l, p);          // triangle: vp = sqrt(d A) = 1
+  plan_rest_to_rest(0.0, 0.25, l, p);         // triangle: vp = sqrt(d A) = 1
   EXPECT_NEAR(p.duration(), 0.5, 1e-12);
 }
 
@@ -154,7 +154,8 @@ TEST(Replan, NewTargetWhileMovingRespectsLimitsAndEndsExactly) {
     const double target = i % 2 ? pos(rng) : sp + (frac(rng) - 0.5) * 0.2 * std::fabs(sp - s.p);
     Profile p;
     plan_position(s, target, l, p);
-    SCOPED_TRACE(testing::Message() << "case " << i << " p " << s.p << " v " << s.v << " a " << s.a << " -> " << target);
+    SCOPED_TRACE(testing::Message() << "case " << i << " p " << s.p << " v " << s.v << " a " << s.a << " -> "
+                                    << target);
     ASSERT_TRUE(std::isfinite(p.duration()));
     if (p.duration() > 80.0) continue;
     const Sampled smp = sample_profile(p, p.duration());
@@ -187,8 +188,10 @@ TEST(Replan, LowerLimitsWhileMovingEnterThemUnderTheOldOnes) {
     const Limits new_l{old_l.velocity * k(rng), old_l.acceleration * k(rng), old_l.jerk * k(rng)};
     Profile p;
     const double target = pos(rng);
-    if (i % 2) plan_position(s, target, new_l, old_l, p);
-    else plan_velocity(s, (k(rng) - 0.55) * 2 * new_l.velocity, new_l, old_l, p);
+    if (i % 2)
+      plan_position(s, target, new_l, old_l, p);
+    else
+      plan_velocity(s, (k(rng) - 0.55) * 2 * new_l.velocity, new_l, old_l, p);
     SCOPED_TRACE(testing::Message() << "case " << i);
     // Never beyond the old limits; once the acceleration is back inside the new limit and the
     // velocity too, never beyond the new ones again.

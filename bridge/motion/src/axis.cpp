@@ -32,9 +32,13 @@ Limits upper(const Limits& a, const Limits& b) {
 constexpr int kHomingStartCycles = 10;
 
 // Positions and distances must stay far inside int64 increments (and exact in a double).
-bool in_range(double units, const Scaling& s) { return std::isfinite(units) && std::fabs(units * s.inc_per_unit()) < 1e15; }
+bool in_range(double units, const Scaling& s) {
+  return std::isfinite(units) && std::fabs(units * s.inc_per_unit()) < 1e15;
+}
 
-long long to_ms(hil::Duration d) { return std::chrono::duration_cast<std::chrono::milliseconds>(d).count(); }
+long long to_ms(hil::Duration d) {
+  return std::chrono::duration_cast<std::chrono::milliseconds>(d).count();
+}
 
 }  // namespace
 
@@ -46,15 +50,19 @@ Axis::Axis(AxisConfig config, hil::DrivePtr drive)
   entry_limits_ = config_.limits;
   if (auto ok = validate(config_); !ok) {
     status_.state = AxisState::error;
-    status_.fault = hil::Fault{make_error_code(MotionFault::invalid_command), "invalid axis configuration: " + ok.error()};
+    status_.fault =
+        hil::Fault{make_error_code(MotionFault::invalid_command), "invalid axis configuration: " + ok.error()};
   }
   if (!drive_) {
     status_.state = AxisState::error;
-    status_.fault = hil::Fault{make_error_code(MotionFault::drive_lost), fmt::format("axis '{}': no drive", config_.name)};
+    status_.fault =
+        hil::Fault{make_error_code(MotionFault::drive_lost), fmt::format("axis '{}': no drive", config_.name)};
   }
 }
 
-Limits Axis::effective(const std::optional<Limits>& limits) const { return limits ? *limits : config_.limits; }
+Limits Axis::effective(const std::optional<Limits>& limits) const {
+  return limits ? *limits : config_.limits;
+}
 
 Limits Axis::quick_stop_limits() const {
   Limits l = config_.limits;
@@ -68,11 +76,14 @@ std::error_code Axis::check_can_move() const {
   switch (status_.state) {
     case AxisState::standstill:
     case AxisState::moving:
-    case AxisState::stopping: return {};
+    case AxisState::stopping:
+      return {};
     case AxisState::disabled:
-    case AxisState::enabling: return make_error_code(MotionFault::not_enabled);
+    case AxisState::enabling:
+      return make_error_code(MotionFault::not_enabled);
     case AxisState::homing:
-    case AxisState::error: return make_error_code(MotionFault::invalid_command);
+    case AxisState::error:
+      return make_error_code(MotionFault::invalid_command);
   }
   return make_error_code(MotionFault::invalid_command);
 }
@@ -82,9 +93,12 @@ std::error_code Axis::check_can_move() const {
 std::error_code Axis::enable() {
   if (!drive_) return make_error_code(MotionFault::drive_lost);
   switch (status_.state) {
-    case AxisState::disabled: break;
-    case AxisState::error: return make_error_code(MotionFault::invalid_command);
-    default: return {};
+    case AxisState::disabled:
+      break;
+    case AxisState::error:
+      return make_error_code(MotionFault::invalid_command);
+    default:
+      return {};
   }
   if (!drive_->request(hil::DriveRequest::enable)) return make_error_code(MotionFault::not_enabled);
   status_.state = AxisState::enabling;
@@ -202,7 +216,8 @@ std::error_code Axis::move_relative(double distance, std::optional<Limits> limit
   const std::int64_t target = base + scaling_.delta_to_inc(distance, carry);
   if (!config_.rotary) {
     const double t = scaling_.to_units(target);
-    if ((config_.soft_limit_max && t > *config_.soft_limit_max) || (config_.soft_limit_min && t < *config_.soft_limit_min))
+    if ((config_.soft_limit_max && t > *config_.soft_limit_max) ||
+        (config_.soft_limit_min && t < *config_.soft_limit_min))
       return make_error_code(MotionFault::software_limit);
   }
   if (auto ec = start_position(target, lim)) return ec;
@@ -276,7 +291,8 @@ std::error_code Axis::stop() {
     case AxisState::homing:
       drive_->request(hil::DriveRequest::quick_stop);
       return {};
-    default: return {};  // at rest, disabled, or already braking in error
+    default:
+      return {};  // at rest, disabled, or already braking in error
   }
 }
 
@@ -293,7 +309,8 @@ std::error_code Axis::quick_stop() {
     case AxisState::homing:
       drive_->request(hil::DriveRequest::quick_stop);
       return {};
-    default: return {};
+    default:
+      return {};
   }
 }
 
@@ -314,8 +331,12 @@ void Axis::react_to_fault() {
     return;
   }
   switch (config_.reaction) {
-    case FaultReaction::quick_stop: plan_stop(quick_stop_limits(), Mode::stopping); break;
-    case FaultReaction::stop: plan_stop(active_limits_, Mode::stopping); break;
+    case FaultReaction::quick_stop:
+      plan_stop(quick_stop_limits(), Mode::stopping);
+      break;
+    case FaultReaction::stop:
+      plan_stop(active_limits_, Mode::stopping);
+      break;
     case FaultReaction::disable:
       drive_->request(hil::DriveRequest::disable);
       hold_at_actual();
@@ -365,7 +386,8 @@ void Axis::finish_profile() {
   if (done == Mode::velocity_to_limit) {
     raise(make_error_code(MotionFault::software_limit),
           fmt::format("axis '{}': {} software limit {:.6g} reached; axis stopped on the limit (reset, then move back)",
-                      config_.name, config_.soft_limit_max && limit_target_ == *config_.soft_limit_max ? "positive" : "negative",
+                      config_.name,
+                      config_.soft_limit_max && limit_target_ == *config_.soft_limit_max ? "positive" : "negative",
                       limit_target_));
   }
 }
@@ -418,7 +440,9 @@ CycleResult Axis::update(const hil::CycleTime& cycle) {
   }
 
   switch (status_.state) {
-    case AxisState::disabled: hold_at_actual(); break;
+    case AxisState::disabled:
+      hold_at_actual();
+      break;
     case AxisState::enabling:
       hold_at_actual();
       if (fb.state == hil::DriveState::operation_enabled) {
@@ -449,14 +473,18 @@ CycleResult Axis::update(const hil::CycleTime& cycle) {
         }
       }
       break;
-    default: step_trajectory(cycle); break;
+    default:
+      step_trajectory(cycle);
+      break;
   }
 
   // Backlash: after a reversal of the commanded motion the drive command carries -backlash
   // (negative approach) or 0 (positive approach), slewed at limits.velocity.
   if (config_.backlash > 0.0) {
-    if (cmd_v_ > 1e-9) backlash_goal_ = 0.0;
-    else if (cmd_v_ < -1e-9) backlash_goal_ = -config_.backlash;
+    if (cmd_v_ > 1e-9)
+      backlash_goal_ = 0.0;
+    else if (cmd_v_ < -1e-9)
+      backlash_goal_ = -config_.backlash;
     const double dt = std::max(0.0, hil::to_seconds(cycle.now - last_now_));
     const double step = config_.limits.velocity * std::max(dt, hil::to_seconds(cycle.period));
     backlash_offset_ += std::clamp(backlash_goal_ - backlash_offset_, -step, step);
@@ -468,7 +496,8 @@ CycleResult Axis::update(const hil::CycleTime& cycle) {
   status_.following_error = fe;
   const AxisState now_state = status_.state;
   if (now_state == AxisState::standstill || now_state == AxisState::moving || now_state == AxisState::stopping) {
-    const std::int64_t tgt = profile_active_ && mode_ == Mode::velocity ? drive_cmd : target_inc_ + (drive_cmd - cmd_inc_);
+    const std::int64_t tgt =
+        profile_active_ && mode_ == Mode::velocity ? drive_cmd : target_inc_ + (drive_cmd - cmd_inc_);
     const double target_error = static_cast<double>(tgt - fb.position_inc) * upi;
     hil::Fault f = supervisor_.check(config_, fe, programmed_feed_, profile_active_, target_error, cycle.now);
     if (f) {

@@ -44,7 +44,8 @@ void append_position(Profile& out, double target, const Limits& limits) noexcept
   const double dn = dir * (target - from.p);
   // D(vc): normalised distance of ramp to dir*vc and back to rest, no cruise.
   const auto distance = [&](double vc) {
-    return dir * (plan_ramp(from.v, from.a, dir * vc, limits).distance + plan_ramp(dir * vc, 0.0, 0.0, limits).distance);
+    return dir *
+           (plan_ramp(from.v, from.a, dir * vc, limits).distance + plan_ramp(dir * vc, 0.0, 0.0, limits).distance);
   };
   const double vn = dir * from.v, an = dir * from.a;
   const double v_stop = limits.jerk_limited() ? vn + an * std::fabs(an) / (2.0 * limits.jerk) : vn;
@@ -123,7 +124,8 @@ void plan_velocity(const State& from, double velocity, const Limits& limits, Pro
   plan_velocity(from, velocity, limits, limits, out);
 }
 
-void plan_velocity(const State& from, double velocity, const Limits& limits, const Limits& entry, Profile& out) noexcept {
+void plan_velocity(const State& from, double velocity, const Limits& limits, const Limits& entry,
+                   Profile& out) noexcept {
   const double v1 = std::clamp(velocity, -limits.velocity, limits.velocity);
   out.reset(from);
   append_entry(out, limits, entry);

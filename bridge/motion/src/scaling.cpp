@@ -105,8 +105,8 @@ std::int64_t Scaling::rotary_step(std::int64_t from_inc, double target_units, in
   } else if (direction < 0) {
     if (step > 0) step -= turn;
   } else {
-    if (step < 0) step += turn;            // [0, turn)
-    if (2 * step > turn) step -= turn;     // (-turn/2, turn/2]; a tie goes positive
+    if (step < 0) step += turn;         // [0, turn)
+    if (2 * step > turn) step -= turn;  // (-turn/2, turn/2]; a tie goes positive
   }
   return step;
 }

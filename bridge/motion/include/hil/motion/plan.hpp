@@ -31,7 +31,8 @@ void plan_velocity(const State& from, double velocity, const Limits& limits, Pro
 /// the new velocity), first bring a to zero under `entry` (the higher limits the state was
 /// planned with), velocity clamped into the new limit, then continue under `limits`.
 void plan_position(const State& from, double target, const Limits& limits, const Limits& entry, Profile& out) noexcept;
-void plan_velocity(const State& from, double velocity, const Limits& limits, const Limits& entry, Profile& out) noexcept;
+void plan_velocity(const State& from, double velocity, const Limits& limits, const Limits& entry,
+                   Profile& out) noexcept;
 /// Where a stop under `limits` (entered under `entry`) comes to rest.
 [[nodiscard]] double stop_position(const State& from, const Limits& limits, const Limits& entry) noexcept;
 
