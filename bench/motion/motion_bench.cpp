@@ -62,7 +62,7 @@ BENCHMARK(BM_PlanFromMotion);
 
 // The drive does nothing but report the command back (ideal, instant).
 class EchoDrive final : public hil::Drive {
-public:
+ public:
   std::string_view name() const noexcept override { return "echo"; }
   hil::DriveCapabilities capabilities() const noexcept override { return {}; }
   void read(const hil::CycleTime&) override {}
@@ -76,7 +76,7 @@ public:
     return true;
   }
 
-private:
+ private:
   hil::DriveFeedback fb_;
 };
 

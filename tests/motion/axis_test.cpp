@@ -6,6 +6,7 @@
 
 #include <cmath>
 #include <memory>
+#include <random>
 
 #include "hil/motion/axis.hpp"
 #include "hil/motion/plan.hpp"
@@ -32,7 +33,7 @@ AxisConfig base_config() {
 }
 
 class AxisTest : public ::testing::Test {
-protected:
+ protected:
   void make(AxisConfig c = base_config()) {
     ASSERT_TRUE(validate(c).has_value()) << validate(c).error();
     auto d = std::make_unique<TestDrive>();
@@ -131,12 +132,33 @@ TEST_F(AxisTest, MoveAbsoluteReachesTargetExactlyInIncrementsWithinLimits) {
   EXPECT_NEAR(n * 0.001, t_opt, 0.0015);
 }
 
+TEST_F(AxisTest, TrapezoidalAxis) {
+  AxisConfig c = base_config();
+  c.limits.jerk = std::numeric_limits<double>::infinity();
+  make(c);
+  enable();
+  reset_maxima();
+  ASSERT_FALSE(axis->move_absolute(-7.5));
+  const int n = settle();
+  EXPECT_LE(max_v, c.limits.velocity * (1 + 1e-9));
+  EXPECT_LE(max_a, c.limits.acceleration * (1 + 1e-9));
+  EXPECT_EQ(drive->written(), -7500);
+  EXPECT_NEAR(n * 0.001, 7.5 / 100.0 + 100.0 / 1000.0, 0.0015);  // cruise + one ramp time
+}
+
 TEST_F(AxisTest, RejectsNonsense) {
   make();
   enable();
   EXPECT_EQ(axis->move_absolute(std::nan("")), make_error_code(MotionFault::invalid_command));
-  EXPECT_EQ(axis->move_absolute(1.0, Direction::shortest, Limits{-1.0, 1.0, 1.0}), make_error_code(MotionFault::invalid_command));
+  EXPECT_EQ(axis->move_relative(1e300), make_error_code(MotionFault::invalid_command));
+  EXPECT_EQ(axis->move_absolute(-1e13), make_error_code(MotionFault::invalid_command));  // 1e16 increments
+  EXPECT_EQ(axis->move_absolute(1.0, Direction::shortest, Limits{-1.0, 1.0, 1.0}),
+            make_error_code(MotionFault::invalid_command));
   EXPECT_EQ(axis->move_velocity(101.0), make_error_code(MotionFault::invalid_command));
+  EXPECT_EQ(axis->move_absolute(1.0, Direction::shortest, Limits{100.0, 1001.0, 20000.0}),
+            make_error_code(MotionFault::invalid_command));  // above the machine's acceleration
+  EXPECT_EQ(axis->move_relative(1.0, Limits{100.0, 1000.0, std::numeric_limits<double>::infinity()}),
+            make_error_code(MotionFault::invalid_command));  // trapezoid on a jerk-limited axis
   EXPECT_EQ(axis->jog(2), make_error_code(MotionFault::invalid_command));
   AxisConfig bad = base_config();
   bad.limits.jerk = -1;
@@ -476,6 +498,61 @@ TEST_F(AxisTest, VelocityMoveAndJog) {
   expect_limits(axis->config().limits);
   EXPECT_EQ(axis->status().state, AxisState::standstill);
   EXPECT_TRUE(axis->status().in_position);
+}
+
+TEST_F(AxisTest, RandomCommandStreamKeepsLimitsAndLandsExactly) {
+  AxisConfig c = base_config();
+  c.soft_limit_min = -200.0;
+  c.soft_limit_max = 200.0;
+  make(c);
+  enable();
+  std::mt19937_64 rng(31337);
+  std::uniform_real_distribution<double> pos(-200.0, 200.0), u(0.0, 1.0);
+  std::uniform_int_distribution<int> wait(1, 400), what(0, 9);
+  const Limits& l = c.limits;
+  const double qs_jerk = l.jerk * c.quick_stop_deceleration / l.acceleration;
+  double worst_v = 0, worst_a = 0, worst_j = 0;
+  bool quick = false;
+  for (int k = 0; k < 400; ++k) {
+    const int w = what(rng);
+    std::error_code ec;
+    if (w <= 3)
+      ec = axis->move_absolute(pos(rng));
+    else if (w == 4)
+      ec = axis->move_relative(pos(rng) / 4);
+    else if (w == 5)
+      ec = axis->move_velocity((u(rng) - 0.5) * 2 * l.velocity);
+    else if (w == 6)
+      ec = axis->stop();
+    else if (w == 7) {
+      ec = axis->quick_stop();
+      quick = true;
+    } else if (w == 8)
+      ec = axis->move_absolute(pos(rng), Direction::shortest,
+                               Limits{l.velocity * (0.1 + 0.9 * u(rng)), l.acceleration / 2, l.jerk / 2});
+    else
+      ec = axis->jog(u(rng) < 0.5 ? -1 : 1);
+    ASSERT_TRUE(!ec || ec == make_error_code(MotionFault::software_limit)) << ec.message();
+    for (int i = wait(rng); i > 0; --i) {
+      cycle();
+      ASSERT_LE(std::fabs(axis->status().command_position), 200.0 + 1e-9);
+      if (axis->status().state == AxisState::error) {
+        ASSERT_EQ(axis->status().fault.code, make_error_code(MotionFault::software_limit)) << axis->status().fault.text;
+        settle();
+        ASSERT_FALSE(axis->reset());
+      }
+    }
+    worst_v = std::max(worst_v, max_v);
+    worst_a = std::max(worst_a, max_a);
+    worst_j = std::max(worst_j, max_j);
+    reset_maxima();
+  }
+  EXPECT_LE(worst_v, l.velocity * (1 + 1e-9));
+  EXPECT_LE(worst_a, (quick ? c.quick_stop_deceleration : l.acceleration) * (1 + 1e-9));
+  EXPECT_LE(worst_j, (quick ? qs_jerk : l.jerk) * (1 + 1e-6));
+  ASSERT_FALSE(axis->move_absolute(123.456));
+  settle();
+  EXPECT_EQ(drive->written(), 123456);
 }
 
 }  // namespace

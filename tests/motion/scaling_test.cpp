@@ -34,9 +34,9 @@ TEST(Scaling, RoundsHalfAwayFromZero) {
   const Scaling s({1, 2}, false, 0.0);  // 0.5 inc per unit
   EXPECT_EQ(s.to_inc(1.0), 1);          // 0.5 -> 1
   EXPECT_EQ(s.to_inc(-1.0), -1);
-  EXPECT_EQ(s.to_inc(3.0), 2);          // 1.5 -> 2
+  EXPECT_EQ(s.to_inc(3.0), 2);  // 1.5 -> 2
   EXPECT_EQ(s.to_inc(-3.0), -2);
-  EXPECT_EQ(s.to_inc(2.9), 1);          // 1.45 -> 1
+  EXPECT_EQ(s.to_inc(2.9), 1);  // 1.45 -> 1
   EXPECT_EQ(s.to_units(3), 6.0);
 }
 
@@ -74,16 +74,16 @@ TEST(Scaling, RotaryWrapAndDisplay) {
 
 TEST(Scaling, RotaryDirections) {
   const Scaling s({10, 1}, true, 360.0);
-  const std::int64_t at350 = 3500 + 3600 * 2;  // two turns on, showing 350
-  EXPECT_EQ(s.rotary_step(at350, 10.0, 0), 200);     // shortest: +20 degrees
-  EXPECT_EQ(s.rotary_step(at350, 10.0, 1), 200);     // positive: +20
-  EXPECT_EQ(s.rotary_step(at350, 10.0, -1), -3400);  // negative: -340
-  EXPECT_EQ(s.rotary_step(100, 350.0, 0), -200);     // 10 -> 350 shortest: -20
-  EXPECT_EQ(s.rotary_step(100, 350.0, 1), 3400);     // positive: +340
-  EXPECT_EQ(s.rotary_step(0, 180.0, 0), 1800);       // tie goes positive
-  EXPECT_EQ(s.rotary_step(0, 720.0 + 90.0, 0), 900); // target taken modulo
+  const std::int64_t at350 = 3500 + 3600 * 2;         // two turns on, showing 350
+  EXPECT_EQ(s.rotary_step(at350, 10.0, 0), 200);      // shortest: +20 degrees
+  EXPECT_EQ(s.rotary_step(at350, 10.0, 1), 200);      // positive: +20
+  EXPECT_EQ(s.rotary_step(at350, 10.0, -1), -3400);   // negative: -340
+  EXPECT_EQ(s.rotary_step(100, 350.0, 0), -200);      // 10 -> 350 shortest: -20
+  EXPECT_EQ(s.rotary_step(100, 350.0, 1), 3400);      // positive: +340
+  EXPECT_EQ(s.rotary_step(0, 180.0, 0), 1800);        // tie goes positive
+  EXPECT_EQ(s.rotary_step(0, 720.0 + 90.0, 0), 900);  // target taken modulo
   EXPECT_EQ(s.rotary_step(0, -90.0, 0), -900);
-  EXPECT_EQ(s.rotary_step(0, 0.0, 1), 0);            // already there: no full turn
+  EXPECT_EQ(s.rotary_step(0, 0.0, 1), 0);  // already there: no full turn
 }
 
 }  // namespace

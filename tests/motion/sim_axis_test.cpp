@@ -17,7 +17,7 @@ namespace {
 using std::chrono::milliseconds;
 
 class SimAxis : public ::testing::Test {
-protected:
+ protected:
   void SetUp() override {
     AxisConfig c;
     c.name = "sim_x";
@@ -74,15 +74,18 @@ TEST_F(SimAxis, RandomMovesAndRetargetsOnThePlant) {
     ASSERT_FALSE(axis->move_absolute(target)) << move;
     if (move % 3 == 0) {  // re-target while moving
       for (int i = wait(rng); i > 0; --i) cycle();
-      if (axis->status().state == AxisState::moving) ASSERT_FALSE(axis->move_absolute(pos(rng)));
-      else ASSERT_EQ(axis->status().state, AxisState::standstill);
+      if (axis->status().state == AxisState::moving)
+        ASSERT_FALSE(axis->move_absolute(pos(rng)));
+      else
+        ASSERT_EQ(axis->status().state, AxisState::standstill);
     }
     int n = 0;
     while ((axis->status().busy || !axis->status().in_position) && n++ < 20000) cycle();
     ASSERT_EQ(axis->status().state, AxisState::standstill) << axis->status().fault.describe();
     ASSERT_TRUE(axis->status().in_position);
     // Exact target in increments at the drive.
-    EXPECT_EQ(axis->status().command_position, axis->scaling().to_units(axis->scaling().to_inc(axis->status().command_position)));
+    EXPECT_EQ(axis->status().command_position,
+              axis->scaling().to_units(axis->scaling().to_inc(axis->status().command_position)));
   }
   EXPECT_GT(now.time_since_epoch(), std::chrono::seconds(60));  // ~100k cycles of virtual time
   EXPECT_LE(max_v, l.velocity * (1 + 1e-9));

@@ -12,15 +12,15 @@
 namespace hil::motion::test {
 
 class TestDrive final : public hil::Drive {
-public:
-  int enable_cycles = 2;          ///< write() calls from request(enable) to operation_enabled
+ public:
+  int enable_cycles = 2;  ///< write() calls from request(enable) to operation_enabled
   bool never_enable = false;
   bool homing_supported = true;
   int homing_cycles = 5;
-  bool follow = true;             ///< actual := command written `lag` cycles ago, minus `offset`
+  bool follow = true;  ///< actual := command written `lag` cycles ago, minus `offset`
   std::size_t lag = 0;
   std::int64_t offset = 0;
-  std::int64_t position = 0;      ///< actual, increments
+  std::int64_t position = 0;  ///< actual, increments
   hil::Duration age{};
   hil::Fault fault;
   std::vector<hil::DriveCommand> commands;
@@ -61,8 +61,11 @@ public:
       case hil::DriveRequest::enable:
         if (!never_enable) enable_left_ = enable_cycles;
         return true;
-      case hil::DriveRequest::disable: state_ = hil::DriveState::switch_on_disabled; return true;
-      case hil::DriveRequest::quick_stop: return true;
+      case hil::DriveRequest::disable:
+        state_ = hil::DriveState::switch_on_disabled;
+        return true;
+      case hil::DriveRequest::quick_stop:
+        return true;
       case hil::DriveRequest::fault_reset:
         fault = {};
         state_ = hil::DriveState::switch_on_disabled;
@@ -77,7 +80,7 @@ public:
   /// The command the axis wrote `back` cycles ago (0 = last).
   std::int64_t written(std::size_t back = 0) const { return commands[commands.size() - 1 - back].position_inc; }
 
-private:
+ private:
   hil::DriveFeedback fb_;
   hil::DriveState state_ = hil::DriveState::switch_on_disabled;
   int enable_left_ = 0;

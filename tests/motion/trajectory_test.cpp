@@ -91,8 +91,8 @@ TEST(RestToRest, RandomMovesRespectLimitsReachTargetAndAreTimeOptimal) {
     ASSERT_NEAR(rest_to_rest_duration(to - from, l), ref, 1e-9 * std::max(1.0, ref));
     if (ref > 60.0) continue;  // keep sampling cheap
     const Sampled s = sample_profile(p, p.duration());
-    SCOPED_TRACE(testing::Message() << "move " << i << " from " << from << " to " << to << " v " << l.velocity
-                                    << " a " << l.acceleration << " j " << l.jerk);
+    SCOPED_TRACE(testing::Message() << "move " << i << " from " << from << " to " << to << " v " << l.velocity << " a "
+                                    << l.acceleration << " j " << l.jerk);
     expect_within(s, l, true);
     // Sampled arrival: the first cycle at which the set-point is the target, within one cycle of the optimum.
     const auto arrival_cycle = static_cast<long>(std::ceil(p.duration() / kDt - 1e-9));
@@ -126,7 +126,7 @@ TEST(RestToRest, TrapezoidWhenJerkInfinite) {
   const Sampled s = sample_profile(p, p.duration());
   expect_within(s, l, false);
   EXPECT_NEAR(p.sample(0.25).v, 1.0, 1e-12);  // a = 4 from t = 0
-  plan_rest_to_rest(0.0, 0.25, l, p);          // triangle: vp = sqrt(d A) = 1
+  plan_rest_to_rest(0.0, 0.25, l, p);         // triangle: vp = sqrt(d A) = 1
   EXPECT_NEAR(p.duration(), 0.5, 1e-12);
 }
 
@@ -154,7 +154,8 @@ TEST(Replan, NewTargetWhileMovingRespectsLimitsAndEndsExactly) {
     const double target = i % 2 ? pos(rng) : sp + (frac(rng) - 0.5) * 0.2 * std::fabs(sp - s.p);
     Profile p;
     plan_position(s, target, l, p);
-    SCOPED_TRACE(testing::Message() << "case " << i << " p " << s.p << " v " << s.v << " a " << s.a << " -> " << target);
+    SCOPED_TRACE(testing::Message() << "case " << i << " p " << s.p << " v " << s.v << " a " << s.a << " -> "
+                                    << target);
     ASSERT_TRUE(std::isfinite(p.duration()));
     if (p.duration() > 80.0) continue;
     const Sampled smp = sample_profile(p, p.duration());
@@ -176,6 +177,63 @@ TEST(Replan, NewTargetWhileMovingRespectsLimitsAndEndsExactly) {
       prev = now;
     }
   }
+}
+
+TEST(Replan, LowerLimitsWhileMovingEnterThemUnderTheOldOnes) {
+  std::mt19937_64 rng(11);
+  std::uniform_real_distribution<double> pos(-100.0, 100.0), k(0.1, 1.0);
+  for (int i = 0; i < 2000; ++i) {
+    const Limits old_l = random_limits(rng, true);
+    const State s = random_state(rng, old_l);
+    const Limits new_l{old_l.velocity * k(rng), old_l.acceleration * k(rng), old_l.jerk * k(rng)};
+    Profile p;
+    const double target = pos(rng);
+    if (i % 2)
+      plan_position(s, target, new_l, old_l, p);
+    else
+      plan_velocity(s, (k(rng) - 0.55) * 2 * new_l.velocity, new_l, old_l, p);
+    SCOPED_TRACE(testing::Message() << "case " << i);
+    // Never beyond the old limits; once the acceleration is back inside the new limit and the
+    // velocity too, never beyond the new ones again.
+    std::size_t h = 0;
+    bool inside = false;
+    State prev = p.sample(0.0, h);
+    for (double t = kDt; t < p.duration() + 2 * kDt; t += kDt) {
+      const State st = p.sample(t, h);
+      ASSERT_LE(std::fabs(st.v), old_l.velocity * (1 + 1e-9));
+      ASSERT_LE(std::fabs(st.a), old_l.acceleration * (1 + 1e-9));
+      ASSERT_LE(std::fabs(st.a - prev.a) / kDt, old_l.jerk * (1 + 1e-6));
+      if (inside) {
+        ASSERT_LE(std::fabs(st.v), new_l.velocity * (1 + 1e-9));
+        ASSERT_LE(std::fabs(st.a), new_l.acceleration * (1 + 1e-9));
+      }
+      if (std::fabs(st.a) <= 1e-9 && std::fabs(st.v) <= new_l.velocity * (1 + 1e-9)) inside = true;
+      prev = st;
+    }
+    if (i % 2) {
+      EXPECT_EQ(p.end().p, target);
+    }
+  }
+}
+
+TEST(Replan, TargetJustBeyondTheBrakingPointSlowsWithoutStopping) {
+  const Limits l{1.0, 2.0, 10.0};
+  Profile decel;
+  plan_rest_to_rest(0.0, 3.0, l, decel);
+  const State s = decel.sample(decel.duration() - 0.4);  // braking: v > 0, a < 0
+  ASSERT_GT(s.v, 0.0);
+  ASSERT_LT(s.a, 0.0);
+  const double target = 3.05;  // a little beyond where it would stop
+  Profile p;
+  plan_position(s, target, l, p);
+  EXPECT_EQ(p.end().p, target);
+  const Sampled smp = sample_profile(p, p.duration());
+  expect_within(smp, l);
+  for (double t = kDt; t < p.duration() - kDt; t += kDt) ASSERT_GT(p.sample(t).v, 0.0) << t;  // never stops on the way
+  // Faster than braking to rest and starting again.
+  Profile stop_and_go;
+  plan_velocity(s, 0.0, l, stop_and_go);
+  EXPECT_LT(p.duration(), stop_and_go.duration() + rest_to_rest_duration(target - stop_and_go.end().p, l));
 }
 
 TEST(Replan, FromRestEqualsTimeOptimal) {

@@ -13,9 +13,11 @@
 namespace hil::motion {
 namespace {
 
-bool valid_limits(const Limits& l) {
+// A move's own limits may only lower the configured (machine) limits.
+bool valid_limits(const Limits& l, const Limits& machine) {
   return std::isfinite(l.velocity) && l.velocity > 0 && std::isfinite(l.acceleration) && l.acceleration > 0 &&
-         l.jerk > 0;
+         l.jerk > 0 && l.velocity <= machine.velocity && l.acceleration <= machine.acceleration &&
+         l.jerk <= machine.jerk && (l.jerk_limited() || !machine.jerk_limited());
 }
 
 bool drive_faulted(const hil::DriveFeedback& fb) {
@@ -27,7 +29,16 @@ Limits upper(const Limits& a, const Limits& b) {
   return Limits{std::max(a.velocity, b.velocity), std::max(a.acceleration, b.acceleration), std::max(a.jerk, b.jerk)};
 }
 
-long long to_ms(hil::Duration d) { return std::chrono::duration_cast<std::chrono::milliseconds>(d).count(); }
+constexpr int kHomingStartCycles = 10;
+
+// Positions and distances must stay far inside int64 increments (and exact in a double).
+bool in_range(double units, const Scaling& s) {
+  return std::isfinite(units) && std::fabs(units * s.inc_per_unit()) < 1e15;
+}
+
+long long to_ms(hil::Duration d) {
+  return std::chrono::duration_cast<std::chrono::milliseconds>(d).count();
+}
 
 }  // namespace
 
@@ -36,17 +47,22 @@ Axis::Axis(AxisConfig config, hil::DrivePtr drive)
       drive_(std::move(drive)),
       scaling_(config_.inc_per_unit, config_.rotary, config_.modulo) {
   active_limits_ = config_.limits;
+  entry_limits_ = config_.limits;
   if (auto ok = validate(config_); !ok) {
     status_.state = AxisState::error;
-    status_.fault = hil::Fault{make_error_code(MotionFault::invalid_command), "invalid axis configuration: " + ok.error()};
+    status_.fault =
+        hil::Fault{make_error_code(MotionFault::invalid_command), "invalid axis configuration: " + ok.error()};
   }
   if (!drive_) {
     status_.state = AxisState::error;
-    status_.fault = hil::Fault{make_error_code(MotionFault::drive_lost), fmt::format("axis '{}': no drive", config_.name)};
+    status_.fault =
+        hil::Fault{make_error_code(MotionFault::drive_lost), fmt::format("axis '{}': no drive", config_.name)};
   }
 }
 
-Limits Axis::effective(const std::optional<Limits>& limits) const { return limits ? *limits : config_.limits; }
+Limits Axis::effective(const std::optional<Limits>& limits) const {
+  return limits ? *limits : config_.limits;
+}
 
 Limits Axis::quick_stop_limits() const {
   Limits l = config_.limits;
@@ -60,11 +76,14 @@ std::error_code Axis::check_can_move() const {
   switch (status_.state) {
     case AxisState::standstill:
     case AxisState::moving:
-    case AxisState::stopping: return {};
+    case AxisState::stopping:
+      return {};
     case AxisState::disabled:
-    case AxisState::enabling: return make_error_code(MotionFault::not_enabled);
+    case AxisState::enabling:
+      return make_error_code(MotionFault::not_enabled);
     case AxisState::homing:
-    case AxisState::error: return make_error_code(MotionFault::invalid_command);
+    case AxisState::error:
+      return make_error_code(MotionFault::invalid_command);
   }
   return make_error_code(MotionFault::invalid_command);
 }
@@ -74,9 +93,12 @@ std::error_code Axis::check_can_move() const {
 std::error_code Axis::enable() {
   if (!drive_) return make_error_code(MotionFault::drive_lost);
   switch (status_.state) {
-    case AxisState::disabled: break;
-    case AxisState::error: return make_error_code(MotionFault::invalid_command);
-    default: return {};
+    case AxisState::disabled:
+      break;
+    case AxisState::error:
+      return make_error_code(MotionFault::invalid_command);
+    default:
+      return {};
   }
   if (!drive_->request(hil::DriveRequest::enable)) return make_error_code(MotionFault::not_enabled);
   status_.state = AxisState::enabling;
@@ -139,15 +161,19 @@ std::error_code Axis::home() {
 
 std::error_code Axis::start_position(std::int64_t target_inc, const Limits& limits) {
   const State from{cmd_p_, cmd_v_, cmd_a_, 0.0};
-  const Limits entry = upper(active_limits_, limits);
+  const Limits entry = upper(entry_limits_, limits);
   if (!config_.rotary && (config_.soft_limit_min || config_.soft_limit_max)) {
+    // Reject only if braking ends beyond a limit *and* further out than the axis is now (an
+    // axis standing outside its range, e.g. after power-up, may always move back in).
     const double sp = stop_position(from, limits, entry);
-    if ((config_.soft_limit_max && sp > *config_.soft_limit_max) || (config_.soft_limit_min && sp < *config_.soft_limit_min))
+    if ((config_.soft_limit_max && sp > *config_.soft_limit_max && sp > from.p) ||
+        (config_.soft_limit_min && sp < *config_.soft_limit_min && sp < from.p))
       return make_error_code(MotionFault::software_limit);
   }
   plan_position(from, scaling_.to_units(target_inc), limits, entry, profile_);
   target_inc_ = target_inc;
   active_limits_ = limits;
+  entry_limits_ = entry;
   mode_ = Mode::position;
   profile_active_ = true;
   profile_start_ = last_now_;
@@ -163,7 +189,8 @@ std::error_code Axis::start_position(std::int64_t target_inc, const Limits& limi
 std::error_code Axis::move_absolute(double position, Direction direction, std::optional<Limits> limits) {
   if (auto ec = check_can_move()) return ec;
   const Limits lim = effective(limits);
-  if (!std::isfinite(position) || !valid_limits(lim)) return make_error_code(MotionFault::invalid_command);
+  if (!in_range(position, scaling_) || !valid_limits(lim, config_.limits))
+    return make_error_code(MotionFault::invalid_command);
   std::int64_t target = 0;
   if (config_.rotary) {
     const int dir = direction == Direction::positive ? 1 : direction == Direction::negative ? -1 : 0;
@@ -182,13 +209,15 @@ std::error_code Axis::move_absolute(double position, Direction direction, std::o
 std::error_code Axis::move_relative(double distance, std::optional<Limits> limits) {
   if (auto ec = check_can_move()) return ec;
   const Limits lim = effective(limits);
-  if (!std::isfinite(distance) || !valid_limits(lim)) return make_error_code(MotionFault::invalid_command);
+  if (!in_range(distance, scaling_) || !valid_limits(lim, config_.limits))
+    return make_error_code(MotionFault::invalid_command);
   const std::int64_t base = mode_ == Mode::position ? target_inc_ : cmd_inc_;
   double carry = mode_ == Mode::position || status_.state == AxisState::standstill ? relative_carry_inc_ : 0.0;
   const std::int64_t target = base + scaling_.delta_to_inc(distance, carry);
   if (!config_.rotary) {
     const double t = scaling_.to_units(target);
-    if ((config_.soft_limit_max && t > *config_.soft_limit_max) || (config_.soft_limit_min && t < *config_.soft_limit_min))
+    if ((config_.soft_limit_max && t > *config_.soft_limit_max) ||
+        (config_.soft_limit_min && t < *config_.soft_limit_min))
       return make_error_code(MotionFault::software_limit);
   }
   if (auto ec = start_position(target, lim)) return ec;
@@ -199,11 +228,11 @@ std::error_code Axis::move_relative(double distance, std::optional<Limits> limit
 std::error_code Axis::move_velocity(double velocity, std::optional<Limits> limits) {
   if (auto ec = check_can_move()) return ec;
   Limits lim = effective(limits);
-  if (!std::isfinite(velocity) || !valid_limits(lim) || std::fabs(velocity) > lim.velocity)
+  if (!std::isfinite(velocity) || !valid_limits(lim, config_.limits) || std::fabs(velocity) > lim.velocity)
     return make_error_code(MotionFault::invalid_command);
   if (velocity == 0.0) return stop();
   const State from{cmd_p_, cmd_v_, cmd_a_, 0.0};
-  const Limits entry = upper(active_limits_, lim);
+  const Limits entry = upper(entry_limits_, lim);
   const std::optional<double> limit =
       config_.rotary ? std::nullopt : (velocity > 0 ? config_.soft_limit_max : config_.soft_limit_min);
   if (limit) {
@@ -222,6 +251,7 @@ std::error_code Axis::move_velocity(double velocity, std::optional<Limits> limit
     mode_ = Mode::velocity;
   }
   active_limits_ = effective(limits);
+  entry_limits_ = entry;
   profile_active_ = true;
   profile_start_ = last_now_;
   profile_hint_ = 0;
@@ -241,7 +271,8 @@ std::error_code Axis::jog(int direction) {
 
 void Axis::plan_stop(const Limits& limits, Mode after) {
   const State from{cmd_p_, cmd_v_, cmd_a_, 0.0};
-  plan_velocity(from, 0.0, limits, upper(active_limits_, limits), profile_);
+  entry_limits_ = upper(entry_limits_, limits);
+  plan_velocity(from, 0.0, limits, entry_limits_, profile_);
   mode_ = after;
   profile_active_ = true;
   profile_start_ = last_now_;
@@ -260,7 +291,8 @@ std::error_code Axis::stop() {
     case AxisState::homing:
       drive_->request(hil::DriveRequest::quick_stop);
       return {};
-    default: return {};  // at rest, disabled, or already braking in error
+    default:
+      return {};  // at rest, disabled, or already braking in error
   }
 }
 
@@ -277,7 +309,8 @@ std::error_code Axis::quick_stop() {
     case AxisState::homing:
       drive_->request(hil::DriveRequest::quick_stop);
       return {};
-    default: return {};
+    default:
+      return {};
   }
 }
 
@@ -298,8 +331,12 @@ void Axis::react_to_fault() {
     return;
   }
   switch (config_.reaction) {
-    case FaultReaction::quick_stop: plan_stop(quick_stop_limits(), Mode::stopping); break;
-    case FaultReaction::stop: plan_stop(active_limits_, Mode::stopping); break;
+    case FaultReaction::quick_stop:
+      plan_stop(quick_stop_limits(), Mode::stopping);
+      break;
+    case FaultReaction::stop:
+      plan_stop(active_limits_, Mode::stopping);
+      break;
     case FaultReaction::disable:
       drive_->request(hil::DriveRequest::disable);
       hold_at_actual();
@@ -317,6 +354,7 @@ void Axis::hold_at_actual() {
   cmd_a_ = 0.0;
   target_inc_ = cmd_inc_;
   relative_carry_inc_ = 0.0;
+  entry_limits_ = config_.limits;
   last_drive_cmd_inc_ = fb.position_inc;  // the set-point is the actual: no following error
   status_.busy = false;
 }
@@ -341,13 +379,15 @@ void Axis::finish_profile() {
   }
   const Mode done = mode_;
   mode_ = Mode::hold;
+  entry_limits_ = config_.limits;
   status_.busy = false;
   if (status_.state == AxisState::error) return;
   status_.state = AxisState::standstill;
   if (done == Mode::velocity_to_limit) {
     raise(make_error_code(MotionFault::software_limit),
           fmt::format("axis '{}': {} software limit {:.6g} reached; axis stopped on the limit (reset, then move back)",
-                      config_.name, config_.soft_limit_max && limit_target_ == *config_.soft_limit_max ? "positive" : "negative",
+                      config_.name,
+                      config_.soft_limit_max && limit_target_ == *config_.soft_limit_max ? "positive" : "negative",
                       limit_target_));
   }
 }
@@ -400,7 +440,9 @@ CycleResult Axis::update(const hil::CycleTime& cycle) {
   }
 
   switch (status_.state) {
-    case AxisState::disabled: hold_at_actual(); break;
+    case AxisState::disabled:
+      hold_at_actual();
+      break;
     case AxisState::enabling:
       hold_at_actual();
       if (fb.state == hil::DriveState::operation_enabled) {
@@ -418,7 +460,9 @@ CycleResult Axis::update(const hil::CycleTime& cycle) {
       status_.busy = true;
       ++home_cycles_;
       if (fb.homing_active) home_seen_active_ = true;
-      if (!fb.homing_active && (home_seen_active_ || (home_cycles_ > 2 && fb.referenced))) {
+      // Done when homing_active fell again, or (drives that never show it) when the drive is
+      // referenced and still not homing after kHomingStartCycles.
+      if (!fb.homing_active && (home_seen_active_ || (home_cycles_ > kHomingStartCycles && fb.referenced))) {
         status_.busy = false;
         if (fb.referenced) {
           status_.state = AxisState::standstill;
@@ -429,14 +473,18 @@ CycleResult Axis::update(const hil::CycleTime& cycle) {
         }
       }
       break;
-    default: step_trajectory(cycle); break;
+    default:
+      step_trajectory(cycle);
+      break;
   }
 
   // Backlash: after a reversal of the commanded motion the drive command carries -backlash
   // (negative approach) or 0 (positive approach), slewed at limits.velocity.
   if (config_.backlash > 0.0) {
-    if (cmd_v_ > 1e-9) backlash_goal_ = 0.0;
-    else if (cmd_v_ < -1e-9) backlash_goal_ = -config_.backlash;
+    if (cmd_v_ > 1e-9)
+      backlash_goal_ = 0.0;
+    else if (cmd_v_ < -1e-9)
+      backlash_goal_ = -config_.backlash;
     const double dt = std::max(0.0, hil::to_seconds(cycle.now - last_now_));
     const double step = config_.limits.velocity * std::max(dt, hil::to_seconds(cycle.period));
     backlash_offset_ += std::clamp(backlash_goal_ - backlash_offset_, -step, step);
@@ -448,7 +496,8 @@ CycleResult Axis::update(const hil::CycleTime& cycle) {
   status_.following_error = fe;
   const AxisState now_state = status_.state;
   if (now_state == AxisState::standstill || now_state == AxisState::moving || now_state == AxisState::stopping) {
-    const std::int64_t tgt = profile_active_ && mode_ == Mode::velocity ? drive_cmd : target_inc_ + (drive_cmd - cmd_inc_);
+    const std::int64_t tgt =
+        profile_active_ && mode_ == Mode::velocity ? drive_cmd : target_inc_ + (drive_cmd - cmd_inc_);
     const double target_error = static_cast<double>(tgt - fb.position_inc) * upi;
     hil::Fault f = supervisor_.check(config_, fe, programmed_feed_, profile_active_, target_error, cycle.now);
     if (f) {
@@ -459,10 +508,9 @@ CycleResult Axis::update(const hil::CycleTime& cycle) {
 
   hil::DriveCommand cmd;
   cmd.mode = hil::CommandMode::position;
-  cmd.position_inc = status_.state == AxisState::disabled || status_.state == AxisState::enabling ||
-                             status_.state == AxisState::homing
-                         ? fb.position_inc
-                         : (config_.backlash > 0.0 ? cmd_inc_ + scaling_.to_inc_fast(backlash_offset_) : cmd_inc_);
+  const bool follows_actual = status_.state == AxisState::disabled || status_.state == AxisState::enabling ||
+                              status_.state == AxisState::homing;
+  cmd.position_inc = follows_actual ? fb.position_inc : drive_cmd;
   cmd.velocity_inc_per_s = cmd_v_ * scaling_.inc_per_unit();
   cmd.acceleration_inc_per_s2 = cmd_a_ * scaling_.inc_per_unit();
   drive_->write(cycle, cmd);

@@ -9,9 +9,10 @@
 // D(vc) that grows monotonically with vc (every ramp accelerates towards dir; a higher vc gives a
 // pointwise higher speed). So: vc = V if D(V) <= d (cruise fills the rest); else bisection on vc
 // (D is continuous) and the cruise absorbs the last residual so the end is exact. When even the
-// smallest member overshoots (the axis is already decelerating and the target sits between the
-// braking point and D(vc_min)), the axis brakes to rest and moves on rest-to-rest. Never exceeds
-// the limits; time-optimal from rest (then it is exactly plan_rest_to_rest).
+// smallest of those members overshoots (the axis is already decelerating and the target sits
+// between the braking point and D(vc_min)), vc is searched below v_stop instead: the axis slows
+// to vc without stopping (D(0) is the braking distance, so a crossing exists). Never exceeds the
+// limits; time-optimal from rest (then it is exactly plan_rest_to_rest).
 #include <algorithm>
 #include <cmath>
 
@@ -43,22 +44,33 @@ void append_position(Profile& out, double target, const Limits& limits) noexcept
   const double dn = dir * (target - from.p);
   // D(vc): normalised distance of ramp to dir*vc and back to rest, no cruise.
   const auto distance = [&](double vc) {
-    return dir * (plan_ramp(from.v, from.a, dir * vc, limits).distance + plan_ramp(dir * vc, 0.0, 0.0, limits).distance);
+    return dir *
+           (plan_ramp(from.v, from.a, dir * vc, limits).distance + plan_ramp(dir * vc, 0.0, 0.0, limits).distance);
   };
   const double vn = dir * from.v, an = dir * from.a;
   const double v_stop = limits.jerk_limited() ? vn + an * std::fabs(an) / (2.0 * limits.jerk) : vn;
   const double vmax = limits.velocity;
   const double vlo = std::clamp(v_stop, 0.0, vmax);
-  const double dlo = distance(vlo);
+  // Bracket the crossing D(vc) = d. D(vlo) <= d: search [vlo, V] (monotone there). D(vlo) > d
+  // (already decelerating, target just beyond the braking point): search [0, vlo], where
+  // D(0) = braking distance < d; D is continuous, so bisection keeps D(lo) <= d < D(hi) and
+  // converges on a crossing: the axis slows to vc without stopping, cruises, and stops on target.
+  double lo = vlo, hi = vmax;
+  double dlo = distance(vlo);
   if (dlo > dn) {
-    append_ramp(brake, out);
-    detail::append_rest_to_rest(out, target, limits);
-    return;
+    const double d0 = distance(0.0);
+    if (d0 > dn) {  // cannot happen analytically (d0 is the braking distance); stay safe
+      append_ramp(brake, out);
+      detail::append_rest_to_rest(out, target, limits);
+      return;
+    }
+    lo = 0.0;
+    hi = vlo;
+    dlo = d0;
   }
   double vc = vmax;
-  double dvc = distance(vmax);
+  double dvc = hi == vmax ? distance(vmax) : dn + 1.0;
   if (dvc > dn) {
-    double lo = vlo, hi = vmax;
     dvc = dlo;
     for (int i = 0; i < 200 && hi - lo > 1e-15 * vmax; ++i) {
       const double mid = 0.5 * (lo + hi);
@@ -112,7 +124,8 @@ void plan_velocity(const State& from, double velocity, const Limits& limits, Pro
   plan_velocity(from, velocity, limits, limits, out);
 }
 
-void plan_velocity(const State& from, double velocity, const Limits& limits, const Limits& entry, Profile& out) noexcept {
+void plan_velocity(const State& from, double velocity, const Limits& limits, const Limits& entry,
+                   Profile& out) noexcept {
   const double v1 = std::clamp(velocity, -limits.velocity, limits.velocity);
   out.reset(from);
   append_entry(out, limits, entry);

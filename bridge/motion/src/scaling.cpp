@@ -71,6 +71,7 @@ double Scaling::to_units(std::int64_t inc) const noexcept {
 std::int64_t Scaling::delta_to_inc(double distance, double& carry_inc) const noexcept {
   // Exact integer part via to_inc on the integer part of the distance; fraction via double.
   const double di = std::trunc(distance);
+  if (!std::isfinite(distance) || std::fabs(di) >= 9.0e18) return 0;  // callers reject these first
   const double df = distance - di;
   const i128 big = static_cast<i128>(static_cast<std::int64_t>(di)) * num_;
   const i128 q = big / den_;
@@ -104,8 +105,8 @@ std::int64_t Scaling::rotary_step(std::int64_t from_inc, double target_units, in
   } else if (direction < 0) {
     if (step > 0) step -= turn;
   } else {
-    if (step < 0) step += turn;            // [0, turn)
-    if (2 * step > turn) step -= turn;     // (-turn/2, turn/2]; a tie goes positive
+    if (step < 0) step += turn;         // [0, turn)
+    if (2 * step > turn) step -= turn;  // (-turn/2, turn/2]; a tie goes positive
   }
   return step;
 }

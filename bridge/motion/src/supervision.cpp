@@ -35,8 +35,8 @@ double Supervisor::motion_window(const AxisConfig& config, double feed) noexcept
   return std::clamp(1.5 * std::fabs(feed) / fe.kv_per_s, fe.min_window, fe.max_window);
 }
 
-hil::Fault Supervisor::check(const AxisConfig& c, double following_error, double feed, bool profile_running, double target_error,
-                             hil::TimePoint now) {
+hil::Fault Supervisor::check(const AxisConfig& c, double following_error, double feed, bool profile_running,
+                             double target_error, hil::TimePoint now) {
   const double fe = std::fabs(following_error);
   if (profile_running) {
     settling_ = false;
@@ -55,7 +55,8 @@ hil::Fault Supervisor::check(const AxisConfig& c, double following_error, double
       return hil::Fault{make_error_code(MotionFault::in_position_timeout),
                         fmt::format("axis '{}': target not reached: {:.6g} from the target after {} ms, in-position "
                                     "window +-{:.6g} (in_position_timeout)",
-                                    c.name, target_error, std::chrono::duration_cast<std::chrono::milliseconds>(now - settle_start_).count(),
+                                    c.name, target_error,
+                                    std::chrono::duration_cast<std::chrono::milliseconds>(now - settle_start_).count(),
                                     c.in_position_window)};
     }
   }
@@ -78,10 +79,11 @@ hil::Fault Supervisor::check(const AxisConfig& c, double following_error, double
                                     "(following_error.static_window)",
                                     c.name, following_error, window)};
     }
-    return hil::Fault{make_error_code(MotionFault::following_error_dynamic),
-                      fmt::format("axis '{}': following error {:.6g} exceeds the speed-dependent window {:.6g} "
-                                  "(1.5 x feed {:.6g} / Kv {:.6g} 1/s, clamped to [{:.6g}, {:.6g}])",
-                                  c.name, following_error, window, std::fabs(feed), f.kv_per_s, f.min_window, f.max_window)};
+    return hil::Fault{
+        make_error_code(MotionFault::following_error_dynamic),
+        fmt::format("axis '{}': following error {:.6g} exceeds the speed-dependent window {:.6g} "
+                    "(1.5 x feed {:.6g} / Kv {:.6g} 1/s, clamped to [{:.6g}, {:.6g}])",
+                    c.name, following_error, window, std::fabs(feed), f.kv_per_s, f.min_window, f.max_window)};
   }
   return {};
 }

@@ -11,8 +11,12 @@
 namespace hil::motion {
 namespace {
 
-bool positive(double v) { return std::isfinite(v) && v > 0.0; }
-bool non_negative(double v) { return std::isfinite(v) && v >= 0.0; }
+bool positive(double v) {
+  return std::isfinite(v) && v > 0.0;
+}
+bool non_negative(double v) {
+  return std::isfinite(v) && v >= 0.0;
+}
 
 }  // namespace
 
@@ -26,7 +30,8 @@ std::expected<AxisConfig, std::string> validate(const AxisConfig& c) {
   if (!positive(c.limits.velocity)) return fail("limits.velocity", c.limits.velocity, "must be > 0 (units/s)");
   if (!positive(c.limits.acceleration))
     return fail("limits.acceleration", c.limits.acceleration, "must be > 0 (units/s^2)");
-  if (!(c.limits.jerk > 0.0)) return fail("limits.jerk", c.limits.jerk, "must be > 0 (units/s^3) or inf for a trapezoid");
+  if (!(c.limits.jerk > 0.0))
+    return fail("limits.jerk", c.limits.jerk, "must be > 0 (units/s^3) or inf for a trapezoid");
   if (!positive(c.quick_stop_deceleration) || c.quick_stop_deceleration < c.limits.acceleration)
     return fail("quick_stop_deceleration", c.quick_stop_deceleration, "must be >= limits.acceleration");
   if (!positive(c.jog_velocity) || c.jog_velocity > c.limits.velocity)
@@ -39,8 +44,10 @@ std::expected<AxisConfig, std::string> validate(const AxisConfig& c) {
     if (c.soft_limit_min || c.soft_limit_max)
       return fail("soft_limit", "set", "software limits are not supported on rotary axes; remove them");
   }
-  if (c.soft_limit_min && !std::isfinite(*c.soft_limit_min)) return fail("soft_limit_min", *c.soft_limit_min, "must be finite");
-  if (c.soft_limit_max && !std::isfinite(*c.soft_limit_max)) return fail("soft_limit_max", *c.soft_limit_max, "must be finite");
+  if (c.soft_limit_min && !std::isfinite(*c.soft_limit_min))
+    return fail("soft_limit_min", *c.soft_limit_min, "must be finite");
+  if (c.soft_limit_max && !std::isfinite(*c.soft_limit_max))
+    return fail("soft_limit_max", *c.soft_limit_max, "must be finite");
   if (c.soft_limit_min && c.soft_limit_max && !(*c.soft_limit_min < *c.soft_limit_max))
     return fail("soft_limit_min", *c.soft_limit_min, "must be < soft_limit_max");
   if (!non_negative(c.backlash)) return fail("backlash", c.backlash, "must be >= 0");
@@ -58,21 +65,31 @@ std::expected<AxisConfig, std::string> validate(const AxisConfig& c) {
   // WF 725/726 MD 33 < MD 25: otherwise the standstill error fires each time the target is reached.
   if (c.in_position_window > c.standstill_window)
     return fail("in_position_window", c.in_position_window, "must be <= standstill_window (else every arrival faults)");
-  if (c.in_position_timeout <= hil::Duration::zero()) return fail("in_position_timeout", c.in_position_timeout.count(), "must be > 0 ns");
-  if (c.enable_timeout <= hil::Duration::zero()) return fail("enable_timeout", c.enable_timeout.count(), "must be > 0 ns");
-  if (c.feedback_timeout <= hil::Duration::zero()) return fail("feedback_timeout", c.feedback_timeout.count(), "must be > 0 ns");
+  if (c.in_position_timeout <= hil::Duration::zero())
+    return fail("in_position_timeout", c.in_position_timeout.count(), "must be > 0 ns");
+  if (c.enable_timeout <= hil::Duration::zero())
+    return fail("enable_timeout", c.enable_timeout.count(), "must be > 0 ns");
+  if (c.feedback_timeout <= hil::Duration::zero())
+    return fail("feedback_timeout", c.feedback_timeout.count(), "must be > 0 ns");
   return c;
 }
 
 const char* to_string(AxisState s) noexcept {
   switch (s) {
-    case AxisState::disabled: return "disabled";
-    case AxisState::enabling: return "enabling";
-    case AxisState::standstill: return "standstill";
-    case AxisState::moving: return "moving";
-    case AxisState::stopping: return "stopping";
-    case AxisState::homing: return "homing";
-    case AxisState::error: return "error";
+    case AxisState::disabled:
+      return "disabled";
+    case AxisState::enabling:
+      return "enabling";
+    case AxisState::standstill:
+      return "standstill";
+    case AxisState::moving:
+      return "moving";
+    case AxisState::stopping:
+      return "stopping";
+    case AxisState::homing:
+      return "homing";
+    case AxisState::error:
+      return "error";
   }
   return "unknown";
 }

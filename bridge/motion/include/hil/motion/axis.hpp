@@ -21,13 +21,14 @@ namespace hil::motion {
 enum class CycleResult : std::uint8_t { ok, fault };
 
 class Axis {
-public:
+ public:
   /// `config` must have passed validate(); an invalid config puts the axis in error with
   /// MotionFault::invalid_command (never throws).
   Axis(AxisConfig config, hil::DrivePtr drive);
 
   // Commands. Each returns {} when accepted, or a hil::MotionFault error code when rejected
-  // (the axis state is then unchanged). They take effect from the next update().
+  // (the axis state is then unchanged). They take effect from the next update(). A move's own
+  // `limits` may only lower the configured ones (else invalid_command).
   std::error_code enable();   ///< request(enable), wait for operation_enabled (enable_timeout)
   std::error_code disable();  ///< request(disable); motion is dropped
   std::error_code reset();    ///< clear the axis fault; request(fault_reset) if the drive is faulted
@@ -53,7 +54,7 @@ public:
   /// The active profile (for diagnostics and tests). Time 0 = the update that planned it.
   [[nodiscard]] const Profile& profile() const noexcept { return profile_; }
 
-private:
+ private:
   enum class Mode : std::uint8_t { hold, position, velocity, velocity_to_limit, stopping };
   [[nodiscard]] std::error_code check_can_move() const;
   [[nodiscard]] std::error_code start_position(std::int64_t target_inc, const Limits& limits);
@@ -74,19 +75,20 @@ private:
   std::size_t profile_hint_ = 0;
   Mode mode_ = Mode::hold;
   bool profile_active_ = false;
-  hil::TimePoint profile_start_{};   ///< the update the profile was planned at (its t = 0)
-  Limits active_limits_{};           ///< limits of the active move (stop() brakes under them)
+  hil::TimePoint profile_start_{};       ///< the update the profile was planned at (its t = 0)
+  Limits active_limits_{};               ///< limits of the active move (stop() brakes under them)
+  Limits entry_limits_{};                ///< upper envelope of the limits the current state was planned under
   std::int64_t last_drive_cmd_inc_ = 0;  ///< command written last cycle (backlash included)
   int home_cycles_ = 0;
   bool home_seen_active_ = false;
   double cmd_p_ = 0.0, cmd_v_ = 0.0, cmd_a_ = 0.0;  ///< command state, units (unwrapped)
-  std::int64_t cmd_inc_ = 0;         ///< commanded position without backlash
-  std::int64_t target_inc_ = 0;      ///< last target (unwrapped), increments
-  double relative_carry_inc_ = 0.0;  ///< fractional increments carried between relative moves
-  double limit_target_ = 0.0;        ///< soft limit a velocity move is landing on
-  double programmed_feed_ = 0.0;     ///< |peak velocity| of the active move (dynamic window)
-  double backlash_offset_ = 0.0;     ///< units currently added to the drive command
-  double backlash_goal_ = 0.0;       ///< 0 after positive motion, -backlash after negative
+  std::int64_t cmd_inc_ = 0;                        ///< commanded position without backlash
+  std::int64_t target_inc_ = 0;                     ///< last target (unwrapped), increments
+  double relative_carry_inc_ = 0.0;                 ///< fractional increments carried between relative moves
+  double limit_target_ = 0.0;                       ///< soft limit a velocity move is landing on
+  double programmed_feed_ = 0.0;                    ///< |peak velocity| of the active move (dynamic window)
+  double backlash_offset_ = 0.0;                    ///< units currently added to the drive command
+  double backlash_goal_ = 0.0;                      ///< 0 after positive motion, -backlash after negative
   Supervisor supervisor_;
   hil::TimePoint enable_started_{};
   bool first_cycle_ = true;

@@ -11,8 +11,8 @@ namespace hil::motion {
 /// Kinematic limits of one move. All three must be > 0. `jerk` = +infinity plans a trapezoidal
 /// velocity profile (acceleration steps); any finite jerk plans a 7-phase S-curve.
 struct Limits {
-  double velocity = 0.0;      ///< units/s
-  double acceleration = 0.0;  ///< units/s^2
+  double velocity = 0.0;                                  ///< units/s
+  double acceleration = 0.0;                              ///< units/s^2
   double jerk = std::numeric_limits<double>::infinity();  ///< units/s^3; +inf -> trapezoid
   [[nodiscard]] bool jerk_limited() const noexcept { return std::isfinite(jerk); }
 };

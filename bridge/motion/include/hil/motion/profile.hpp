@@ -18,14 +18,14 @@ struct State {
 };
 
 struct Segment {
-  double t0 = 0.0;        ///< start time, s from the profile start
-  double duration = 0.0;  ///< s
+  double t0 = 0.0;                   ///< start time, s from the profile start
+  double duration = 0.0;             ///< s
   double p = 0.0, v = 0.0, a = 0.0;  ///< state at t0
-  double j = 0.0;         ///< constant jerk in the segment
+  double j = 0.0;                    ///< constant jerk in the segment
 };
 
 class Profile {
-public:
+ public:
   static constexpr std::size_t max_segments = 16;
 
   /// Start a new profile at `start` (its `a` is the acceleration at t = 0).
@@ -56,7 +56,7 @@ public:
   /// Largest |v| over the profile (segment ends and interior extrema).
   [[nodiscard]] double peak_velocity() const noexcept;
 
-private:
+ private:
   std::array<Segment, max_segments> seg_{};
   std::size_t n_ = 0;
   State start_{}, cur_{}, end_{};

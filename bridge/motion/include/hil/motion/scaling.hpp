@@ -14,7 +14,7 @@
 namespace hil::motion {
 
 class Scaling {
-public:
+ public:
   /// `ratio` must have num > 0, den > 0 (validate() checks). For rotary axes
   /// modulo * num / den must be an integer number of increments per turn.
   Scaling(Ratio ratio, bool rotary, double modulo) noexcept;
@@ -26,7 +26,9 @@ public:
   /// inc * den / num, exact integer part plus the remainder as a double fraction.
   [[nodiscard]] double to_units(std::int64_t inc) const noexcept;
   /// Fast approximation for the cyclic path.
-  [[nodiscard]] double to_units_fast(std::int64_t inc) const noexcept { return static_cast<double>(inc) * units_per_inc_; }
+  [[nodiscard]] double to_units_fast(std::int64_t inc) const noexcept {
+    return static_cast<double>(inc) * units_per_inc_;
+  }
   /// A distance in increments with a carried fraction: returns round(distance*num/den + carry)
   /// and leaves the rest (|carry| <= 0.5) in `carry_inc`. Repeated calls never drift.
   [[nodiscard]] std::int64_t delta_to_inc(double distance, double& carry_inc) const noexcept;
@@ -44,7 +46,7 @@ public:
   /// going the way `direction` says (0 = shortest, +1 = positive, -1 = negative).
   [[nodiscard]] std::int64_t rotary_step(std::int64_t from_inc, double target_units, int direction) const noexcept;
 
-private:
+ private:
   std::int64_t num_, den_;
   bool rotary_;
   double modulo_;

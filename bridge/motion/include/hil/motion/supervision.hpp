@@ -10,7 +10,7 @@
 namespace hil::motion {
 
 class Supervisor {
-public:
+ public:
   Supervisor() = default;
 
   /// A new profile starts: in-position and standstill monitoring are disarmed.
@@ -30,8 +30,8 @@ public:
   /// clamp(1.5 * feed / Kv, min_window, max_window) when dynamic.
   [[nodiscard]] static double motion_window(const AxisConfig& config, double feed) noexcept;
 
-private:
-  bool settling_ = false;      ///< profile done, waiting for the in-position window
+ private:
+  bool settling_ = false;  ///< profile done, waiting for the in-position window
   bool standstill_armed_ = false;
   bool in_position_ = false;
   hil::TimePoint settle_start_{};
