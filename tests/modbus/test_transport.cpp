@@ -18,7 +18,7 @@ using std::chrono::milliseconds;
 
 struct RunHarness {
   VirtualClock clock;
-  RunEnvironment env{clock, true, nullptr, "tests/modbus/inline.yaml", milliseconds(1), false};
+  RunEnvironment env{clock, true, nullptr, "tests/modbus/inline.yaml", milliseconds(1), false, {}};
   std::unique_ptr<TransportFactory> factory = drives::make_modbus_transport();
   std::vector<DrivePtr> drives;
   std::vector<DriveCommand> commands;

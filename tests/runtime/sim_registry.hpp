@@ -15,7 +15,7 @@ class SimFactory : public TransportFactory {
 public:
   std::expected<DrivePtr, ConfigError> make_drive(const std::string& axis, const YAML::Node& node,
                                                   RunEnvironment& env) override {
-    auto config = mocks::parse_sim_drive_config(node, yaml::Where{env.source_file, "drive"});
+    auto config = mocks::parse_sim_drive_config(node, yaml::Where{env.source_file, env.drive_path(axis)});
     if (!config) return std::unexpected(config.error());
     config->name = axis;
     return std::make_unique<mocks::SimDrive>(std::move(*config));

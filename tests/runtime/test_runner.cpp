@@ -227,6 +227,8 @@ TEST(Runner, BuildErrorsNameTheDriveBlock) {
       "      drive: {transport: sim, kv: -3}\n"), hil::testing::sim_registry(), RunOptions{});
   ASSERT_FALSE(factory_error.has_value());
   EXPECT_EQ(factory_error.error().line, 6);
+  // The transport's own keys use the same path as the loader's (RunEnvironment::drive_key).
+  EXPECT_EQ(factory_error.error().key, "machine.axes[0].drive.kv");
 }
 
 namespace {

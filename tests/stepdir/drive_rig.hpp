@@ -11,7 +11,7 @@
 
 struct DriveRig {
   hil::VirtualClock clock;
-  hil::RunEnvironment env{clock, true, nullptr, "", std::chrono::milliseconds(1), false};
+  hil::RunEnvironment env{clock, true, nullptr, "", std::chrono::milliseconds(1), false, {}};
   hil::drives::stepdir::StepDirTransportFactory factory;
   hil::DrivePtr drive;
   hil::drives::stepdir::StepDirDrive* sd = nullptr;

@@ -147,7 +147,7 @@ TEST(StepDirDrive, Ip247ProfileHitsAbsoluteTargetWithFirstIntervalOneOverFss) {
 
 TEST(StepDirConfig, ErrorsNameKeyAndMdError) {
   hil::VirtualClock clock;
-  hil::RunEnvironment env{clock, true, nullptr, "", std::chrono::milliseconds(1), false};
+  hil::RunEnvironment env{clock, true, nullptr, "", std::chrono::milliseconds(1), false, {}};
   env.source_file = "s.yaml";
   hil::drives::stepdir::StepDirTransportFactory f;
   auto bad = [&](const std::string& y) {

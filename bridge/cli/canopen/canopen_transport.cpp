@@ -63,7 +63,7 @@ class CanopenTransport final : public TransportFactory {
 public:
   std::expected<DrivePtr, ConfigError> make_drive(const std::string& axis_name, const YAML::Node& node,
                                                   RunEnvironment& env) override {
-    const yaml::Where where{env.source_file, "axes." + axis_name + ".drive"};
+    const yaml::Where where{env.source_file, env.drive_path(axis_name)};
     if (auto k = yaml::check_keys(node, where,
                                   {"transport", "node", "bus", "eds", "heartbeat", "heartbeat_timeout", "sdo_timeout", "kv",
                                    "max_velocity", "velocity_lag", "feedforward", "homing", "check_identity"});

@@ -11,7 +11,7 @@ class SimTransport final : public TransportFactory {
 public:
   std::expected<DrivePtr, ConfigError> make_drive(const std::string& axis_name, const YAML::Node& drive_node,
                                                   RunEnvironment& env) override {
-    auto config = mocks::parse_sim_drive_config(drive_node, yaml::Where{env.source_file, "axes." + axis_name + ".drive"});
+    auto config = mocks::parse_sim_drive_config(drive_node, yaml::Where{env.source_file, env.drive_path(axis_name)});
     if (!config) return std::unexpected(config.error());
     config->name = axis_name;
     return std::make_unique<mocks::SimDrive>(std::move(*config));

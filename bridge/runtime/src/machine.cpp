@@ -69,7 +69,9 @@ std::expected<Machine, ConfigError> Machine::build(const Scenario& scenario, con
       factory = created.get();
       m.factories_.push_back(Factory{spec.transport, std::move(created)});
     }
+    env.drive_key = drive_path;
     auto drive = factory->make_drive(spec.name, spec.drive, env);
+    env.drive_key.clear();
     if (!drive) {
       ConfigError e = drive.error();
       if (e.file.empty()) e.file = scenario.file;

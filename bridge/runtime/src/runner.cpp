@@ -143,7 +143,7 @@ std::expected<RunResult, ConfigError> run_scenario(const Scenario& scenario, con
                                                    const RunOptions& options) {
   if (options.virtual_time) {
     VirtualClock clock;
-    RunEnvironment env{clock, true, nullptr, scenario.file, scenario.period, options.verify_steps};
+    RunEnvironment env{clock, true, nullptr, scenario.file, scenario.period, options.verify_steps, {}};
     auto machine = Machine::build(scenario, registry, env);
     if (!machine) return std::unexpected(machine.error());
     Session session(scenario, *machine, options);
@@ -155,7 +155,7 @@ std::expected<RunResult, ConfigError> run_scenario(const Scenario& scenario, con
   }
   asio::io_context io;
   SteadyClock clock;
-  RunEnvironment env{clock, false, &io, scenario.file, scenario.period, options.verify_steps};
+  RunEnvironment env{clock, false, &io, scenario.file, scenario.period, options.verify_steps, {}};
   auto machine = Machine::build(scenario, registry, env);
   if (!machine) return std::unexpected(machine.error());
   Session session(scenario, *machine, options);

@@ -68,7 +68,7 @@ public:
 
   std::expected<DrivePtr, ConfigError> make_drive(const std::string& axis_name, const YAML::Node& node,
                                                   RunEnvironment& env) override {
-    const yaml::Where where{env.source_file, "axes." + axis_name + ".drive"};
+    const yaml::Where where{env.source_file, env.drive_path(axis_name)};
     if (auto k = yaml::check_keys(node, where,
                                   {"transport", "profile", "host", "port", "unit", "response_timeout", "poll_period",
                                    "backoff_min", "backoff_max", "plant"});

@@ -23,7 +23,7 @@ std::expected<DrivePtr, ConfigError> StepDirTransportFactory::make_drive(const s
                                                                          const YAML::Node& drive_node,
                                                                          RunEnvironment& env) {
   verify_ = verify_ || env.verify_steps;
-  auto cfg = parse_stepdir_config(drive_node, hil::yaml::Where{env.source_file, fmt::format("axes.{}.drive", axis_name)});
+  auto cfg = parse_stepdir_config(drive_node, hil::yaml::Where{env.source_file, env.drive_path(axis_name)});
   if (!cfg) return std::unexpected(cfg.error());
   auto ramp = Ip247Ramp::make(cfg->ramp, cfg->timing.min_period_ns());
   if (!ramp) return std::unexpected(ConfigError{env.source_file, 0, 0, "drive", "ramp table could not be generated"});
@@ -50,11 +50,11 @@ std::expected<DrivePtr, ConfigError> StepDirTransportFactory::make_drive(const s
     in_bank = axis->mock_in.get();
   } else {
     auto o = gpio::linux_gpiod::GpiodLines::open(*cfg->chip, outs, "hilbridge-" + axis_name);
-    if (!o) return std::unexpected(ConfigError{env.source_file, 0, 0, fmt::format("axes.{}.drive.lines", axis_name), o.error().message});
+    if (!o) return std::unexpected(ConfigError{env.source_file, 0, 0, env.drive_path(axis_name) + ".lines", o.error().message});
     axis->real_out = std::move(*o);
     if (!ins.empty()) {
       auto i = gpio::linux_gpiod::GpiodLines::open(*cfg->chip, ins, "hilbridge-" + axis_name);
-      if (!i) return std::unexpected(ConfigError{env.source_file, 0, 0, fmt::format("axes.{}.drive.lines", axis_name), i.error().message});
+      if (!i) return std::unexpected(ConfigError{env.source_file, 0, 0, env.drive_path(axis_name) + ".lines", i.error().message});
       axis->real_in = std::move(*i);
       in_bank = axis->real_in.get();
     }

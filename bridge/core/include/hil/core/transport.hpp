@@ -32,6 +32,14 @@ struct RunEnvironment {
   std::string source_file;           ///< scenario path, for ConfigError and relative paths
   Duration period{std::chrono::milliseconds(1)};
   bool verify_steps = false;         ///< `hilbridge run --verify-steps`: step/dir transports verify edge streams
+  /// Key path of the `drive:` block being built ("machine.axes[2].drive"), set by the runner before
+  /// each make_drive so that transports' errors use the same paths as the scenario loader.
+  std::string drive_key;
+
+  /// `drive_key`, or "axes.<axis>.drive" when a caller outside the runner left it empty.
+  [[nodiscard]] std::string drive_path(const std::string& axis_name) const {
+    return drive_key.empty() ? "axes." + axis_name + ".drive" : drive_key;
+  }
 };
 
 /// What a transport says about a finished run (printed in the summary). `ok == false` makes the
