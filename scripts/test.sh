@@ -6,7 +6,7 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/install-deps.sh --with-vm
-bash scripts/build.sh -DHIL_WERROR=ON
+bash scripts/build.sh -DHIL_WERROR=ON -DHIL_BUILD_TESTS=ON -DHIL_BUILD_BENCH=ON
 status=0
 ctest --test-dir build --output-on-failure -j"$(nproc)" -LE kernel --no-tests=error || status=$?
 if [[ -x tests/vm/run-in-kernel.sh ]]; then
