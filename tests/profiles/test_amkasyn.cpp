@@ -3,6 +3,8 @@
 // type-dependent meanings of the commanding-DB addresses, fixed-point values and the START checks.
 #include <gtest/gtest.h>
 
+#include "device_test.hpp"
+
 #include <fstream>
 #include <sstream>
 
@@ -15,39 +17,18 @@ namespace hp = hil::profiles;
 
 namespace {
 
-std::string read(const std::string& rel) {
-  std::ifstream in(std::string(HIL_TEST_DATA) + "/" + rel);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
+using hil::profiles::testing::read;
 
-class Amk : public ::testing::Test {
+class Amk : public hil::profiles::testing::DeviceTest {
 protected:
-  void SetUp() override {
-    auto p = hp::find_profile("amkasyn-sf");
-    ASSERT_TRUE(p) << p.error().describe();
-    profile_ = *p;
-    parser_ = hp::make_parameter_set_parser(profile_);
-    ASSERT_TRUE(parser_);
-  }
+  Amk() : DeviceTest("amkasyn-sf") {}
   std::vector<hp::Problem> check(const std::string& text, hp::Settings s = {{"id2_ms", 2.0L}}) {
-    auto r = parser_->parse(text);
-    auto v = hp::validate(*profile_, r.set, s);
-    v.insert(v.begin(), r.problems.begin(), r.problems.end());
-    return v;
-  }
-  static bool has(const std::vector<hp::Problem>& v, std::string_view text) {
-    for (const auto& p : v)
-      if ((p.param + " " + p.rule + " " + p.message).find(text) != std::string::npos) return true;
-    return false;
+    return problems_of(parser_->parse(text), s);
   }
   std::string value(const hp::ParameterSet& s, std::string_view id) {
     const auto* e = s.find(id);
     return e ? hp::to_string(e->value.at(0)) : "<absent>";
   }
-  std::shared_ptr<const hp::Profile> profile_;
-  std::unique_ptr<hp::ParameterSetParser> parser_;
 };
 
 }  // namespace

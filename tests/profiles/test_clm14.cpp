@@ -2,6 +2,8 @@
 // CLM1.4 profile: the manual's 72 parameter telegrams, the constraint rules, the catalogues.
 #include <gtest/gtest.h>
 
+#include "device_test.hpp"
+
 #include <fstream>
 #include <sstream>
 
@@ -14,36 +16,20 @@ namespace hp = hil::profiles;
 
 namespace {
 
-std::string read(const std::string& rel) {
-  std::ifstream in(std::string(HIL_TEST_DATA) + "/" + rel);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
+using hil::profiles::testing::read;
 
-class Clm14 : public ::testing::Test {
+class Clm14 : public hil::profiles::testing::DeviceTest {
 protected:
-  void SetUp() override {
-    auto p = hp::find_profile("clm14");
-    ASSERT_TRUE(p) << p.error().describe();
-    profile_ = *p;
-    parser_ = hp::make_parameter_set_parser(profile_);
-    ASSERT_TRUE(parser_);
-  }
+  Clm14() : DeviceTest("clm14") {}
   /// Problems of the manual's set with `line` appended (later lines win).
   std::vector<hp::Problem> problems_with(const std::string& extra, const hp::Settings& s = {}) {
-    auto r = parser_->parse(read("clm14_manual_defaults.txt") + extra);
-    auto v = hp::validate(*profile_, r.set, s);
-    v.insert(v.begin(), r.problems.begin(), r.problems.end());
-    return v;
+    return problems_of(parser_->parse(read("clm14_manual_defaults.txt") + extra), s);
   }
   static bool has(const std::vector<hp::Problem>& v, std::string_view param, std::string_view rule_part) {
     for (const auto& p : v)
       if (p.param.find(param) != std::string::npos && (p.rule + " " + p.message).find(rule_part) != std::string::npos) return true;
     return false;
   }
-  std::shared_ptr<const hp::Profile> profile_;
-  std::unique_ptr<hp::ParameterSetParser> parser_;
 };
 
 }  // namespace

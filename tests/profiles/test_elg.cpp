@@ -3,6 +3,8 @@
 // (shared/vectors/sinumerik-elg.md 11.4), the FE-limit and constants rules, the alarm catalogue.
 #include <gtest/gtest.h>
 
+#include "device_test.hpp"
+
 #include <bit>
 #include <fstream>
 #include <sstream>
@@ -16,12 +18,7 @@ namespace hp = hil::profiles;
 
 namespace {
 
-std::string read(const std::string& rel) {
-  std::ifstream in(std::string(HIL_TEST_DATA) + "/" + rel);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
+using hil::profiles::testing::read;
 
 /// The text as a punched ISO tape: even parity in bit 7, NUL leader.
 std::string iso_tape(std::string_view text) {
@@ -34,25 +31,11 @@ std::string iso_tape(std::string_view text) {
   return out;
 }
 
-class Elg : public ::testing::Test {
+class Elg : public hil::profiles::testing::DeviceTest {
 protected:
-  void SetUp() override {
-    auto p = hp::find_profile("sinumerik-elg");
-    ASSERT_TRUE(p) << p.error().describe();
-    profile_ = *p;
-    parser_ = hp::make_parameter_set_parser(profile_);
-    ASSERT_TRUE(parser_);
-  }
+  Elg() : DeviceTest("sinumerik-elg") {}
   std::vector<hp::Problem> check(const std::string& text, hp::Settings s = {}) {
-    auto r = parser_->parse(text, s);
-    auto v = hp::validate(*profile_, r.set, s);
-    v.insert(v.begin(), r.problems.begin(), r.problems.end());
-    return v;
-  }
-  static bool has(const std::vector<hp::Problem>& v, std::string_view text) {
-    for (const auto& p : v)
-      if ((p.param + " " + p.rule + " " + p.message).find(text) != std::string::npos) return true;
-    return false;
+    return problems_of(parser_->parse(text, s), s);
   }
   std::string field(const hp::ParameterSet& s, std::string_view id, std::string_view name) {
     const auto* e = s.find(id);
@@ -67,8 +50,6 @@ protected:
       }
     return "<no field>";
   }
-  std::shared_ptr<const hp::Profile> profile_;
-  std::unique_ptr<hp::ParameterSetParser> parser_;
 };
 
 }  // namespace

@@ -3,6 +3,8 @@
 // checks (MD errors 2, 4, 6, 7, 9, 10, 13, 14, 17, 21).
 #include <gtest/gtest.h>
 
+#include "device_test.hpp"
+
 #include <fstream>
 #include <sstream>
 
@@ -15,39 +17,18 @@ namespace hp = hil::profiles;
 
 namespace {
 
-std::string read(const std::string& rel) {
-  std::ifstream in(std::string(HIL_TEST_DATA) + "/" + rel);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
+using hil::profiles::testing::read;
 
-class Ip247 : public ::testing::Test {
+class Ip247 : public hil::profiles::testing::DeviceTest {
 protected:
-  void SetUp() override {
-    auto p = hp::find_profile("ip247");
-    ASSERT_TRUE(p) << p.error().describe();
-    profile_ = *p;
-    parser_ = hp::make_parameter_set_parser(profile_);
-    ASSERT_TRUE(parser_);
-  }
+  Ip247() : DeviceTest("ip247") {}
   std::vector<hp::Problem> problems_with(const std::string& extra, hp::Settings s = {}) {
-    auto r = parser_->parse(read("ip247_manual_md.txt") + extra);
-    auto v = hp::validate(*profile_, r.set, s);
-    v.insert(v.begin(), r.problems.begin(), r.problems.end());
-    return v;
-  }
-  static bool has(const std::vector<hp::Problem>& v, std::string_view text) {
-    for (const auto& p : v)
-      if ((p.param + " " + p.rule + " " + p.message).find(text) != std::string::npos) return true;
-    return false;
+    return problems_of(parser_->parse(read("ip247_manual_md.txt") + extra), s);
   }
   std::string value_of(const hp::ParameterSet& s, std::string_view id) {
     const auto* e = s.find(profile_->resolve(id)->id());
     return e ? e->text : "<absent>";
   }
-  std::shared_ptr<const hp::Profile> profile_;
-  std::unique_ptr<hp::ParameterSetParser> parser_;
 };
 
 }  // namespace
