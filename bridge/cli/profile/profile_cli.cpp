@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <fstream>
+#include <optional>
 #include <sstream>
 
 #include "hil/cli/context.hpp"
@@ -198,18 +199,38 @@ void run_validate(Context& ctx, const Options& o) {
   }
 }
 
-void run_encode(Context& ctx, const Options& o) {
-  auto p = load(o.device, ctx.exit_code);
-  if (!p) return;
-  auto settings = parse_settings(*p, o.sets);
+/// What encode and decode both start from: the profile, the `--set` settings and the
+/// parameter's variant under them. Reports the problem and sets `exit_code` when one is missing.
+struct ParamTarget {
+  std::shared_ptr<const hp::Profile> profile;
+  hp::Settings settings;
+  hp::ParamRef ref;
+  const hp::ParamVariant* variant = nullptr;
+};
+
+std::optional<ParamTarget> resolve_param(const Options& o, int& exit_code) {
+  ParamTarget t;
+  t.profile = load(o.device, exit_code);
+  if (!t.profile) return std::nullopt;
+  auto settings = parse_settings(*t.profile, o.sets);
   if (!settings) {
     fmt::print(stderr, "error: {}\n", settings.error());
-    ctx.exit_code = 2;
-    return;
+    exit_code = 2;
+    return std::nullopt;
   }
-  hp::ParamRef ref;
-  const auto* v = variant_for(*p, o.param, *settings, ref, ctx.exit_code);
-  if (!v) return;
+  t.settings = std::move(*settings);
+  t.variant = variant_for(*t.profile, o.param, t.settings, t.ref, exit_code);
+  if (!t.variant) return std::nullopt;
+  return t;
+}
+
+void run_encode(Context& ctx, const Options& o) {
+  auto t = resolve_param(o, ctx.exit_code);
+  if (!t) return;
+  const auto& p = t->profile;
+  const auto& settings = t->settings;
+  const auto& ref = t->ref;
+  const auto* v = t->variant;
   auto value = hp::parse_value_input(*v, o.value);
   if (!value) {
     fmt::print(stderr, "error: {} = '{}': {}\n", ref.id(), o.value, value.error());
@@ -229,23 +250,18 @@ void run_encode(Context& ctx, const Options& o) {
     hp::ParameterSet one;
     one.device = p->device;
     one.set({ref, *value, 0, hp::value_text(*v, *value)});
-    fmt::print("device text:\n{}", parser->write(one, *settings));
+    fmt::print("device text:\n{}", parser->write(one, settings));
   }
-  print_field_problems(ref, *v, *value, *p, *settings, ctx.exit_code);
+  print_field_problems(ref, *v, *value, *p, settings, ctx.exit_code);
 }
 
 void run_decode(Context& ctx, const Options& o) {
-  auto p = load(o.device, ctx.exit_code);
-  if (!p) return;
-  auto settings = parse_settings(*p, o.sets);
-  if (!settings) {
-    fmt::print(stderr, "error: {}\n", settings.error());
-    ctx.exit_code = 2;
-    return;
-  }
-  hp::ParamRef ref;
-  const auto* v = variant_for(*p, o.param, *settings, ref, ctx.exit_code);
-  if (!v) return;
+  auto t = resolve_param(o, ctx.exit_code);
+  if (!t) return;
+  const auto& p = t->profile;
+  const auto& settings = t->settings;
+  const auto& ref = t->ref;
+  const auto* v = t->variant;
   auto value = hp::decode_wire(*p, *v, o.value);
   if (!value) {
     fmt::print(stderr, "error: {} wire '{}': {}\n", ref.id(), o.value, value.error());
@@ -263,7 +279,7 @@ void run_decode(Context& ctx, const Options& o) {
         for (const auto& c : f.choices)
           if (hp::Decimal{c.value, 0} == *d) fmt::print("  {}: {}\n", f.name, c.meaning);
   }
-  print_field_problems(ref, *v, *value, *p, *settings, ctx.exit_code);
+  print_field_problems(ref, *v, *value, *p, settings, ctx.exit_code);
 }
 
 }  // namespace
