@@ -7,6 +7,8 @@
 #include <fmt/format.h>
 #include <yaml-cpp/yaml.h>
 
+#include "hil/core/yaml_config.hpp"
+
 #include "hil/modbus/exchange_plan.hpp"
 #include "hil/modbus/profile.hpp"
 
@@ -243,17 +245,9 @@ private:
 }  // namespace
 
 std::expected<Profile, ConfigError> parse_profile(const std::string& yaml_text, const std::string& source) {
-  YAML::Node root;
-  try {
-    root = YAML::Load(yaml_text);
-  } catch (const YAML::Exception& e) {
-    ConfigError err;
-    err.file = source;
-    err.line = e.mark.line >= 0 ? e.mark.line + 1 : 0;
-    err.column = e.mark.column >= 0 ? e.mark.column + 1 : 0;
-    err.message = "YAML syntax error: " + e.msg;
-    return std::unexpected(err);
-  }
+  auto doc = hil::yaml::load_string(yaml_text, source);
+  if (!doc) return std::unexpected(doc.error());
+  const YAML::Node& root = *doc;
   try {
     return Loader(source).load(root);
   } catch (const YAML::Exception& e) {
