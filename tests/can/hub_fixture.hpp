@@ -6,7 +6,9 @@
 #include <gtest/gtest.h>
 
 #include <condition_variable>
+#include <functional>
 #include <future>
+#include <memory>
 #include <mutex>
 #include <thread>
 #include <vector>
@@ -14,6 +16,7 @@
 #include <asio/executor_work_guard.hpp>
 #include <asio/io_context.hpp>
 #include <asio/post.hpp>
+#include <asio/steady_timer.hpp>
 
 #include "hil/can/bus_runner.hpp"
 #include "hil/can/socketcand_server.hpp"
@@ -99,6 +102,41 @@ private:
   asio::executor_work_guard<asio::io_context::executor_type> work_{io.get_executor()};
   std::unique_ptr<AsioBusRunner> runner_;
   std::thread thread_;
+};
+
+/// Calls `fn` every `period` on `io`'s thread from start() until stop(). Both are called on that
+/// thread (e.g. inside Hub::run). A wait that had already completed when stop() ran may still be
+/// dispatched: the shared flag makes it a no-op, so `fn` never runs after stop() and the ticker
+/// may be destroyed right after it.
+class Ticker {
+public:
+  Ticker(asio::io_context& io, std::chrono::milliseconds period, std::function<void()> fn)
+      : timer_(io), period_(period), fn_(std::move(fn)) {}
+  ~Ticker() { stop(); }
+  Ticker(const Ticker&) = delete;
+  Ticker& operator=(const Ticker&) = delete;
+  void start() {
+    *running_ = true;
+    arm();
+  }
+  void stop() {
+    *running_ = false;
+    timer_.cancel();
+  }
+
+private:
+  void arm() {
+    timer_.expires_after(period_);
+    timer_.async_wait([this, running = running_](const std::error_code& ec) {
+      if (ec || !*running) return;
+      fn_();
+      arm();
+    });
+  }
+  asio::steady_timer timer_;
+  std::chrono::milliseconds period_;
+  std::function<void()> fn_;
+  std::shared_ptr<bool> running_ = std::make_shared<bool>(false);
 };
 
 }  // namespace hil::can::test

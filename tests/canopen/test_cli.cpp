@@ -3,8 +3,6 @@
 // socketcand hub (no kernel needed): sdo read/write with types and abort codes, nmt, scan.
 #include <gtest/gtest.h>
 
-#include <asio/steady_timer.hpp>
-
 #include "../can/hub_fixture.hpp"
 #include "../can/subprocess.hpp"
 #include "hil/mocks/cia402_node.hpp"
@@ -17,8 +15,7 @@ struct CliFixture : ::testing::Test {
   can::test::Hub hub;
   std::vector<std::unique_ptr<can::VirtualChannel>> channels;
   std::vector<std::unique_ptr<hil::mocks::Cia402Node>> nodes;
-  std::unique_ptr<asio::steady_timer> timer;
-  std::function<void()> tick;
+  std::unique_ptr<can::test::Ticker> ticker;
   void SetUp() override {
     hub.run([&] {
       for (int id : {5, 9}) {
@@ -27,22 +24,16 @@ struct CliFixture : ::testing::Test {
             *channels.back(), hil::mocks::Cia402NodeOptions{.node = static_cast<hil::canopen::NodeId>(id)}));
         nodes.back()->start(hub.clock.now());
       }
-      timer = std::make_unique<asio::steady_timer>(hub.io);
-      tick = [&] {
-        timer->expires_after(std::chrono::milliseconds(1));
-        timer->async_wait([&](const std::error_code& ec) {
-          if (ec) return;
-          for (auto& n : nodes) n->step(hub.clock.now());
-          tick();
-        });
-      };
-      tick();
+      ticker = std::make_unique<can::test::Ticker>(hub.io, std::chrono::milliseconds(1), [&] {
+        for (auto& n : nodes) n->step(hub.clock.now());
+      });
+      ticker->start();
       return 0;
     });
   }
   void TearDown() override {
     hub.run([&] {
-      timer->cancel();
+      ticker.reset();  // stops first: no step of a destroyed node
       nodes.clear();
       channels.clear();
       return 0;

@@ -4,8 +4,6 @@
 // with our simulated CiA 402 node through our socketcand hub; the script checks every byte.
 #include <gtest/gtest.h>
 
-#include <asio/steady_timer.hpp>
-
 #include "../can/hub_fixture.hpp"
 #include "../can/subprocess.hpp"
 #include "hil/mocks/cia402_node.hpp"
@@ -18,22 +16,13 @@ TEST(CanopenInterop, PythonCanMasterAgainstSimulatedNode) {
   can::test::Hub hub;
   std::unique_ptr<can::VirtualChannel> channel;
   std::unique_ptr<hil::mocks::Cia402Node> node;
-  std::unique_ptr<asio::steady_timer> timer;
-  std::function<void()> tick;
+  std::unique_ptr<can::test::Ticker> ticker;
   hub.run([&] {
     channel = hub.bus.attach("node5");
     node = std::make_unique<hil::mocks::Cia402Node>(*channel, hil::mocks::Cia402NodeOptions{.node = 5});
     node->start(hub.clock.now());
-    timer = std::make_unique<asio::steady_timer>(hub.io);
-    tick = [&] {
-      timer->expires_after(std::chrono::milliseconds(1));
-      timer->async_wait([&](const std::error_code& ec) {
-        if (ec) return;
-        node->step(hub.clock.now());
-        tick();
-      });
-    };
-    tick();
+    ticker = std::make_unique<can::test::Ticker>(hub.io, std::chrono::milliseconds(1), [&] { node->step(hub.clock.now()); });
+    ticker->start();
     return 0;
   });
   can::test::Subprocess py({"/usr/bin/python3", std::string(HIL_TEST_SOURCE_DIR) + "/canopen_peer.py", "127.0.0.1",
@@ -42,7 +31,7 @@ TEST(CanopenInterop, PythonCanMasterAgainstSimulatedNode) {
   EXPECT_EQ(py.wait(std::chrono::seconds(120)), 0) << py.output();
   EXPECT_NE(py.output().find("DONE"), std::string::npos) << py.output();
   hub.run([&] {
-    timer->cancel();
+    ticker.reset();  // stops first: no step of a destroyed node
     node.reset();
     channel.reset();
     return 0;

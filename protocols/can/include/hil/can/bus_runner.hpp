@@ -31,6 +31,7 @@ private:
   asio::steady_timer timer_;
   std::optional<TimePoint> armed_for_;
   std::uint64_t wakeups_ = 0;
+  std::shared_ptr<bool> alive_ = std::make_shared<bool>(true);  ///< false once destroyed (see arm())
 };
 
 }  // namespace hil::can
