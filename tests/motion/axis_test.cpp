@@ -555,5 +555,59 @@ TEST_F(AxisTest, RandomCommandStreamKeepsLimitsAndLandsExactly) {
   EXPECT_EQ(drive->written(), 123456);
 }
 
+TEST_F(AxisTest, DriveProfileDriveGetsEachMoveAndIsSupervisedAtTheEndOnly) {
+  AxisConfig c = base_config();
+  c.backlash = 0.1;
+  make(c);
+  drive->drive_profile = true;  // jumps to the target at once: 10 mm ahead of the reference
+  enable();
+  EXPECT_EQ(drive->commands.back().move.kind, DriveMove::Kind::hold);
+  ASSERT_FALSE(axis->move_absolute(10.0));
+  cycle();
+  const auto first = drive->commands.back().move;
+  EXPECT_EQ(first.kind, DriveMove::Kind::position);
+  EXPECT_EQ(first.target_inc, 10000);
+  EXPECT_DOUBLE_EQ(first.velocity_inc_per_s, 100'000.0);
+  EXPECT_DOUBLE_EQ(first.acceleration_inc_per_s2, 1'000'000.0);
+  settle();
+  // The path was far outside the 1 mm static window, yet no fault: the drive watches its own.
+  EXPECT_EQ(axis->status().state, AxisState::standstill) << axis->status().fault.describe();
+  EXPECT_TRUE(axis->status().in_position);
+  EXPECT_EQ(drive->commands.back().move.id, first.id) << "the move stays until the next command";
+
+  // Reversal: the target carries the backlash of the negative approach.
+  ASSERT_FALSE(axis->move_absolute(5.0));
+  cycle();
+  EXPECT_EQ(drive->commands.back().move.target_inc, 5000 - 100);
+  EXPECT_NE(drive->commands.back().move.id, first.id);
+  settle();
+  EXPECT_EQ(axis->status().state, AxisState::standstill) << axis->status().fault.describe();
+  EXPECT_TRUE(axis->status().in_position);
+
+  // Velocity moves hand over the signed velocity; stop() turns into a hold under the move's deceleration.
+  ASSERT_FALSE(axis->move_velocity(-30.0));
+  cycle();
+  EXPECT_EQ(drive->commands.back().move.kind, DriveMove::Kind::velocity);
+  EXPECT_DOUBLE_EQ(drive->commands.back().move.velocity_inc_per_s, -30'000.0);
+  run(50);
+  ASSERT_FALSE(axis->stop());
+  cycle();
+  EXPECT_EQ(drive->commands.back().move.kind, DriveMove::Kind::hold);
+  EXPECT_DOUBLE_EQ(drive->commands.back().move.deceleration_inc_per_s2, 1'000'000.0);
+}
+
+TEST_F(AxisTest, DriveProfileDriveThatNeverArrivesFaultsInPositionTimeout) {
+  make();
+  drive->drive_profile = true;
+  drive->offset = 500;  // stops 0.5 mm short
+  enable();
+  ASSERT_FALSE(axis->move_absolute(10.0));
+  settle();
+  for (int i = 0; i < 200 && axis->status().state != AxisState::error; ++i) cycle();
+  ASSERT_EQ(axis->status().state, AxisState::error);
+  EXPECT_EQ(axis->status().fault.code, make_error_code(MotionFault::in_position_timeout));
+  EXPECT_EQ(drive->commands.back().move.kind, DriveMove::Kind::hold) << "a faulted axis makes the drive brake";
+}
+
 }  // namespace
 }  // namespace hil::motion

@@ -16,6 +16,9 @@ class TestDrive final : public hil::Drive {
   int enable_cycles = 2;  ///< write() calls from request(enable) to operation_enabled
   bool never_enable = false;
   bool homing_supported = true;
+  /// A drive that runs its own profile: it jumps to DriveCommand::move's target at once (a
+  /// worst case for the axis's path supervision, which must then stay out of the way).
+  bool drive_profile = false;
   int homing_cycles = 5;
   bool follow = true;  ///< actual := command written `lag` cycles ago, minus `offset`
   std::size_t lag = 0;
@@ -30,6 +33,7 @@ class TestDrive final : public hil::Drive {
   hil::DriveCapabilities capabilities() const noexcept override {
     hil::DriveCapabilities c;
     c.homing = homing_supported;
+    c.drive_profile = drive_profile;
     return c;
   }
   void read(const hil::CycleTime&) override {
@@ -51,8 +55,12 @@ class TestDrive final : public hil::Drive {
       position = 0;
       history_.assign(history_.size(), 0);
     }
-    if (follow && state_ == hil::DriveState::operation_enabled && homing_left_ == 0)
+    if (drive_profile) {
+      if (state_ == hil::DriveState::operation_enabled && c.move.kind == hil::DriveMove::Kind::position)
+        position = c.move.target_inc - offset;
+    } else if (follow && state_ == hil::DriveState::operation_enabled && homing_left_ == 0) {
       position = history_.front() - offset;
+    }
   }
   const hil::DriveFeedback& feedback() const noexcept override { return fb_; }
   bool request(hil::DriveRequest r) override {

@@ -66,7 +66,8 @@ public:
     const yaml::Where where{env.source_file, env.drive_path(axis_name)};
     if (auto k = yaml::check_keys(node, where,
                                   {"transport", "node", "bus", "eds", "heartbeat", "heartbeat_timeout", "sdo_timeout", "kv",
-                                   "max_velocity", "velocity_lag", "feedforward", "homing", "check_identity"});
+                                   "max_velocity", "velocity_lag", "feedforward", "homing", "check_identity", "mode",
+                                   "position_gain"});
         !k)
       return std::unexpected(k.error());
     auto id = yaml::get_int(node, where, "node");
@@ -105,6 +106,27 @@ public:
     auto check_identity = yaml::get_bool(node, where, "check_identity");
     if (!homing) return std::unexpected(homing.error());
     if (!check_identity) return std::unexpected(check_identity.error());
+    auto mode_name = yaml::get_string(node, where, "mode");
+    if (!mode_name) return std::unexpected(mode_name.error());
+    cia402::OperatingSetup setup = cia402::OperatingSetup::csp;
+    if (mode_name->has_value()) {
+      if (**mode_name == "csp") setup = cia402::OperatingSetup::csp;
+      else if (**mode_name == "csv") setup = cia402::OperatingSetup::csv;
+      else if (**mode_name == "pp") setup = cia402::OperatingSetup::pp;
+      else
+        return std::unexpected(yaml::error_at(node["mode"], where.key("mode"),
+                                              fmt::format("unknown mode '{}': csp (cyclic position), csv (cyclic velocity, "
+                                                          "hilbridge closes the position loop) or pp (the drive's own profile "
+                                                          "position / profile velocity)",
+                                                          **mode_name)));
+    }
+    auto gain = yaml::get_double(node, where, "position_gain");
+    if (!gain) return std::unexpected(gain.error());
+    if (gain->has_value() && (setup != cia402::OperatingSetup::csv || !(**gain > 0.0) || **gain > 10000.0))
+      return std::unexpected(yaml::error_at(node["position_gain"], where.key("position_gain"),
+                                            setup != cia402::OperatingSetup::csv
+                                                ? std::string("position_gain is the csv position loop: set `mode: csv` or leave it out")
+                                                : fmt::format("must be > 0 and <= 10000 1/s, got {}", **gain)));
 
     // The node's EDS: a file (relative to the scenario) or the simulated drive's.
     auto eds_path = yaml::get_string(node, where, "eds");
@@ -157,10 +179,13 @@ public:
     ao.heartbeat_producer = *hb;
     ao.heartbeat_consumer = *hb_timeout;
     ao.check_identity = check_identity->value_or(true);
+    ao.profile_objects = setup == cia402::OperatingSetup::pp;
     bus.network->master().add_node(cia402::make_axis_node_config(*eds, ao));
     cia402::DriveOptions dopt;
     dopt.name = fmt::format("canopen:{}/{}", url, nid);
     dopt.homing = homing->value_or(true);
+    dopt.setup = setup;
+    if (gain->has_value()) dopt.csv_position_gain_per_s = **gain;
     auto drive = std::make_unique<cia402::Cia402Drive>(*bus.network, static_cast<canopen::NodeId>(nid), dopt);
     if (sim != nullptr) return std::make_unique<InProcessAxis>(std::move(drive), *sim, env.clock);
     return drive;

@@ -60,6 +60,16 @@ Axis::Axis(AxisConfig config, hil::DrivePtr drive)
   }
 }
 
+void Axis::set_drive_move(hil::DriveMove::Kind kind, std::int64_t target_inc, double velocity, const Limits& limits) {
+  const double ipu = scaling_.inc_per_unit();
+  drive_move_.kind = kind;
+  ++drive_move_.id;
+  drive_move_.target_inc = target_inc;
+  drive_move_.velocity_inc_per_s = velocity * ipu;
+  drive_move_.acceleration_inc_per_s2 = limits.acceleration * ipu;
+  drive_move_.deceleration_inc_per_s2 = limits.acceleration * ipu;
+}
+
 Limits Axis::effective(const std::optional<Limits>& limits) const {
   return limits ? *limits : config_.limits;
 }
@@ -171,6 +181,10 @@ std::error_code Axis::start_position(std::int64_t target_inc, const Limits& limi
       return make_error_code(MotionFault::software_limit);
   }
   plan_position(from, scaling_.to_units(target_inc), limits, entry, profile_);
+  if (drive_profile_) {
+    const double approach = target_inc > cmd_inc_ ? 0.0 : target_inc < cmd_inc_ ? -config_.backlash : backlash_goal_;
+    set_drive_move(hil::DriveMove::Kind::position, target_inc + scaling_.to_inc_fast(approach), limits.velocity, limits);
+  }
   target_inc_ = target_inc;
   active_limits_ = limits;
   entry_limits_ = entry;
@@ -246,9 +260,11 @@ std::error_code Axis::move_velocity(double velocity, std::optional<Limits> limit
     mode_ = Mode::velocity_to_limit;
     limit_target_ = *limit;
     target_inc_ = scaling_.to_inc(*limit);
+    if (drive_profile_) set_drive_move(hil::DriveMove::Kind::position, target_inc_, lim.velocity, lim);
   } else {
     plan_velocity(from, velocity, lim, entry, profile_);
     mode_ = Mode::velocity;
+    if (drive_profile_) set_drive_move(hil::DriveMove::Kind::velocity, 0, velocity, lim);
   }
   active_limits_ = effective(limits);
   entry_limits_ = entry;
@@ -273,6 +289,7 @@ void Axis::plan_stop(const Limits& limits, Mode after) {
   const State from{cmd_p_, cmd_v_, cmd_a_, 0.0};
   entry_limits_ = upper(entry_limits_, limits);
   plan_velocity(from, 0.0, limits, entry_limits_, profile_);
+  if (drive_profile_) set_drive_move(hil::DriveMove::Kind::hold, 0, 0.0, limits);
   mode_ = after;
   profile_active_ = true;
   profile_start_ = last_now_;
@@ -328,6 +345,8 @@ void Axis::react_to_fault() {
     profile_active_ = false;  // already at rest: hold the set-point
     mode_ = Mode::hold;
     status_.busy = false;
+    // A drive running its own profile may still be on its way: it brakes (CiA 402 halt).
+    if (drive_profile_) set_drive_move(hil::DriveMove::Kind::hold, 0, 0.0, quick_stop_limits());
     return;
   }
   switch (config_.reaction) {
@@ -357,6 +376,7 @@ void Axis::hold_at_actual() {
   entry_limits_ = config_.limits;
   last_drive_cmd_inc_ = fb.position_inc;  // the set-point is the actual: no following error
   status_.busy = false;
+  if (drive_move_.kind != hil::DriveMove::Kind::hold) set_drive_move(hil::DriveMove::Kind::hold, 0, 0.0, quick_stop_limits());
 }
 
 void Axis::finish_profile() {
@@ -412,6 +432,7 @@ CycleResult Axis::update(const hil::CycleTime& cycle) {
   const auto& fb = drive_->feedback();
   if (first_cycle_) {
     first_cycle_ = false;
+    drive_profile_ = drive_->capabilities().drive_profile;  // a transport may settle it until the first cycle
     last_now_ = cycle.now;
     hold_at_actual();
     enable_started_ = cycle.now;
@@ -499,7 +520,8 @@ CycleResult Axis::update(const hil::CycleTime& cycle) {
     const std::int64_t tgt =
         profile_active_ && mode_ == Mode::velocity ? drive_cmd : target_inc_ + (drive_cmd - cmd_inc_);
     const double target_error = static_cast<double>(tgt - fb.position_inc) * upi;
-    hil::Fault f = supervisor_.check(config_, fe, programmed_feed_, profile_active_, target_error, cycle.now);
+    hil::Fault f =
+        supervisor_.check(config_, fe, programmed_feed_, profile_active_, target_error, cycle.now, !drive_profile_);
     if (f) {
       raise(f.code, std::move(f.text));
       react_to_fault();
@@ -513,6 +535,7 @@ CycleResult Axis::update(const hil::CycleTime& cycle) {
   cmd.position_inc = follows_actual ? fb.position_inc : drive_cmd;
   cmd.velocity_inc_per_s = cmd_v_ * scaling_.inc_per_unit();
   cmd.acceleration_inc_per_s2 = cmd_a_ * scaling_.inc_per_unit();
+  cmd.move = drive_move_;
   drive_->write(cycle, cmd);
   last_drive_cmd_inc_ = cmd.position_inc;
   last_now_ = cycle.now;

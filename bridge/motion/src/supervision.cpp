@@ -36,7 +36,7 @@ double Supervisor::motion_window(const AxisConfig& config, double feed) noexcept
 }
 
 hil::Fault Supervisor::check(const AxisConfig& c, double following_error, double feed, bool profile_running,
-                             double target_error, hil::TimePoint now) {
+                             double target_error, hil::TimePoint now, bool path_supervised) {
   const double fe = std::fabs(following_error);
   if (profile_running) {
     settling_ = false;
@@ -70,6 +70,7 @@ hil::Fault Supervisor::check(const AxisConfig& c, double following_error, double
     }
     return {};
   }
+  if (!path_supervised) return {};
   const double window = motion_window(c, feed);
   if (fe > window) {
     const auto& f = c.following_error;

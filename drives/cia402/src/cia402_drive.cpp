@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 #include "hil/cia402/cia402_drive.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -11,7 +12,8 @@
 namespace hil::cia402 {
 namespace {
 constexpr std::uint16_t k_cw = 0x6040, k_sw = 0x6041, k_mode = 0x6060, k_mode_display = 0x6061, k_error = 0x603F,
-                        k_target_pos = 0x607A, k_target_vel = 0x60FF, k_actual_pos = 0x6064, k_actual_vel = 0x606C;
+                        k_target_pos = 0x607A, k_target_vel = 0x60FF, k_actual_pos = 0x6064, k_actual_vel = 0x606C,
+                        k_profile_vel = 0x6081, k_profile_acc = 0x6083, k_profile_dec = 0x6084;
 
 std::int32_t clamp32(double v) {
   if (!std::isfinite(v)) return 0;
@@ -19,7 +21,22 @@ std::int32_t clamp32(double v) {
   if (v < std::numeric_limits<std::int32_t>::min()) return std::numeric_limits<std::int32_t>::min();
   return static_cast<std::int32_t>(std::lround(v));
 }
+/// Profile velocity/acceleration objects are UNSIGNED32; 0 would stop a drive for good.
+std::uint32_t profile_value(double v) {
+  const double a = std::fabs(v);
+  if (!std::isfinite(a) || a >= 4294967295.0) return 0xFFFFFFFFu;
+  return std::max<std::uint32_t>(1, static_cast<std::uint32_t>(std::lround(a)));
+}
 }  // namespace
+
+std::string_view to_string(OperatingSetup s) noexcept {
+  switch (s) {
+    case OperatingSetup::csp: return "csp";
+    case OperatingSetup::csv: return "csv";
+    case OperatingSetup::pp: return "pp";
+  }
+  return "?";
+}
 
 Cia402Drive::Cia402Drive(Network& network, canopen::NodeId node, DriveOptions options)
     : network_(network), node_(node), options_(std::move(options)) {
@@ -34,6 +51,7 @@ DriveCapabilities Cia402Drive::capabilities() const noexcept {
   c.closed_loop = true;
   c.velocity_mode = true;
   c.homing = options_.homing;
+  c.drive_profile = options_.setup == OperatingSetup::pp;
   c.min_period = std::chrono::microseconds(250);
   return c;
 }
@@ -52,9 +70,6 @@ void Cia402Drive::on_emcy(std::uint16_t code, std::uint8_t) { emcy_code_ = code;
 
 void Cia402Drive::on_heartbeat_lost(Duration) {
   heartbeat_lost_ = true;
-  const auto ms = std::chrono::duration_cast<std::chrono::milliseconds>(
-                      network_.master().options().boot_timeout).count();
-  (void)ms;
   set_fault(make_error_code(ErrorCode::heartbeat),
             fmt::format("{} (node {}): no heartbeat within the consumer time; check the cable and the node's power",
                         describe(0x8130), node_));
@@ -148,6 +163,22 @@ void Cia402Drive::write(const CycleTime& cycle, const DriveCommand& command) {
   Mode mode = command.mode == CommandMode::velocity ? Mode::cyclic_sync_velocity : Mode::cyclic_sync_position;
   std::int64_t target = command.position_inc;
   double velocity = command.velocity_inc_per_s;
+  if (options_.setup == OperatingSetup::csv && command.mode == CommandMode::position) {
+    // The master closes the position loop: feed-forward plus the gain on the position error.
+    mode = Mode::cyclic_sync_velocity;
+    velocity += options_.csv_position_gain_per_s * static_cast<double>(command.position_inc - feedback_.position_inc);
+  }
+  const bool profile = options_.setup == OperatingSetup::pp && !homing_requested_;
+  if (profile && state == DriveState::operation_enabled) {
+    mode = write_profile(command.move, cwv, img);
+    // A hold (halt) leaves no edge on bit 4: 0x607A only matters with the next set-point.
+    target = command.move.kind == DriveMove::Kind::position ? command.move.target_inc : feedback_.position_inc;
+    velocity = command.move.kind == DriveMove::Kind::velocity ? command.move.velocity_inc_per_s : 0.0;
+  } else if (profile) {
+    mode = profile_mode_;
+    set_point_ = SetPoint::acknowledged;  // a move given while not enabled is not started later
+    set_point_id_ = command.move.id;
+  }
   if (homing_requested_) {
     mode = Mode::homing;
     const auto display = static_cast<Mode>(img.get_int(k_mode_display, 0));
@@ -169,6 +200,45 @@ void Cia402Drive::write(const CycleTime& cycle, const DriveCommand& command) {
   img.set_int(k_target_pos, 0, clamp32(static_cast<double>(target)));
   img.set_int(k_target_vel, 0, clamp32(velocity));
   controlword_ = cwv;
+}
+
+Mode Cia402Drive::write_profile(const DriveMove& move, std::uint16_t& cwv, canopen::ObjectDictionary& img) {
+  const auto display = static_cast<Mode>(img.get_int(k_mode_display, 0));
+  const bool acknowledged = (statusword_ & sw::op_specific_12) != 0;
+  img.set_int(k_profile_acc, 0, profile_value(move.acceleration_inc_per_s2));
+  img.set_int(k_profile_dec, 0, profile_value(move.deceleration_inc_per_s2));
+  switch (move.kind) {
+    case DriveMove::Kind::position:
+      profile_mode_ = Mode::profile_position;
+      img.set_int(k_profile_vel, 0, profile_value(move.velocity_inc_per_s));
+      if (move.id != set_point_id_) {
+        set_point_id_ = move.id;
+        set_point_ = SetPoint::waiting;
+      }
+      cwv |= cw::change_immediately;  // a new target replaces the running one at once
+      switch (set_point_) {
+        case SetPoint::waiting:
+          // Raise bit 4 once the drive is in PP and has dropped the previous acknowledge.
+          if (display == Mode::profile_position && !acknowledged && (controlword_ & cw::new_set_point) == 0) {
+            cwv |= cw::new_set_point;
+            set_point_ = SetPoint::raised;
+          }
+          break;
+        case SetPoint::raised:
+          cwv |= cw::new_set_point;  // held until the drive acknowledges (bit 12)
+          if (acknowledged) set_point_ = SetPoint::acknowledged;
+          break;
+        case SetPoint::acknowledged: break;  // bit 4 low again: the drive drops bit 12
+      }
+      break;
+    case DriveMove::Kind::velocity:
+      profile_mode_ = Mode::profile_velocity;
+      break;
+    case DriveMove::Kind::hold:
+      cwv |= cw::halt;  // brake under 0x6084 and stand; stays in the mode that moved
+      break;
+  }
+  return profile_mode_;
 }
 
 bool Cia402Drive::request(DriveRequest r) {

@@ -51,8 +51,12 @@ canopen::NodeConfig make_axis_node_config(const canopen::DeviceDescription& eds,
   const std::vector<PdoMappingEntry> tpdo2{{0x6064, 0, 32}, {0x606C, 0, 32}};
   remap(c.configuration, 0x1400, 0x1600, 0x200u + id, rpdo1, 1);
   remap(c.configuration, 0x1401, 0x1601, 0x300u + id, rpdo2, 1);
-  remap(c.configuration, 0x1402, 0x1602, 0x400u + id, {}, 1);
-  remap(c.configuration, 0x1403, 0x1603, 0x500u + id, {}, 1);
+  const std::vector<PdoMappingEntry> rpdo3 =
+      o.profile_objects ? std::vector<PdoMappingEntry>{{0x6081, 0, 32}, {0x6083, 0, 32}} : std::vector<PdoMappingEntry>{};
+  const std::vector<PdoMappingEntry> rpdo4 =
+      o.profile_objects ? std::vector<PdoMappingEntry>{{0x6084, 0, 32}} : std::vector<PdoMappingEntry>{};
+  remap(c.configuration, 0x1402, 0x1602, 0x400u + id, rpdo3, 1);
+  remap(c.configuration, 0x1403, 0x1603, 0x500u + id, rpdo4, 1);
   remap(c.configuration, 0x1800, 0x1A00, 0x180u + id, tpdo1, 1);
   remap(c.configuration, 0x1801, 0x1A01, 0x280u + id, tpdo2, 1);
   remap(c.configuration, 0x1802, 0x1A02, 0x380u + id, {}, 1);
@@ -69,6 +73,10 @@ canopen::NodeConfig make_axis_node_config(const canopen::DeviceDescription& eds,
   // The master applies received PDOs at once (0xFF) and sends its own on every SYNC (1).
   c.rx_pdos = {pdo(0x180u + id, tpdo1, 0xFF), pdo(0x280u + id, tpdo2, 0xFF)};
   c.tx_pdos = {pdo(0x200u + id, rpdo1, 1), pdo(0x300u + id, rpdo2, 1)};
+  if (o.profile_objects) {
+    c.tx_pdos.push_back(pdo(0x400u + id, rpdo3, 1));
+    c.tx_pdos.push_back(pdo(0x500u + id, rpdo4, 1));
+  }
   return c;
 }
 

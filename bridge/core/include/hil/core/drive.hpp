@@ -46,13 +46,32 @@ enum class CommandMode : std::uint8_t {
   velocity,  ///< cyclic synchronous velocity (CSV)
 };
 
+/// The move in progress, for drives that generate the trajectory themselves
+/// (DriveCapabilities::drive_profile: CiA 402 profile position / profile velocity, a legacy
+/// controller's positioning block). Cyclic drives ignore it.
+struct DriveMove {
+  enum class Kind : std::uint8_t {
+    hold,      ///< stand still; a drive still moving brakes under `deceleration` (CiA 402 halt)
+    position,  ///< go to `target_inc` at up to `velocity`
+    velocity,  ///< run at the signed `velocity`
+  };
+  Kind kind = Kind::hold;
+  std::uint32_t id = 0;  ///< changes with every new move: the drive starts a new set-point
+  std::int64_t target_inc = 0;
+  double velocity_inc_per_s = 0.0;  ///< position: profile velocity (> 0); velocity: signed target
+  double acceleration_inc_per_s2 = 0.0;
+  double deceleration_inc_per_s2 = 0.0;
+};
+
 /// One cycle's set-point, in drive increments. The motion core fills all fields; a drive uses
-/// what its mode needs (velocity/acceleration are feed-forward in position mode).
+/// what its mode needs (velocity/acceleration are feed-forward in position mode; `move` is what
+/// a drive-profile drive executes, `position_inc` then being the motion core's reference).
 struct DriveCommand {
   CommandMode mode = CommandMode::position;
   std::int64_t position_inc = 0;
   double velocity_inc_per_s = 0.0;
   double acceleration_inc_per_s2 = 0.0;
+  DriveMove move{};
 };
 
 /// Requests progress over the following cycles (a CiA 402 drive walks its state machine, a
@@ -70,6 +89,10 @@ struct DriveCapabilities {
   bool closed_loop = true;      ///< false: actual position is the commanded one (open-loop step/dir)
   bool velocity_mode = true;    ///< accepts CommandMode::velocity
   bool homing = false;          ///< accepts DriveRequest::home
+  /// Generates the trajectory itself from DriveCommand::move (CiA 402 PP/PV). The axis then
+  /// supervises the end position (in-position, standstill), not the path: the drive watches its
+  /// own following error and reports a violation as its fault.
+  bool drive_profile = false;
   Duration min_period{};        ///< shortest cycle period the transport can serve (0 = any)
 };
 

@@ -66,6 +66,8 @@ class Axis {
   void finish_profile();
   [[nodiscard]] Limits effective(const std::optional<Limits>& limits) const;
   [[nodiscard]] Limits quick_stop_limits() const;
+  /// The move a drive-profile drive executes (DriveCapabilities::drive_profile); a new id each call.
+  void set_drive_move(hil::DriveMove::Kind kind, std::int64_t target_inc, double velocity, const Limits& limits);
 
   AxisConfig config_;
   hil::DrivePtr drive_;
@@ -90,6 +92,8 @@ class Axis {
   double backlash_offset_ = 0.0;                    ///< units currently added to the drive command
   double backlash_goal_ = 0.0;                      ///< 0 after positive motion, -backlash after negative
   Supervisor supervisor_;
+  bool drive_profile_ = false;  ///< the drive runs its own trajectory from drive_move_
+  hil::DriveMove drive_move_{};
   hil::TimePoint enable_started_{};
   bool first_cycle_ = true;
   hil::TimePoint last_now_{};

@@ -21,9 +21,11 @@ class Supervisor {
   /// One cycle. `following_error` = command - actual (units); `feed` = programmed |velocity| of
   /// the active move (units/s); `profile_running` while the set-point still moves;
   /// `target_error` = target - actual. Returns an empty Fault or the violation (MotionFault code,
-  /// text naming the value, the window and its rule).
+  /// text naming the value, the window and its rule). `path_supervised` = false skips the motion
+  /// window (a drive that generates its own profile watches its own following error); the
+  /// in-position and standstill rules still apply.
   [[nodiscard]] hil::Fault check(const AxisConfig& config, double following_error, double feed, bool profile_running,
-                                 double target_error, hil::TimePoint now);
+                                 double target_error, hil::TimePoint now, bool path_supervised = true);
 
   [[nodiscard]] bool in_position() const noexcept { return in_position_; }
   /// Following-error window in motion for programmed feed `feed`: the static window, or

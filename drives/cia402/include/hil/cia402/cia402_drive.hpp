@@ -1,9 +1,16 @@
 // SPDX-License-Identifier: MIT
 #pragma once
 // hil::Drive for a CiA 402 servo on CANopen. Walks the power state machine (CiA 402-2 §6.3)
-// from the statusword, runs CSP/CSV cyclically through the PDO layout of layout.hpp, homing (HM)
-// on request, and turns EMCY / 0x603F / heartbeat loss / boot failures into the axis's Fault
-// (category "cia402", value = the CiA 402 error code, text from the error-code table).
+// from the statusword and runs one of three operating setups through the PDO layout of
+// layout.hpp:
+//   csp  cyclic synchronous position: the motion core's set-point every cycle (default);
+//   csv  cyclic synchronous velocity: the master closes the position loop, 0x60FF =
+//        feed-forward + position_gain * (set-point - actual);
+//   pp   the drive generates the trajectory: positioning moves in profile position (PP, the
+//        set-point handshake on controlword bit 4 / statusword bit 12, "change set immediately"),
+//        velocity moves in profile velocity (PV), stops with halt (bit 8) under 0x6084.
+// Homing (HM) on request in every setup. EMCY / 0x603F / heartbeat loss / boot failures become
+// the axis's Fault (category "cia402", value = the CiA 402 error code, text from the table).
 // Thread: the motion thread, the same one that runs its Network. Non-blocking, never throws.
 
 #include <optional>
@@ -15,8 +22,14 @@
 
 namespace hil::cia402 {
 
+/// How the drive is commanded (see the file comment).
+enum class OperatingSetup : std::uint8_t { csp, csv, pp };
+[[nodiscard]] std::string_view to_string(OperatingSetup s) noexcept;
+
 struct DriveOptions {
   std::string name;                       ///< "canopen:vbus/5"
+  OperatingSetup setup = OperatingSetup::csp;  ///< pp needs the profile objects mapped (AxisOptions::profile_objects)
+  double csv_position_gain_per_s = 100.0;      ///< csv: master-side position loop gain (1/s)
   bool homing = true;                     ///< accepts DriveRequest::home (mode 6 with the node's 0x6098 method)
   Duration homing_timeout{std::chrono::seconds(30)};
   Duration stale_after{std::chrono::milliseconds(50)};  ///< feedback older than this counts as lost
@@ -51,6 +64,8 @@ public:
 
 private:
   void set_fault(std::error_code code, std::string text);
+  /// pp: controlword bits, mode and profile objects for `move` (PP / PV / halt).
+  Mode write_profile(const DriveMove& move, std::uint16_t& cwv, canopen::ObjectDictionary& img);
 
   Network& network_;
   canopen::NodeId node_;
@@ -70,6 +85,11 @@ private:
   DriveState raw_state_ = DriveState::not_ready;  ///< from the statusword, before reset masking
   bool reset_pending_ = false;
   std::optional<TimePoint> reset_deadline_;
+  // pp set-point handshake: the move whose set-point is being handed over, and how far.
+  enum class SetPoint : std::uint8_t { waiting, raised, acknowledged };
+  std::uint32_t set_point_id_ = 0;
+  SetPoint set_point_ = SetPoint::acknowledged;
+  Mode profile_mode_ = Mode::profile_position;  ///< the profile mode last commanded (halt stays in it)
 };
 
 }  // namespace hil::cia402
