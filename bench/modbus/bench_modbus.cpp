@@ -7,7 +7,7 @@
 //     libmodbus select() server (modbus_receive/modbus_reply), the baseline to beat.
 //   BM_CycleReadWrite: what a Modbus axis costs the motion thread, read() + write() of a
 //     free-running ModbusDrive exchanging with our server (1 ms poll period).
-//   BM_HandleRequest: the pure request handler + device for one FC 23 cycle request.
+//   BM_HandleRequest: check_request + libmodbus' modbus_reply() + device for one FC 23 cycle request.
 // Run: bench_modbus --benchmark_format=json
 #include <benchmark/benchmark.h>
 #include <modbus.h>

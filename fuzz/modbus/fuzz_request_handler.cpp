@@ -1,8 +1,9 @@
 // SPDX-License-Identifier: MIT
-// Fuzz the server's request processing as a pure function: a byte stream (one or more request
-// ADUs, possibly garbage) is framed with check_frame() exactly as a server connection does, each
-// complete ADU goes through the simulated drive device (request handler + state machine), and
-// every response must be a well-formed ADU that echoes the request's transaction and unit id.
+// Fuzz the server's request processing: a byte stream (one or more request ADUs, possibly
+// garbage) is framed with check_frame() exactly as a server connection does, each complete ADU
+// goes through the simulated drive device (check_request, libmodbus' modbus_reply, the state
+// machine), and every response must be a well-formed ADU that echoes the request's transaction
+// and unit id.
 #include <cstdint>
 #include <cstdlib>
 #include <span>

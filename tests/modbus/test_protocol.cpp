@@ -8,6 +8,7 @@
 #include "hil/modbus/adu.hpp"
 #include "hil/modbus/error.hpp"
 #include "hil/modbus/packing.hpp"
+#include "hil/mocks/modbus_responder.hpp"
 #include "hil/modbus/request_handler.hpp"
 
 namespace hil::modbus {
@@ -86,7 +87,7 @@ protected:
     make_mbap(adu.data(), 0x4242, unit, pdu.size());
     adu.insert(adu.end(), pdu.begin(), pdu.end());
     Bytes out(kMaxAduSize);
-    last = handle_request(adu, table, out, options);
+    last = responder.handle(adu, table, out, options);
     out.resize(last.size);
     if (out.size() >= 7) {
       EXPECT_EQ(out[0], 0x42);
@@ -98,6 +99,7 @@ protected:
     return out;  // response PDU
   }
   RegisterTable table;
+  hil::mocks::ModbusResponder responder;  // libmodbus' modbus_reply() behind our request checks
   HandlerOptions options;
   HandleResult last;
 };
@@ -176,11 +178,11 @@ TEST_F(ModbusHandler, UnitPolicy) {
 TEST_F(ModbusHandler, MalformedAduGetsNoResponse) {
   Bytes out(kMaxAduSize);
   const Bytes bad = {0x00, 0x01, 0x00, 0x00, 0x00, 0x06, 0x01, 0x03, 0x00};  // shorter than its length
-  auto r = handle_request(bad, table, out, options);
+  auto r = responder.handle(bad, table, out, options);
   EXPECT_EQ(r.size, 0u);
   EXPECT_EQ(r.error, ModbusError::invalid_request);
   const Bytes pid = {0x00, 0x01, 0x00, 0x01, 0x00, 0x02, 0x01, 0x03};
-  EXPECT_EQ(handle_request(pid, table, out, options).size, 0u);
+  EXPECT_EQ(responder.handle(pid, table, out, options).size, 0u);
 }
 
 }  // namespace

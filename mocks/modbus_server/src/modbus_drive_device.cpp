@@ -52,7 +52,7 @@ std::uint32_t DriveDevice::fault_code_for(PlantFault f) const noexcept {
 
 modbus::HandleResult DriveDevice::handle(std::span<const std::uint8_t> adu, std::span<std::uint8_t> out,
                                          const modbus::HandlerOptions& options) noexcept {
-  auto r = modbus::handle_request(adu, table_, out, options);
+  auto r = responder_.handle(adu, table_, out, options);
   if (r.written_count > 0) {
     const auto& cw = profile_.field(FieldRole::control_word);
     if (cw.address >= r.written_first && cw.address < r.written_first + r.written_count) {

@@ -2,8 +2,8 @@
 #pragma once
 // The simulated drive behind the Modbus drive server: a register table laid out by a profile,
 // the profile's device-side state machine (CiA 402 FSA or vendor bits) and the plant model.
-// Requests go through the pure request handler; the device reacts to control-word writes at
-// once and steps the plant when told. Not thread-safe: ModbusDriveServer serialises access.
+// Requests are served by libmodbus (ModbusResponder) against the device's register table; the
+// device reacts to control-word writes at once and steps the plant when told. Not thread-safe: ModbusDriveServer serialises access.
 
 #include <cstdint>
 #include <span>
@@ -11,6 +11,7 @@
 #include "hil/core/clock.hpp"
 #include "hil/core/drive.hpp"
 #include "hil/core/fault.hpp"
+#include "hil/mocks/modbus_responder.hpp"
 #include "hil/mocks/plant.hpp"
 #include "hil/modbus/profile.hpp"
 #include "hil/modbus/request_handler.hpp"
@@ -28,7 +29,7 @@ class DriveDevice {
 public:
   DriveDevice(modbus::Profile profile, DriveDeviceConfig config = {});
 
-  /// Serve one request ADU (see modbus::handle_request); control-word writes take effect at once.
+  /// Serve one request ADU (see ModbusResponder::handle); control-word writes take effect at once.
   modbus::HandleResult handle(std::span<const std::uint8_t> adu, std::span<std::uint8_t> out,
                               const modbus::HandlerOptions& options) noexcept;
 
@@ -55,6 +56,7 @@ private:
   modbus::Profile profile_;
   DriveDeviceConfig config_;
   modbus::RegisterTable table_;
+  ModbusResponder responder_;
   Plant plant_;
   DriveState state_ = DriveState::not_ready;
   std::uint16_t prev_cw_ = 0;

@@ -5,7 +5,8 @@
 //
 // Threads:
 //  - the I/O thread (started by start(), joined by stop()) accepts connections, frames requests
-//    by the MBAP length, runs the pure request handler under the device mutex and writes replies;
+//    by the MBAP length, has libmodbus answer each one (DriveDevice / ModbusResponder) under the
+//    device mutex and writes the replies;
 //    with `auto_step` set it also steps the plant on a real-time timer;
 //  - any other thread may call step(), inject(), with_device(), the fault hooks and stats().
 // Each connection owns its receive buffer: a client sending garbage (bad protocol id / length)

@@ -1,10 +1,9 @@
 // SPDX-License-Identifier: MIT
 #pragma once
-// The server's request processing as a pure function: one request ADU in, one response ADU out,
-// against a RegisterTable. No sockets, clocks or allocation. Supported: FC 3, 4, 6, 16, 22, 23;
-// anything else answers exception 01. Check order follows libmodbus and the spec's state
-// diagrams (MB spec §6): PDU length and quantity/byte-count errors give 03 before address errors
-// give 02; FC 23 writes before it reads (MB spec §6.17).
+// The server's request rules as a pure function (what may be served), ahead of libmodbus'
+// modbus_reply() (which serves it). Supported: FC 3, 4, 6, 16, 22, 23; anything else answers
+// exception 01. Check order follows libmodbus and the spec's state diagrams (MB spec §6): PDU
+// length and quantity/byte-count errors give 03 before address errors give 02.
 
 #include <cstddef>
 #include <cstdint>
@@ -31,10 +30,22 @@ struct HandleResult {
   std::uint16_t written_count = 0;
 };
 
-/// Process one complete request ADU (as delimited by check_frame()). `out` must hold
-/// kMaxAduSize bytes. A malformed ADU (size disagrees with the MBAP length, protocol id != 0)
-/// produces no response and `error == invalid_request`; the caller closes the connection.
-HandleResult handle_request(std::span<const std::uint8_t> adu, RegisterTable& table, std::span<std::uint8_t> out,
-                            const HandlerOptions& options) noexcept;
+/// What a request asks for, and whether this device may serve it. Pure: no sockets, no state.
+/// These are the checks libmodbus' modbus_reply() does not make (or makes only after reading
+/// fields it trusts modbus_receive() to have framed): the PDU length per function code, the
+/// quantities and byte counts (03), the device's register map with absent and read-only
+/// registers (02), the supported function codes (01) and, with `strict_unit`, the unit (0B).
+/// A request that passes is served by modbus_reply(); see hil::mocks::ModbusResponder.
+struct RequestCheck {
+  std::uint8_t function = 0;              ///< request function code (0 when the ADU is malformed)
+  ModbusError error = ModbusError::none;  ///< the exception to answer, or invalid_request: no answer, close
+  std::uint16_t written_first = 0;        ///< holding registers the request writes (when error == none)
+  std::uint16_t written_count = 0;
+};
+
+/// Check one complete request ADU (as delimited by check_frame()). A malformed ADU (size
+/// disagrees with the MBAP length, protocol id != 0) gives `invalid_request`.
+[[nodiscard]] RequestCheck check_request(std::span<const std::uint8_t> adu, const RegisterTable& table,
+                                         const HandlerOptions& options) noexcept;
 
 }  // namespace hil::modbus
