@@ -3,9 +3,10 @@
 // The state machine behind a profile's control and status words, as pure functions for both
 // ends: the client (ModbusDrive) decodes status words and chooses control words; the simulated
 // drive server encodes status words and steps its device state machine.
-//   cia402: CiA 402-2 §6.3 finite state automaton; control word 6040h commands Shutdown 0x06,
-//           Switch on 0x07, Enable operation 0x0F, Disable voltage 0x00, Quick stop 0x02,
-//           Fault reset = rising edge of bit 7; status word 6041h state bits 0-3, 5, 6.
+//   cia402: CiA 402-2 §6.3 finite state automaton, the same functions the CANopen drive and the
+//           simulated CiA 402 node use (hil::cia402, protocols/cia402); this file adds what a
+//           register drive decides itself: the fault reaction, the quick stop option (code 2:
+//           ramp, then switch on disabled) and the fault-reset edge made over two cycles.
 //   vendor: level bits enable / quick_stop, rising edge of fault_reset; status bits ready /
 //           enabled / fault (bit numbers from the profile).
 
@@ -23,18 +24,6 @@ struct StatusInfo {
   DriveState state = DriveState::not_ready;
   bool referenced = false;
 };
-
-namespace cia402 {
-inline constexpr std::uint16_t cw_disable_voltage = 0x0000;
-inline constexpr std::uint16_t cw_quick_stop = 0x0002;
-inline constexpr std::uint16_t cw_shutdown = 0x0006;
-inline constexpr std::uint16_t cw_switch_on = 0x0007;
-inline constexpr std::uint16_t cw_enable_operation = 0x000F;
-inline constexpr std::uint16_t cw_fault_reset = 0x0080;
-inline constexpr std::uint16_t sw_voltage_enabled = 0x0010;
-inline constexpr std::uint16_t sw_remote = 0x0200;
-inline constexpr std::uint16_t sw_target_reached = 0x0400;
-}  // namespace cia402
 
 /// Client: the drive state a status word shows. CiA 402 masks per CiA 402-2 Table 30.
 [[nodiscard]] StatusInfo decode_status(const Profile& profile, std::uint16_t status_word) noexcept;
