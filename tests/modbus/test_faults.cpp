@@ -224,6 +224,25 @@ TEST(ModbusFaults, ReadOnlyWriteThroughLibmodbusIsIllegalDataAddress) {
   modbus_free(ctx);
 }
 
+TEST(ModbusServer, ListensOnAHostNameAndNamesABadOne) {
+  mocks::ModbusServerConfig config;
+  config.listen_host = "localhost";
+  mocks::ModbusDriveServer server(mocks::DriveDevice(shipped_profile("cia402.yaml")), config);
+  ASSERT_FALSE(server.start());
+  modbus_t* ctx = modbus_new_tcp("127.0.0.1", server.port());
+  ASSERT_NE(ctx, nullptr);
+  EXPECT_EQ(modbus_connect(ctx), 0) << "localhost resolves to the loopback address";
+  std::uint16_t sw = 0;
+  EXPECT_EQ(modbus_read_registers(ctx, 10, 1, &sw), 1);
+  modbus_close(ctx);
+  modbus_free(ctx);
+  server.stop();
+
+  config.listen_host = "no-such-host.invalid";
+  mocks::ModbusDriveServer bad(mocks::DriveDevice(shipped_profile("cia402.yaml")), config);
+  EXPECT_TRUE(bad.start()) << "an unknown host is an error, not a crash";
+}
+
 TEST(ModbusFaults, ConnectRefusedBacksOffAndConnectsLater) {
   Loopback lb("vendor_simple.yaml");
   const std::uint16_t port = lb.server->port();

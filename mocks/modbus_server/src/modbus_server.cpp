@@ -228,8 +228,14 @@ std::error_code ModbusDriveServer::start() {
   if (running_) return {};
   impl_ = std::make_unique<Impl>(*this);
   std::error_code ec;
-  const auto address = asio::ip::make_address(config_.listen_host, ec);
-  if (ec) return ec;
+  auto address = asio::ip::make_address(config_.listen_host, ec);
+  if (ec) {  // a host name ("localhost", the machine's name): its first address
+    tcp::resolver resolver(impl_->io);
+    const auto results = resolver.resolve(config_.listen_host, "", tcp::resolver::passive | tcp::resolver::numeric_service, ec);
+    if (ec) return ec;
+    if (results.empty()) return asio::error::host_not_found;
+    address = results.begin()->endpoint().address();
+  }
   const tcp::endpoint ep(address, port_.load());
   impl_->acceptor.open(ep.protocol(), ec);
   if (ec) return ec;
