@@ -131,6 +131,34 @@ TEST(Clm14Emulator, Rs485StationsSilentOnWrongStationAndBroadcast) {
   EXPECT_EQ(send(bad_mine), err(4, '3'));
 }
 
+TEST(Clm14Emulator, Rs485ResponseDelayFromB005HoldsTheAnswerInOrder) {
+  using std::chrono::milliseconds;
+  Clm14Line line(data(), 3);
+  const hil::TimePoint t0{};
+  const auto send = [&](std::string wire, hil::TimePoint at) {
+    return line.on_bytes(std::span(reinterpret_cast<const std::uint8_t*>(wire.data()), wire.size()), at);
+  };
+  // Station 2 gets B005 DDD = 050 ms (fields H C NN E DDD RRR); station 1 keeps 000.
+  line.set_mode(ClmMode::parameter);
+  EXPECT_EQ(send(make_telegram('#', '2', "K B005 0 1 02 0 050 000"), t0), "");
+  EXPECT_EQ(line.next_deadline(), t0 + milliseconds(50)) << "even its confirmation waits";
+  EXPECT_EQ(line.on_idle(t0 + milliseconds(49)), "");
+  EXPECT_EQ(line.on_idle(t0 + milliseconds(50)), "Y\r\n");
+  line.set_mode(ClmMode::manual);
+  EXPECT_EQ(line.station(1).response_delay(), milliseconds(50));
+  EXPECT_EQ(line.station(0).response_delay(), milliseconds(0));
+
+  const auto t1 = t0 + milliseconds(100);
+  const std::string late = make_telegram('#', '2', "N0000 NOP   ");
+  EXPECT_EQ(send(make_telegram('?', '2', "N0000"), t1), "") << "held for 50 ms";
+  // Station 1 answers at once by itself, but never overtakes the answer already on hold.
+  EXPECT_EQ(send(make_telegram('?', '1', "N0000"), t1 + milliseconds(10)), "");
+  EXPECT_EQ(line.next_deadline(), t1 + milliseconds(50));
+  EXPECT_EQ(line.on_idle(t1 + milliseconds(50)), late + make_telegram('#', '1', "N0000 NOP   "));
+  EXPECT_EQ(line.next_deadline(), hil::TimePoint::max());
+  EXPECT_EQ(send(make_telegram('?', '1', "N0000"), t1 + milliseconds(60)), make_telegram('#', '1', "N0000 NOP   "));
+}
+
 TEST(Clm14Emulator, ParityErrorInATelegramIsAFormatError) {
   Clm14Line line(data(), 0);
   const std::string first = "# N0001 ";

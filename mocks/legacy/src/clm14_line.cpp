@@ -17,7 +17,30 @@ Clm14Line::Clm14Line(std::shared_ptr<const serial::clm14::DeviceData> data, int 
   }
 }
 
-std::string Clm14Line::on_bytes(std::span<const std::uint8_t> data, TimePoint) {
+void Clm14Line::answer(const Clm14Station& station, std::string bytes, TimePoint now, std::string& out) {
+  if (bytes.empty()) return;
+  const Duration delay = station.response_delay();
+  if (delay == Duration::zero() && held_.empty()) {
+    out += bytes;
+    return;
+  }
+  TimePoint due = now + delay;
+  if (!held_.empty() && held_.back().due > due) due = held_.back().due;  // never overtakes an earlier answer
+  held_.push_back(Held{due, std::move(bytes)});
+}
+
+std::string Clm14Line::on_idle(TimePoint now) {
+  std::string out;
+  while (!held_.empty() && held_.front().due <= now) {
+    out += held_.front().bytes;
+    held_.pop_front();
+  }
+  return out;
+}
+
+TimePoint Clm14Line::next_deadline() const { return held_.empty() ? TimePoint::max() : held_.front().due; }
+
+std::string Clm14Line::on_bytes(std::span<const std::uint8_t> data, TimePoint now) {
   std::string out;
   for (std::uint8_t b : data) {
     const auto ev = splitter_.feed(static_cast<char>(b));
@@ -30,10 +53,10 @@ std::string Clm14Line::on_bytes(std::span<const std::uint8_t> data, TimePoint) {
     ++lines_;
     if (line_corrupt_) {
       line_corrupt_ = false;
-      for (auto& s : stations_) out += s->on_damaged_line(line);
+      for (auto& s : stations_) answer(*s, s->on_damaged_line(line), now, out);
       continue;
     }
-    for (auto& s : stations_) out += s->on_line(line);
+    for (auto& s : stations_) answer(*s, s->on_line(line), now, out);
   }
   return out;
 }

@@ -99,6 +99,19 @@ bool Clm14Station::confirmation_on() const {
   return f.size() >= 3 && f[2] == '1';
 }
 
+hil::Duration Clm14Station::response_delay() const {
+  if (station_ == 0) return Duration::zero();
+  const std::string f = parameter("B005");
+  // Fields separated by single spaces: H C NN E DDD RRR; DDD starts at offset 9.
+  if (f.size() < 12 || f[8] != ' ') return Duration::zero();
+  int ms = 0;
+  for (std::size_t i = 9; i < 12; ++i) {
+    if (f[i] < '0' || f[i] > '9') return Duration::zero();
+    ms = ms * 10 + (f[i] - '0');
+  }
+  return std::chrono::milliseconds(ms);
+}
+
 std::string Clm14Station::reply(char lead, std::string_view body) const {
   return serial::clm14::make_telegram(lead, station_char_, body, true);
 }

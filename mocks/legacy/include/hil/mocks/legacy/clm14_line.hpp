@@ -3,8 +3,10 @@
 // One serial line with 1 (RS-232) or up to 32 (RS-485 multi-drop) emulated CLM1.4 stations.
 // Splits the byte stream into telegrams, hands each line to every station (only the addressed
 // one answers), and turns character errors (parity, framing, overrun) into the device's
-// "RS Format Error" (02) for the telegram they hit.
+// "RS Format Error" (02) for the telegram they hit. An RS-485 station holds its answer for its
+// B005 response delay (DDD ms); answers leave in the order the requests came.
 
+#include <deque>
 #include <memory>
 #include <string>
 #include <vector>
@@ -21,6 +23,8 @@ public:
 
   std::string on_bytes(std::span<const std::uint8_t> data, TimePoint now) override;
   std::string on_line_error(std::error_code ec, TimePoint now) override;
+  std::string on_idle(TimePoint now) override;
+  [[nodiscard]] TimePoint next_deadline() const override;
   bool take_dirty() override;
   std::string save_state() const override;
   /// Restore from save_state() text; on error the stations keep their defaults.
@@ -37,6 +41,13 @@ private:
   serial::clm14::LineSplitter splitter_;
   bool line_corrupt_ = false;
   std::uint64_t lines_ = 0;
+  struct Held {
+    TimePoint due;
+    std::string bytes;
+  };
+  std::deque<Held> held_;  ///< answers waiting for their station's response delay, in order
+  /// `bytes` from `station` answering at `now`: out now, or held behind earlier ones.
+  void answer(const Clm14Station& station, std::string bytes, TimePoint now, std::string& out);
 };
 
 }  // namespace hil::mocks::legacy

@@ -17,6 +17,7 @@
 
 #include <nlohmann/json_fwd.hpp>
 
+#include "hil/core/clock.hpp"
 #include "hil/serial/clm14/device_data.hpp"
 #include "hil/serial/clm14/telegram.hpp"
 
@@ -51,6 +52,11 @@ public:
   [[nodiscard]] int fault() const noexcept { return fault_; }
   /// True when state changed since the last take_dirty() (for debounced persistence).
   [[nodiscard]] bool take_dirty() noexcept { return std::exchange(dirty_, false); }
+
+  /// RS-485 response delay: field DDD (ms) of B005, "H C NN E DDD RRR" (manual: B003/B005 "RS
+  /// Interface Functions"). Zero on RS-232 (the field applies in RS-485 mode only) or when the
+  /// field is missing or not a number.
+  [[nodiscard]] hil::Duration response_delay() const;
 
   [[nodiscard]] const std::string& program_line(int n) const { return program_.at(static_cast<std::size_t>(n)); }
   [[nodiscard]] std::string parameter(std::string_view number) const;
