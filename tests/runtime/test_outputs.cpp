@@ -105,6 +105,26 @@ std::vector<std::string> split(const std::string& line, char sep) {
 
 }  // namespace
 
+TEST(TraceCsv, HeaderQuotesAUnitWithACommaOrQuote) {
+  std::string yaml = two_axes;
+  yaml.replace(yaml.find("      inc_per_unit: 1000\n"), 0, "      units: \"m,\\\"m\"\n");
+  auto s = parse_scenario(yaml, "t.yaml");
+  ASSERT_TRUE(s.has_value()) << s.error().describe();
+  const auto path = std::filesystem::temp_directory_path() / "hil_runtime_trace_quote_test.csv";
+  TraceCsvWriter trace;
+  ASSERT_FALSE(trace.open(path));
+  RunOptions o;
+  o.observers.push_back(&trace);
+  ASSERT_TRUE(run_scenario(*s, hil::testing::sim_registry(), o).has_value());
+  ASSERT_FALSE(trace.close());
+  std::ifstream in(path);
+  std::string header;
+  std::getline(in, header);
+  EXPECT_EQ(header.substr(0, header.find(",x_state")),
+            "t_s,\"x_position_m,\"\"m\",\"x_command_m,\"\"m\",\"x_velocity_m,\"\"m_per_s\",\"x_following_error_m,\"\"m\"");
+  std::filesystem::remove(path);
+}
+
 TEST(TraceCsv, OneRowPerCycleWithEveryAxisColumn) {
   auto s = parse_scenario(two_axes, "t.yaml");
   ASSERT_TRUE(s.has_value()) << s.error().describe();

@@ -6,6 +6,21 @@
 #include <fmt/format.h>
 
 namespace hil::runtime {
+namespace {
+
+/// A CSV field (RFC 4180): quoted, with quotes doubled, when it holds a comma, a quote or a line break.
+std::string csv_field(const std::string& text) {
+  if (text.find_first_of(",\"\r\n") == std::string::npos) return text;
+  std::string out = "\"";
+  for (char c : text) {
+    if (c == '"') out += '"';
+    out += c;
+  }
+  out += '"';
+  return out;
+}
+
+}  // namespace
 
 std::error_code TraceCsvWriter::open(const std::filesystem::path& path) {
   file_.reset(std::fopen(path.c_str(), "w"));
@@ -20,9 +35,12 @@ void TraceCsvWriter::on_start(const Scenario&, const Machine& machine) {
   for (const auto& a : machine.axes()) {
     const std::string& n = a.spec->name;
     const std::string& u = a.spec->units;
-    h += fmt::format(",{0}_position_{1},{0}_command_{1},{0}_velocity_{1}_per_s,{0}_following_error_{1},{0}_state,"
-                     "{0}_fault",
-                     n, u);
+    for (const std::string& column :
+         {fmt::format("{}_position_{}", n, u), fmt::format("{}_command_{}", n, u), fmt::format("{}_velocity_{}_per_s", n, u),
+          fmt::format("{}_following_error_{}", n, u), fmt::format("{}_state", n), fmt::format("{}_fault", n)}) {
+      h += ',';
+      h += csv_field(column);
+    }
   }
   h += '\n';
   if (std::fputs(h.c_str(), file_.get()) < 0 && !error_) error_ = {errno, std::generic_category()};
