@@ -2,7 +2,9 @@
 // `hilbridge test FILE|DIR...`: run scenarios on virtual time as fast as possible, print pass/fail
 // per scenario and per expectation, write JUnit XML, exit non-zero on any failure.
 #include <algorithm>
+#include <cerrno>
 #include <chrono>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 
@@ -58,6 +60,15 @@ int test_command(Context& ctx, const TestArgs& args) {
   if (!error.empty()) {
     fmt::print(stderr, "error: {}\n", error);
     return 2;
+  }
+  if (!args.junit.empty()) {
+    // Find out now, not after a long suite, that the report cannot be written (append: an
+    // existing report stays as it is until the new one replaces it).
+    std::ofstream probe(args.junit, std::ios::app);
+    if (!probe) {
+      fmt::print(stderr, "error: cannot write the JUnit report {}: {}\n", args.junit, std::strerror(errno));
+      return 2;
+    }
   }
   std::vector<runtime::ScenarioOutcome> outcomes;
   std::size_t passed = 0;
