@@ -137,6 +137,10 @@ struct BadFile {
   const char* message_part;
 };
 
+// gtest prints the parameter into the ctest name; without this it would be the raw bytes of the
+// struct (pointers included), a name that changes from build to build.
+void PrintTo(const BadFile& b, std::ostream* os) { *os << b.file; }
+
 class ScenarioLoaderBadFile : public ::testing::TestWithParam<BadFile> {};
 
 TEST_P(ScenarioLoaderBadFile, NamesFileLineKeyAndExpectation) {
