@@ -5,6 +5,7 @@
 #include <sys/wait.h>
 
 #include <array>
+#include <cctype>
 #include <cstdio>
 #include <string>
 
@@ -105,6 +106,9 @@ struct SetCase {
   std::vector<std::string> expect;
 };
 
+// gtest prints the parameter into the ctest name: the device, file and options, not raw bytes.
+void PrintTo(const SetCase& c, std::ostream* os) { *os << c.device << ' ' << c.file << (*c.extra ? " " : "") << c.extra; }
+
 class ValidateSets : public ::testing::TestWithParam<SetCase> {};
 
 TEST_P(ValidateSets, ReportsEveryProblemWithItsLine) {
@@ -141,7 +145,14 @@ INSTANTIATE_TEST_SUITE_P(
         SetCase{"amkasyn-sf", "amk_errors.txt", "--set id2_ms=2", 1,
                 {"Printing mark control only in BA 2 or 98", ":5: INIT_DL2, INIT_DR2", ":8: INIT_DR4", ":12: DR0, INIT_DL0", ":16: DW3, id2_ms",
                  ":18: DW5, DW4", ":21: DW12, DD10", ":22: DW22, DW18, DW23", ":24: DR7", ":25: DW30 = 5", ":26: DD2 = 1", ":27: DW2 = 40000",
-                 "12 problem(s)"}}));
+                 "12 problem(s)"}}),
+    [](const ::testing::TestParamInfo<SetCase>& p) {
+      std::string name = p.param.file;
+      name = name.substr(0, name.find('.'));
+      for (char& ch : name)
+        if (!std::isalnum(static_cast<unsigned char>(ch))) ch = '_';
+      return name + "_" + std::to_string(p.index);
+    });
 
 TEST(ProfileCli, ValidateUsageErrors) {
   auto r = hilbridge("profile validate clm14 /nonexistent/set.txt");
