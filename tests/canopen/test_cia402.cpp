@@ -235,4 +235,5 @@ TEST_F(NodeBench, LosingTheMastersHeartbeatStopsTheDrive) {
   run(30ms);
   EXPECT_EQ(node.state(), DriveState::fault);
   EXPECT_EQ(node.od().get_int(0x603F, 0), 0x8130);
+  EXPECT_EQ(node.od().get_int(0x1003, 1) & 0xFFFF, 0x8130) << "the EMCY went into the error history";
 }

@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <map>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -30,25 +31,56 @@ namespace fs = std::filesystem;
 /// An axis whose node is simulated in this process: the Drive plus fault injection on the node.
 class InProcessAxis final : public Drive, public FaultInjectable {
 public:
-  InProcessAxis(std::unique_ptr<cia402::Cia402Drive> drive, mocks::Cia402Node& node, const Clock& clock)
-      : drive_(std::move(drive)), node_(node), clock_(clock) {}
+  /// `master_node` != 0: the master produces a heartbeat the node watches, and the fault
+  /// `master_heartbeat_loss` drops it on the bus (the node faults with 0x8130 after its consumer time).
+  InProcessAxis(std::unique_ptr<cia402::Cia402Drive> drive, mocks::Cia402Node& node, const Clock& clock,
+                can::VirtualBus& bus, canopen::NodeId master_node)
+      : drive_(std::move(drive)), node_(node), clock_(clock), bus_(bus), master_node_(master_node) {}
   std::string_view name() const noexcept override { return drive_->name(); }
   DriveCapabilities capabilities() const noexcept override { return drive_->capabilities(); }
   void read(const CycleTime& c) override { drive_->read(c); }
   void write(const CycleTime& c, const DriveCommand& cmd) override { drive_->write(c, cmd); }
   const DriveFeedback& feedback() const noexcept override { return drive_->feedback(); }
   bool request(DriveRequest r) override { return drive_->request(r); }
-  std::vector<std::string> injectable_faults() const override { return mocks::Cia402Node::fault_names(); }
-  bool inject_fault(std::string_view name, bool active) override { return node_.inject_fault(name, active, clock_.now()); }
+  std::vector<std::string> injectable_faults() const override {
+    auto names = mocks::Cia402Node::fault_names();
+    if (master_node_ != 0) names.emplace_back("master_heartbeat_loss");
+    return names;
+  }
+  bool inject_fault(std::string_view name, bool active) override {
+    if (name != "master_heartbeat_loss") return node_.inject_fault(name, active, clock_.now());
+    if (master_node_ == 0) return false;
+    if (active && !master_drop_) {
+      const std::uint32_t id = 0x700u + master_node_;
+      master_drop_ = bus_.inject(can::FrameFault{.action = can::FaultAction::drop,
+                                                 .match = [id](const can::Frame& f) { return f.id == id; }});
+    } else if (!active && master_drop_) {
+      bus_.remove_fault(*master_drop_);
+      master_drop_.reset();
+    }
+    return true;
+  }
 
 private:
   std::unique_ptr<cia402::Cia402Drive> drive_;
   mocks::Cia402Node& node_;
   const Clock& clock_;
+  can::VirtualBus& bus_;
+  canopen::NodeId master_node_;
+  std::optional<std::size_t> master_drop_;  ///< the bus fault that drops the master's heartbeat
+};
+
+/// What the one master of a bus is set up with (from the first axis on it; the others must agree).
+struct BusMaster {
+  Duration sdo_timeout{};
+  Duration heartbeat{};        ///< 0 = the master produces no heartbeat
+  canopen::NodeId node_id = 0;  ///< the master's node-ID when it produces one
+  bool operator==(const BusMaster&) const = default;
 };
 
 struct Bus {
   std::string name;
+  BusMaster master;
   bool simulated = false;
   can::VirtualBus* vbus = nullptr;
   std::unique_ptr<can::Channel> master_channel;
@@ -67,7 +99,7 @@ public:
     if (auto k = yaml::check_keys(node, where,
                                   {"transport", "node", "bus", "eds", "heartbeat", "heartbeat_timeout", "sdo_timeout", "kv",
                                    "max_velocity", "velocity_lag", "feedforward", "homing", "check_identity", "mode",
-                                   "position_gain"});
+                                   "position_gain", "master_heartbeat", "master_heartbeat_timeout", "master_node"});
         !k)
       return std::unexpected(k.error());
     auto id = yaml::get_int(node, where, "node");
@@ -100,8 +132,24 @@ public:
     auto hb = ms("heartbeat", 20);
     auto hb_timeout = ms("heartbeat_timeout", 100);
     auto sdo_timeout = ms("sdo_timeout", 100);
-    for (auto* r : {&hb, &hb_timeout, &sdo_timeout})
+    auto master_hb = ms("master_heartbeat", 0);
+    for (auto* r : {&hb, &hb_timeout, &sdo_timeout, &master_hb})
       if (!*r) return std::unexpected(r->error());
+    // The master's own heartbeat, watched by the node (0x1016:1): a drive whose master dies stops.
+    auto master_hb_timeout = ms("master_heartbeat_timeout", 3 * std::chrono::duration_cast<std::chrono::milliseconds>(*master_hb).count());
+    if (!master_hb_timeout) return std::unexpected(master_hb_timeout.error());
+    auto master_node = yaml::get_int(node, where, "master_node");
+    if (!master_node) return std::unexpected(master_node.error());
+    const long long master_id = master_node->value_or(127);
+    if (master_id < 1 || master_id > 127)
+      return std::unexpected(yaml::error_at(node["master_node"], where.key("master_node"),
+                                            fmt::format("the master's node-ID must be 1..127, got {}", master_id)));
+    if (master_hb->count() == 0 && (node["master_heartbeat_timeout"] || node["master_node"]))
+      return std::unexpected(yaml::error_at(node, where.key(node["master_node"] ? "master_node" : "master_heartbeat_timeout"),
+                                            "set `master_heartbeat` (ms) for the master to produce a heartbeat the node watches"));
+    if (master_hb->count() > 0 && *master_hb_timeout <= *master_hb)
+      return std::unexpected(yaml::error_at(node["master_heartbeat_timeout"], where.key("master_heartbeat_timeout"),
+                                            "must be longer than master_heartbeat (one missed heartbeat must not fault the drive)"));
     auto homing = yaml::get_bool(node, where, "homing");
     auto check_identity = yaml::get_bool(node, where, "check_identity");
     if (!homing) return std::unexpected(homing.error());
@@ -145,8 +193,21 @@ public:
       return std::unexpected(e);
     }
 
-    auto& bus = get_bus(url, simulated, *sdo_timeout, env);
+    const BusMaster wanted{*sdo_timeout, *master_hb, master_hb->count() > 0 ? static_cast<canopen::NodeId>(master_id) : canopen::NodeId{0}};
+    auto& bus = get_bus(url, simulated, wanted, env);
     if (!bus.network) return std::unexpected(yaml::error_at(node["bus"], where.key("bus"), bus_error_));
+    if (bus.master != wanted) {
+      const char* key = bus.master.sdo_timeout != wanted.sdo_timeout ? "sdo_timeout"
+                        : bus.master.heartbeat != wanted.heartbeat ? "master_heartbeat"
+                                                                   : "master_node";
+      return std::unexpected(yaml::error_at(node[key] ? node[key] : node, where.key(key),
+                                            fmt::format("{} differs from axis '{}' on {}: one master serves the bus, "
+                                                        "so every axis on it must give the same value",
+                                                        key, bus.axis_of_node.begin()->second, url)));
+    }
+    if (wanted.node_id != 0 && nid == wanted.node_id)
+      return std::unexpected(yaml::error_at(node["node"], where.key("node"),
+                                            fmt::format("node-ID {} is the master's own (master_node)", nid)));
     if (bus.axis_of_node.contains(nid))
       return std::unexpected(yaml::error_at(node["node"], where.key("node"),
                                             fmt::format("node {} on {} is already used by axis '{}'", nid, url, bus.axis_of_node[nid])));
@@ -170,6 +231,7 @@ public:
         if (!r) return std::unexpected(r.error());
       can::ParticipantOptions po;
       po.filters = mocks::predefined_filters(static_cast<canopen::NodeId>(nid));  // like the node's CAN controller
+      if (wanted.node_id != 0) po.filters.filters.push_back(can::Filter::exact(0x700u + wanted.node_id));  // the master's heartbeat
       bus.node_channels.push_back(bus.vbus->attach(fmt::format("node{}", nid), po));
       bus.nodes.push_back(std::make_unique<mocks::Cia402Node>(*bus.node_channels.back(), o));
       sim = bus.nodes.back().get();
@@ -179,6 +241,8 @@ public:
     ao.heartbeat_producer = *hb;
     ao.heartbeat_consumer = *hb_timeout;
     ao.check_identity = check_identity->value_or(true);
+    ao.master_node = wanted.node_id;
+    ao.master_heartbeat_timeout = *master_hb_timeout;
     ao.profile_objects = setup == cia402::OperatingSetup::pp;
     bus.network->master().add_node(cia402::make_axis_node_config(*eds, ao));
     cia402::DriveOptions dopt;
@@ -187,7 +251,7 @@ public:
     dopt.setup = setup;
     if (gain->has_value()) dopt.csv_position_gain_per_s = **gain;
     auto drive = std::make_unique<cia402::Cia402Drive>(*bus.network, static_cast<canopen::NodeId>(nid), dopt);
-    if (sim != nullptr) return std::make_unique<InProcessAxis>(std::move(drive), *sim, env.clock);
+    if (sim != nullptr) return std::make_unique<InProcessAxis>(std::move(drive), *sim, env.clock, *bus.vbus, wanted.node_id);
     return drive;
   }
 
@@ -238,15 +302,18 @@ public:
   }
 
 private:
-  Bus& get_bus(const std::string& url, bool simulated, Duration sdo_timeout, RunEnvironment& env) {
+  Bus& get_bus(const std::string& url, bool simulated, const BusMaster& master, RunEnvironment& env) {
     auto it = buses_.find(url);
     if (it != buses_.end()) return it->second;
     auto& bus = buses_[url];
     bus.name = url;
     bus.simulated = simulated;
+    bus.master = master;
     canopen::MasterOptions mo;
     mo.sync_period = env.period;
-    mo.sdo.timeout = sdo_timeout;
+    mo.node_id = master.node_id;
+    mo.heartbeat_period = master.heartbeat;
+    mo.sdo.timeout = master.sdo_timeout;
     mo.sdo.retries = 1;
     mo.boot_timeout = std::chrono::seconds(1);
     clock_ = &env.clock;

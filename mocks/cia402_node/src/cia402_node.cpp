@@ -65,15 +65,11 @@ Cia402Node::Cia402Node(can::Channel& channel, Cia402NodeOptions options)
   channel_.set_receive_handler([this](const can::Frame& f, TimePoint t) { on_frame(f, t); });
   slave_.on_sync = [this](std::optional<std::uint8_t>, TimePoint now) { on_sync(now); };
   slave_.on_heartbeat = [this](canopen::NodeId, canopen::HeartbeatEvent e, TimePoint now) {
-    // Lost master: a drive that is powered stops (CiA 402 fault reaction, error 0x8130).
+    // Lost master: a drive that is powered stops (CiA 402 fault reaction, error 0x8130, with its
+    // EMCY "heartbeat error").
     if (e == canopen::HeartbeatEvent::timeout && state_ != DriveState::fault && state_ != DriveState::fault_reaction_active &&
-        state_ != DriveState::switch_on_disabled && state_ != DriveState::not_ready) {
-      state_ = DriveState::fault_reaction_active;
-      fault_code_ = 0x8130;
-      fault_since_ = now;
-      ++stats_.faults;
-      slave_.od().set_int(0x603F, 0, 0x8130);
-    }
+        state_ != DriveState::switch_on_disabled && state_ != DriveState::not_ready)
+      enter_fault(0x8130, now);
   };
   slave_.on_reset = [this](bool application) {
     if (application) {
