@@ -176,8 +176,57 @@ registers:
   EXPECT_EQ(drive.link_stats().errors, 0u);
 }
 
-TEST(ModbusLoopback, HomingIsRefusedNotFaked) {
+TEST(ModbusLoopback, HomingOnTheCurrentPositionOverCia402Registers) {
   Loopback lb("cia402.yaml");
+  ASSERT_TRUE(lb.drive->capabilities().homing);
+  ASSERT_TRUE(lb.enable());
+  for (int i = 1; i <= 400; ++i) {  // move to 5000 increments first, and settle
+    lb.command.position_inc = std::min(i, 100) * 50;
+    lb.cycle();
+  }
+  ASSERT_NEAR(static_cast<double>(lb.fb().position_inc), 5000.0, 5.0);
+  ASSERT_TRUE(lb.drive->request(DriveRequest::home));
+  lb.command.position_inc = lb.fb().position_inc;  // the axis holds while the drive homes
+  lb.cycle();
+  EXPECT_TRUE(lb.fb().homing_active);
+  EXPECT_FALSE(lb.fb().referenced);
+  std::int64_t mode_seen = 0;
+  ASSERT_TRUE(lb.cycle_until([&] {
+    mode_seen = std::max<std::int64_t>(mode_seen, lb.server->with_device([](mocks::DriveDevice& d) {
+      return static_cast<std::int64_t>(d.table().get(modbus::RegisterSpace::holding, 1));  // the mode register
+    }));
+    return !lb.fb().homing_active;
+  }, 50));
+  EXPECT_EQ(mode_seen, 6) << "the homing mode went over the wire";
+  EXPECT_TRUE(lb.fb().referenced);
+  EXPECT_EQ(lb.fb().position_inc, 0) << "homed on the current position: it is the reference point now";
+  EXPECT_EQ(lb.fb().state, DriveState::operation_enabled);
+  // Back in CSP, the axis moves from the new reference.
+  for (int i = 1; i <= 300; ++i) {
+    lb.command.position_inc = std::min(i, 100) * 10;
+    lb.cycle();
+  }
+  EXPECT_NEAR(static_cast<double>(lb.fb().position_inc), 1000.0, 5.0);
+  EXPECT_EQ(lb.server->with_device([](mocks::DriveDevice& d) { return d.table().get(modbus::RegisterSpace::holding, 1); }), 8);
+}
+
+TEST(ModbusLoopback, HomingThatCannotRunEndsUnreferenced) {
+  Loopback lb("cia402.yaml");
+  lb.drive.reset();
+  drives::ModbusDriveConfig c;
+  c.port = lb.server->port();
+  c.profile = lb.profile;
+  c.lockstep = true;
+  c.homing_timeout = std::chrono::milliseconds(50);
+  lb.drive = std::make_unique<drives::ModbusDrive>(c, lb.clock);
+  lb.cycle();
+  ASSERT_TRUE(lb.drive->request(DriveRequest::home));  // not enabled: the drive cannot home
+  ASSERT_TRUE(lb.cycle_until([&] { return !lb.fb().homing_active; }, 100));
+  EXPECT_FALSE(lb.fb().referenced) << "timed out: not referenced, so the axis reports a failed homing";
+}
+
+TEST(ModbusLoopback, HomingIsRefusedNotFakedWithoutAHomingMode) {
+  Loopback lb("vendor_simple.yaml");
   EXPECT_FALSE(lb.drive->capabilities().homing);
   EXPECT_FALSE(lb.drive->request(DriveRequest::home));
   EXPECT_TRUE(lb.drive->capabilities().velocity_mode);

@@ -90,6 +90,7 @@ TEST(ModbusProfile, ErrorsNameLineKeyAndFix) {
       {"fc23 with input regs", base + "function_codes: {read: 4, read_write: true}\n", 8, "function_codes", "FC 23"},
       {"vendor without bits", replace("cia402", "vendor"), 1, "bits.enable", "missing"},
       {"syntax", "name: [unclosed\n", 2, "", "YAML syntax error"},
+      {"homing without a mode register", base + "modes: {homing: 6}\n", 8, "modes.homing", "needs a `mode` register"},
   };
   for (const auto& c : cases) {
     SCOPED_TRACE(c.what);

@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: MIT
 #include "hil/drives/modbus_drive.hpp"
 
+#include "hil/cia402/cia402.hpp"
+
 #include <cerrno>
 #include <cmath>
 
@@ -69,7 +71,10 @@ ModbusDrive::~ModbusDrive() {
 
 DriveCapabilities ModbusDrive::capabilities() const noexcept {
   const bool vel = config_.profile.field(FieldRole::target_velocity).present && config_.profile.field(FieldRole::mode).present;
-  return DriveCapabilities{.closed_loop = true, .velocity_mode = vel, .homing = false, .min_period = {}};
+  const auto& p = config_.profile;
+  const bool homing = p.mode_homing.has_value() && p.state_machine == modbus::StateMachineKind::cia402 &&
+                      p.field(FieldRole::mode).present;
+  return DriveCapabilities{.closed_loop = true, .velocity_mode = vel, .homing = homing, .min_period = {}};
 }
 
 std::int64_t ModbusDrive::field_value(FieldRole role) const noexcept {
@@ -124,8 +129,10 @@ void ModbusDrive::read(const CycleTime& cycle) {
     feedback_.velocity_inc_per_s = static_cast<double>(field_value(FieldRole::actual_velocity)) *
                                    p.field(FieldRole::actual_velocity).scale;
     feedback_.age = cycle.now - local_image_.stamp;
+    track_homing(sw, cycle.now);
   }
-  feedback_.homing_active = false;
+  feedback_.referenced = feedback_.referenced && !unreferenced_;
+  feedback_.homing_active = homing_ != Homing::idle;
   if (link_fault_ != modbus::ModbusError::none) {
     feedback_.state = DriveState::fault;
     if (feedback_.fault.code != modbus::make_error_code(link_fault_)) {
@@ -173,9 +180,19 @@ void ModbusDrive::write(const CycleTime& /*cycle*/, const DriveCommand& command)
                       : modbus::make_control_word(p, drive_state_, target_, reset_high);
   put_field(FieldRole::control_word, cw);
   const bool velocity = command.mode == CommandMode::velocity && capabilities().velocity_mode;
-  put_field(FieldRole::mode, velocity ? p.mode_velocity : p.mode_position);
   // While not following, the target is the actual position: enabling never jumps.
   const bool following = drive_state_ == DriveState::operation_enabled && link_fault_ == modbus::ModbusError::none;
+  if (homing_ != Homing::idle && following) {
+    // Select the homing mode; after two exchanges in it, raise bit 4 (the drive starts on its edge).
+    put_field(FieldRole::mode, *p.mode_homing);
+    if (homing_ == Homing::selecting && local_image_.seq >= homing_seq_ + 2) {
+      homing_ = Homing::started;
+      homing_seq_ = local_image_.seq;
+    }
+    if (homing_ == Homing::started) put_field(FieldRole::control_word, cw | cia402::cw::new_set_point);
+  } else {
+    put_field(FieldRole::mode, velocity ? p.mode_velocity : p.mode_position);
+  }
   const double pos = following ? static_cast<double>(command.position_inc) : static_cast<double>(feedback_.position_inc);
   put_field(FieldRole::target_position, std::llround(pos / p.field(FieldRole::target_position).scale));
   const double vel = following && velocity ? command.velocity_inc_per_s : 0.0;
@@ -200,9 +217,34 @@ bool ModbusDrive::request(DriveRequest r) {
       reset_pending_ = true;
       reset_start_seq_ = local_image_.seq;
       return true;
-    case DriveRequest::home: return false;
+    case DriveRequest::home:
+      if (!capabilities().homing) return false;
+      homing_ = Homing::selecting;
+      homing_seq_ = local_image_.seq;
+      homing_deadline_.reset();
+      unreferenced_ = true;
+      return true;
   }
   return false;
+}
+
+void ModbusDrive::track_homing(std::uint16_t status_word, TimePoint now) noexcept {
+  if (homing_ == Homing::idle) return;
+  if (!homing_deadline_) homing_deadline_ = now + config_.homing_timeout;
+  // Status bits 12/13 mean "homing attained / error" only in images taken after bit 4 went out.
+  if (homing_ == Homing::started && local_image_.seq > homing_seq_) {
+    if ((status_word & cia402::sw::op_specific_13) != 0) {
+      homing_ = Homing::idle;  // stays unreferenced: the axis reports a failed homing
+      return;
+    }
+    if ((status_word & cia402::sw::op_specific_12) != 0 && (status_word & cia402::sw::target_reached) != 0) {
+      homing_ = Homing::idle;
+      unreferenced_ = false;
+      return;
+    }
+  }
+  if (now > *homing_deadline_ || drive_state_ == DriveState::fault || drive_state_ == DriveState::fault_reaction_active)
+    homing_ = Homing::idle;  // timed out or faulted: not referenced
 }
 
 void ModbusDrive::clear_link_fault_if_reset() noexcept {

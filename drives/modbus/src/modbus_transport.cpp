@@ -71,7 +71,7 @@ public:
     const yaml::Where where{env.source_file, env.drive_path(axis_name)};
     if (auto k = yaml::check_keys(node, where,
                                   {"transport", "profile", "host", "port", "unit", "response_timeout", "poll_period",
-                                   "backoff_min", "backoff_max", "plant"});
+                                   "backoff_min", "backoff_max", "homing_timeout", "plant"});
         !k)
       return std::unexpected(k.error());
     auto profile_name = yaml::get_string(node, where, "profile");
@@ -102,7 +102,8 @@ public:
       return {};
     };
     for (auto r : {seconds("response_timeout", config.response_timeout), seconds("poll_period", config.poll_period),
-                   seconds("backoff_min", config.backoff_min), seconds("backoff_max", config.backoff_max)})
+                   seconds("backoff_min", config.backoff_min), seconds("backoff_max", config.backoff_max),
+                   seconds("homing_timeout", config.homing_timeout)})
       if (!r) return std::unexpected(r.error());
     auto unit = yaml::get_int(node, where, "unit");
     if (!unit) return std::unexpected(unit.error());

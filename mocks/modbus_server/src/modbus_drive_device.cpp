@@ -3,6 +3,7 @@
 
 #include <cmath>
 
+#include "hil/cia402/cia402.hpp"
 #include "hil/modbus/drive_words.hpp"
 
 namespace hil::mocks {
@@ -57,6 +58,7 @@ modbus::HandleResult DriveDevice::handle(std::span<const std::uint8_t> adu, std:
     const auto& cw = profile_.field(FieldRole::control_word);
     if (cw.address >= r.written_first && cw.address < r.written_first + r.written_count) {
       apply_control(std::fabs(plant_.velocity_inc_per_s()) < config_.standstill_velocity_inc_per_s);
+      run_homing();
       publish();
     }
   }
@@ -87,7 +89,10 @@ void DriveDevice::step(Duration dt) noexcept {
   const double dt_s = to_seconds(dt);
   PlantInput in;
   in.powered = state_ == DriveState::operation_enabled || state_ == DriveState::quick_stop_active;
-  if (state_ == DriveState::operation_enabled) {
+  if (state_ == DriveState::operation_enabled && in_homing_mode()) {
+    in.mode = CommandMode::position;  // homing on the current position: stand still
+    in.position_inc = hold_position_inc_;
+  } else if (state_ == DriveState::operation_enabled) {
     const std::int64_t mode = read_field(FieldRole::mode);
     const bool velocity_mode = profile_.field(FieldRole::mode).present && mode == profile_.mode_velocity;
     in.mode = velocity_mode ? CommandMode::velocity : CommandMode::position;
@@ -119,6 +124,25 @@ void DriveDevice::inject(PlantFault fault, bool active) noexcept {
   publish();
 }
 
+bool DriveDevice::in_homing_mode() const noexcept {
+  return profile_.mode_homing.has_value() && read_field(FieldRole::mode) == *profile_.mode_homing;
+}
+
+void DriveDevice::run_homing() noexcept {
+  const bool start = (read_field(FieldRole::control_word) & cia402::cw::new_set_point) != 0;
+  const bool edge = start && !prev_start_bit_;
+  prev_start_bit_ = start;
+  if (!in_homing_mode() || state_ != DriveState::operation_enabled) {
+    homing_attained_ = false;
+    return;
+  }
+  if (edge) {
+    plant_.set_position(0.0);  // the current position is the reference point
+    hold_position_inc_ = 0.0;
+    homing_attained_ = true;
+  }
+}
+
 void DriveDevice::publish() noexcept {
   const std::int64_t pos = plant_.encoder_position_inc();
   const auto& ap = profile_.field(FieldRole::actual_position);
@@ -128,7 +152,10 @@ void DriveDevice::publish() noexcept {
   const double target = static_cast<double>(read_field(FieldRole::target_position)) *
                         profile_.field(FieldRole::target_position).scale;
   const bool reached = std::fabs(target - static_cast<double>(pos)) <= static_cast<double>(config_.target_window_inc);
-  write_field(FieldRole::status_word, modbus::make_status_word(profile_, state_, true, reached));
+  if (!in_homing_mode()) homing_attained_ = false;
+  std::uint16_t sw = modbus::make_status_word(profile_, state_, true, in_homing_mode() ? homing_attained_ : reached);
+  if (homing_attained_) sw |= cia402::sw::op_specific_12;
+  write_field(FieldRole::status_word, sw);
   write_field(FieldRole::fault_code, latched_fault_code_);
 }
 

@@ -107,7 +107,7 @@ public:
       }
     }
     if (auto modes = root["modes"]) {
-      if (auto r = only_keys(modes, "modes", {"position", "velocity"}); !r) return std::unexpected(r.error());
+      if (auto r = only_keys(modes, "modes", {"position", "velocity", "homing"}); !r) return std::unexpected(r.error());
       if (modes["position"]) {
         auto v = integer(modes["position"], "modes.position", -32768, 65535);
         if (!v) return std::unexpected(v.error());
@@ -120,6 +120,15 @@ public:
       }
     }
     if (auto r = load_registers(root, p); !r) return std::unexpected(r.error());
+    if (auto modes = root["modes"]; modes && modes["homing"]) {
+      auto v = integer(modes["homing"], "modes.homing", -32768, 65535);
+      if (!v) return std::unexpected(v.error());
+      if (p.state_machine != StateMachineKind::cia402)
+        return error(modes["homing"], "modes.homing", "homing needs the cia402 state machine (bit 4 starts it, status bits 12/13 report it)");
+      if (!p.field(FieldRole::mode).present)
+        return error(modes["homing"], "modes.homing", "homing needs a `mode` register to select the homing mode");
+      p.mode_homing = *v;
+    }
     if (auto r = load_bits(root, p); !r) return std::unexpected(r.error());
     if (auto ft = root["fault_texts"]) {
       if (!ft.IsMap()) return error(ft, "fault_texts", "expected a map {code: text}");

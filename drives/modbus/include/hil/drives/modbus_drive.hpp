@@ -19,12 +19,16 @@
 // failed, invalid response) latch a fault with category "modbus"; the drive's own fault shows as
 // category "modbus-drive" with the fault-code register's value. fault_reset clears a link
 // fault once the link delivers fresh data again, and sends the profile's fault-reset edge.
+// Homing (profiles with `modes.homing`, CiA 402): request(home) writes the homing mode, raises
+// control word bit 4 after two exchanges, and ends on status bits 12 + 10 (referenced) or 13 /
+// `homing_timeout` (not referenced; the axis then reports that homing failed).
 
 #include <atomic>
 #include <chrono>
 #include <condition_variable>
 #include <cstdint>
 #include <mutex>
+#include <optional>
 #include <string>
 #include <thread>
 #include <vector>
@@ -49,6 +53,7 @@ struct ModbusDriveConfig {
   Duration backoff_min{std::chrono::milliseconds(100)};   ///< first reconnect delay after a link error
   Duration backoff_max{std::chrono::seconds(5)};          ///< back-off doubles up to this
   bool lockstep = false;
+  Duration homing_timeout{std::chrono::seconds(30)};      ///< request(home) -> attained, else not referenced
 };
 
 struct ModbusLinkStats {
@@ -109,6 +114,8 @@ private:
   bool exchange_once(void* ctx, const std::vector<std::vector<std::uint16_t>>& command,
                      std::vector<std::vector<std::uint16_t>>& image) noexcept;
   void clear_link_fault_if_reset() noexcept;
+  /// Homing progress from a fresh status word (see the file comment).
+  void track_homing(std::uint16_t status_word, TimePoint now) noexcept;
   [[nodiscard]] std::int64_t field_value(modbus::FieldRole role) const noexcept;
   void put_field(modbus::FieldRole role, std::int64_t raw) noexcept;
 
@@ -130,6 +137,11 @@ private:
   bool reset_pending_ = false;
   std::uint64_t reset_start_seq_ = 0;
   DriveState drive_state_ = DriveState::not_ready;  ///< from the status word (without link fault)
+  enum class Homing : std::uint8_t { idle, selecting, started };
+  Homing homing_ = Homing::idle;
+  std::uint64_t homing_seq_ = 0;       ///< image seq when the mode was selected / bit 4 raised
+  std::optional<TimePoint> homing_deadline_;
+  bool unreferenced_ = false;          ///< homing was asked for and has not succeeded
   TimePoint created_{};
   bool have_created_ = false;
 

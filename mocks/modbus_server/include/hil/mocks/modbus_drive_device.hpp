@@ -51,6 +51,10 @@ private:
   [[nodiscard]] std::int64_t read_field(modbus::FieldRole r) const noexcept;
   void write_field(modbus::FieldRole r, std::int64_t raw) noexcept;
   void apply_control(bool stopped) noexcept;
+  /// Homing (profiles with modes.homing): a rising edge of control word bit 4 in the homing mode
+  /// while enabled homes on the current position (CiA 402 methods 35/37: it becomes 0).
+  void run_homing() noexcept;
+  [[nodiscard]] bool in_homing_mode() const noexcept;
   void publish() noexcept;
 
   modbus::Profile profile_;
@@ -63,6 +67,8 @@ private:
   std::uint32_t latched_fault_code_ = 0;
   double hold_position_inc_ = 0.0;
   double qs_velocity_ = 0.0;
+  bool prev_start_bit_ = false;   ///< control word bit 4 at the last look (homing start edge)
+  bool homing_attained_ = false;  ///< status bits 12 + 10 while the homing mode stays selected
 };
 
 }  // namespace hil::mocks

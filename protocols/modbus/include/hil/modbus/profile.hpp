@@ -77,6 +77,9 @@ struct Profile {
   std::array<RegisterField, kFieldRoleCount> fields{};
   std::int64_t mode_position = 8;  ///< value written to `mode` for CommandMode::position (CiA 402: 8 = CSP)
   std::int64_t mode_velocity = 9;  ///< ... for CommandMode::velocity (CiA 402: 9 = CSV)
+  /// ... for homing (CiA 402: 6 = HM, started by a rising edge of control word bit 4, done on
+  /// status bits 12 + 10, failed on bit 13). Absent: the drive offers no homing. cia402 only.
+  std::optional<std::int64_t> mode_homing;
   VendorBits bits{};
   std::map<std::uint32_t, std::string> fault_texts;  ///< fault-code register value -> text
 
