@@ -1,39 +1,11 @@
 // SPDX-License-Identifier: MIT
 #include "hil/mocks/legacy/endpoint.hpp"
 
-#include <fcntl.h>
-#include <unistd.h>
-
 #include <array>
-#include <cerrno>
+
+#include "hil/serial/item_transfer.hpp"
 
 namespace hil::mocks::legacy {
-
-std::error_code save_atomically(const std::filesystem::path& path, const std::string& text) {
-  const std::filesystem::path tmp = path.string() + ".tmp";
-  const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
-  if (fd < 0) return {errno, std::system_category()};
-  std::size_t done = 0;
-  while (done < text.size()) {
-    const ssize_t n = ::write(fd, text.data() + done, text.size() - done);
-    if (n < 0) {
-      if (errno == EINTR) continue;
-      const std::error_code ec(errno, std::system_category());
-      ::close(fd);
-      return ec;
-    }
-    done += static_cast<std::size_t>(n);
-  }
-  if (::fsync(fd) != 0) {
-    const std::error_code ec(errno, std::system_category());
-    ::close(fd);
-    return ec;
-  }
-  ::close(fd);
-  std::error_code ec;
-  std::filesystem::rename(tmp, path, ec);
-  return ec;
-}
 
 EndpointHost::EndpointHost(Endpoint& endpoint, serial::ByteStream& stream, const Clock& clock, std::filesystem::path state_file)
     : endpoint_(endpoint), stream_(stream), clock_(clock), state_file_(std::move(state_file)) {}
@@ -92,7 +64,7 @@ std::error_code EndpointHost::persist() {
     pending_save_ = false;
     text = endpoint_.save_state();
   }
-  return save_atomically(state_file_, text);
+  return serial::write_atomically(state_file_, text);
 }
 
 }  // namespace hil::mocks::legacy

@@ -90,7 +90,6 @@ std::uint64_t content_hash(std::string_view text) noexcept {
   return h;
 }
 
-namespace {
 std::error_code write_atomically(const std::filesystem::path& path, const std::string& text) {
   const std::filesystem::path tmp = path.string() + ".tmp";
   const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
@@ -114,7 +113,6 @@ std::error_code write_atomically(const std::filesystem::path& path, const std::s
   std::filesystem::rename(tmp, path, rec);
   return rec;
 }
-}  // namespace
 
 std::filesystem::path ResumeJournal::path_for(const std::filesystem::path& file) {
   return file.string() + ".hilbridge-resume";

@@ -94,6 +94,10 @@ struct ResumeJournal {
   static void remove(const std::filesystem::path& file);
 };
 
+/// Write `text` to `path` atomically: a temp file beside it, fsync, rename. A crash leaves the
+/// old file or the new one, never half of either.
+[[nodiscard]] std::error_code write_atomically(const std::filesystem::path& path, const std::string& text);
+
 /// Write `text` to `path` atomically; when `path` exists and differs, keep the old content as
 /// `path.bak` (or .bak.1, .bak.2 ... if that exists too). Returns the backup path ("" if none).
 [[nodiscard]] std::expected<std::filesystem::path, std::error_code> write_with_backup(const std::filesystem::path& path,

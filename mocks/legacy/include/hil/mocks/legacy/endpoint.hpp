@@ -35,9 +35,6 @@ public:
   [[nodiscard]] virtual std::string save_state() const { return {}; }
 };
 
-/// Write `text` to `path` atomically: temp file in the same folder, fsync, rename.
-[[nodiscard]] std::error_code save_atomically(const std::filesystem::path& path, const std::string& text);
-
 class EndpointHost {
 public:
   /// `state_file` may be empty (no persistence). Thread: run() on one thread; stop() and
