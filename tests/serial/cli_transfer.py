@@ -9,6 +9,8 @@ import subprocess
 import sys
 import tempfile
 
+from clm14_emulator import Emulator  # beside this file
+
 HIL = sys.argv[1]
 failures = []
 
@@ -17,23 +19,6 @@ def check(name, cond, detail=""):
     print(("ok   " if cond else "FAIL ") + name + ("" if cond else f": {detail}"))
     if not cond:
         failures.append(name)
-
-
-class Emulator:
-    def __init__(self, state):
-        self.p = subprocess.Popen([HIL, "emulate", "clm14", "--pty", "--mode", "parameter", "--state", state],
-                                  stdin=subprocess.PIPE, stdout=subprocess.PIPE, stderr=subprocess.DEVNULL, text=True)
-        self.path = self.p.stdout.readline().strip()
-
-    def command(self, c):
-        self.p.stdin.write(c + "\n")
-        self.p.stdin.flush()
-        return self.p.stdout.readline().strip()
-
-    def close(self):
-        self.p.stdin.write("quit\n")
-        self.p.stdin.flush()
-        self.p.wait(timeout=10)
 
 
 def run(*args):
@@ -47,7 +32,7 @@ with tempfile.TemporaryDirectory() as d:
         f.write("; hilbridge clm14 program\n")
         for i in range(60):
             f.write(f"{i:04d} WAI {i % 60:02d}.500\n")
-    emu = Emulator(state)
+    emu = Emulator(HIL, "--mode", "parameter", "--state", state)
     try:
         bad = os.path.join(d, "bad.prg")
         with open(bad, "w") as f:
@@ -83,7 +68,7 @@ with tempfile.TemporaryDirectory() as d:
     finally:
         emu.close()
     # Restart: the state file brings the program back.
-    emu = Emulator(state)
+    emu = Emulator(HIL, "--mode", "parameter", "--state", state)
     try:
         r = run("download", "clm14", "--port", emu.path, "--what", "program", os.path.join(d, "again.prg"))
         again = [l for l in open(os.path.join(d, "again.prg")).read().splitlines() if not l.startswith(";")]

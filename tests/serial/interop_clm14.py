@@ -3,10 +3,9 @@
 # Interop test with an independent peer: Debian's python3-serial talks to `hilbridge emulate
 # clm14` over its pty and checks the reply bytes against the manual's telegrams (checksums
 # computed here, independently of our C++ codec). Run by ctest; exit 77 = skipped.
-import os
-import subprocess
 import sys
-import time
+
+from clm14_emulator import Emulator  # beside this file
 
 try:
     import serial  # python3-serial
@@ -32,25 +31,6 @@ def even(b: int) -> int:
     return b | 0x80 if bin(b & 0x7F).count("1") % 2 else b & 0x7F
 
 
-class Emulator:
-    def __init__(self, fmt: str):
-        self.p = subprocess.Popen([HILBRIDGE, "emulate", "clm14", "--pty", "--format", fmt, "--mode", "parameter",
-                                   "--state", "none"], stdin=subprocess.PIPE, stdout=subprocess.PIPE,
-                                  stderr=subprocess.DEVNULL, text=True)
-        self.path = self.p.stdout.readline().strip()
-        assert self.path.startswith("/dev/pts/"), f"emulator printed {self.path!r}"
-
-    def command(self, line: str) -> str:
-        self.p.stdin.write(line + "\n")
-        self.p.stdin.flush()
-        return self.p.stdout.readline().strip()
-
-    def close(self):
-        self.p.stdin.write("quit\n")
-        self.p.stdin.flush()
-        self.p.wait(timeout=10)
-
-
 failures = []
 
 
@@ -62,7 +42,7 @@ def check(name, got, want):
 
 
 def run_8n1():
-    emu = Emulator("8N1")
+    emu = Emulator(HILBRIDGE, "--format", "8N1", "--mode", "parameter", "--state", "none")
     try:
         port = serial.Serial(emu.path, 9600, bytesize=8, parity="N", stopbits=1, timeout=2)
         def ask(req: bytes) -> bytes:
@@ -89,7 +69,7 @@ def run_8n1():
 
 def run_7e1():
     # 7E1 on a pty: the parity bit travels in bit 7 (software parity on both sides).
-    emu = Emulator("7E1")
+    emu = Emulator(HILBRIDGE, "--format", "7E1", "--mode", "parameter", "--state", "none")
     try:
         port = serial.Serial(emu.path, 9600, bytesize=8, parity="N", stopbits=1, timeout=2)
         req = bytes(even(b) for b in telegram("? N0000"))
