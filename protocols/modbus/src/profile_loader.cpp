@@ -20,31 +20,12 @@ public:
   explicit Loader(std::string source) : source_(std::move(source)) {}
 
   std::unexpected<ConfigError> error(const YAML::Node& at, const std::string& key, std::string message) const {
-    ConfigError e;
-    e.file = source_;
-    if (at.IsDefined()) {
-      const YAML::Mark m = at.Mark();
-      if (m.line >= 0) e.line = m.line + 1;
-      if (m.column >= 0) e.column = m.column + 1;
-    }
-    e.key = key;
-    e.message = std::move(message);
-    return std::unexpected(std::move(e));
+    return std::unexpected(hil::yaml::error_at(at, {source_, key}, std::move(message)));
   }
 
   std::expected<void, ConfigError> only_keys(const YAML::Node& map, const std::string& where,
                                              std::initializer_list<std::string_view> allowed) const {
-    for (const auto& kv : map) {
-      const auto k = kv.first.as<std::string>();
-      bool ok = false;
-      for (auto a : allowed) ok = ok || a == k;
-      if (!ok) {
-        std::string list;
-        for (auto a : allowed) list += (list.empty() ? "" : ", ") + std::string(a);
-        return error(kv.first, where.empty() ? k : where + "." + k, fmt::format("unknown key; expected one of: {}", list));
-      }
-    }
-    return {};
+    return hil::yaml::check_keys(map, {source_, where}, allowed);
   }
 
   std::expected<std::int64_t, ConfigError> integer(const YAML::Node& n, const std::string& key, std::int64_t lo,
