@@ -3,6 +3,8 @@
 // where it becomes the std::expected error; nothing escapes.
 #include "hil/profiles/loader.hpp"
 
+#include "hil/core/yaml_config.hpp"
+
 #include <fmt/format.h>
 #include <yaml-cpp/yaml.h>
 
@@ -33,15 +35,8 @@ public:
   explicit Reader(std::string file) : file_(std::move(file)) {}
 
   [[noreturn]] void fail(const YAML::Node& n, const std::string& key, const std::string& msg) const {
-    hil::ConfigError e;
-    e.file = file_;
-    if (n.IsDefined() && !n.IsNull()) {
-      e.line = n.Mark().line + 1;
-      e.column = n.Mark().column + 1;
-    }
-    e.key = key;
-    e.message = msg;
-    throw LoadFailure{e};
+    // A null node (absent key) has no position of its own: the error then names the key only.
+    throw LoadFailure{hil::yaml::error_at(!n.IsDefined() || n.IsNull() ? YAML::Node() : n, {file_, key}, msg)};
   }
 
   std::string str(const YAML::Node& n, const std::string& key, bool required = false) const {
