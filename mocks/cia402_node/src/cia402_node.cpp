@@ -349,10 +349,7 @@ void Cia402Node::run_device(double dt, TimePoint now) {
 }
 
 void Cia402Node::publish(bool target_reached, bool bit12, bool bit13) {
-  std::uint16_t s = cia402::encode_state(state_) | sw::remote;
-  if (state_ == DriveState::switched_on || state_ == DriveState::operation_enabled || state_ == DriveState::quick_stop_active)
-    s |= sw::voltage_enabled;
-  if (target_reached) s |= sw::target_reached;
+  std::uint16_t s = cia402::device_statusword(state_, target_reached);
   if (bit12) s |= sw::op_specific_12;
   if (bit13) s |= sw::op_specific_13;
   slave_.od().set_int(0x6041, 0, s);

@@ -60,6 +60,14 @@ std::uint16_t encode_state(DriveState s) noexcept {
   return 0;
 }
 
+std::uint16_t device_statusword(DriveState s, bool target_reached) noexcept {
+  std::uint16_t w = encode_state(s) | sw::remote;
+  if (s == DriveState::switched_on || s == DriveState::operation_enabled || s == DriveState::quick_stop_active)
+    w |= sw::voltage_enabled;
+  if (target_reached) w |= sw::target_reached;
+  return w;
+}
+
 namespace {
 bool is_shutdown(std::uint16_t c) { return (c & 0x87) == 0x06; }
 bool is_switch_on(std::uint16_t c) { return (c & 0x8F) == 0x07; }

@@ -94,10 +94,7 @@ std::uint16_t make_status_word(const Profile& p, DriveState s, bool referenced, 
     if (referenced) sw |= mask(p.bits.referenced);
     return sw;
   }
-  std::uint16_t sw = cia402::encode_state(s) | cia402::sw::remote;
-  if (s == DriveState::switched_on || s == DriveState::operation_enabled || s == DriveState::quick_stop_active)
-    sw |= cia402::sw::voltage_enabled;
-  if (target_reached) sw |= cia402::sw::target_reached;
+  std::uint16_t sw = cia402::device_statusword(s, target_reached);
   if (referenced && p.bits.referenced >= 0) sw |= mask(p.bits.referenced);
   return sw;
 }

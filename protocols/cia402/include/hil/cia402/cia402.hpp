@@ -70,6 +70,10 @@ inline constexpr std::uint16_t state_mask = 0x006F;
 [[nodiscard]] DriveState decode_state(std::uint16_t statusword) noexcept;
 /// The state bits (0..3, 5, 6) of `s`; the caller ORs in voltage_enabled, remote, mode bits.
 [[nodiscard]] std::uint16_t encode_state(DriveState s) noexcept;
+/// Device side: the statusword of a drive in `s` under remote control: the state bits, remote
+/// (bit 9), voltage enabled (bit 4) while powered, target reached (bit 10). The caller ORs in the
+/// mode-specific bits 12/13.
+[[nodiscard]] std::uint16_t device_statusword(DriveState s, bool target_reached) noexcept;
 
 /// Device side: the state after controlword `cw` in state `s` (transitions 2..12, 15, 16;
 /// `fault_reset_edge` = bit 7 rose since the previous controlword). Transitions 0/1 (power-up),
