@@ -114,7 +114,7 @@ void register_emulate_modbus_drive(Context& ctx) {
       "modbus-drive",
       "Simulated servo/stepper drive on Modbus/TCP: serves a register profile backed by the plant model");
   cmd->add_option("--listen", o->listen,
-                  "HOST:PORT to bind (default 127.0.0.1:1502, loopback only; 0.0.0.0:502 serves the network; port 0 "
+                  "HOST:PORT to bind, HOST an address or a host name (default 127.0.0.1:1502, loopback only; 0.0.0.0:502 serves the network; port 0 "
                   "picks a free port, printed on stdout)");
   cmd->add_option("--profile", o->profile,
                   "Register profile: a name in profiles/modbus (cia402, vendor_simple) or a YAML path (default cia402)");
