@@ -83,9 +83,12 @@ int main(int argc, char** argv) {
   std::vector<Bytes> corpus;
   for (int i = 1; i < argc; ++i) {
     std::string_view a = argv[i];
-    if (a.starts_with("--iterations=")) iterations = std::strtol(argv[i] + 13, nullptr, 10);
-    else if (a.starts_with("--seed=")) seed = std::strtoull(argv[i] + 7, nullptr, 10);
-    else load(argv[i], corpus);
+    if (a.starts_with("--iterations="))
+      iterations = std::strtol(argv[i] + 13, nullptr, 10);
+    else if (a.starts_with("--seed="))
+      seed = std::strtoull(argv[i] + 7, nullptr, 10);
+    else
+      load(argv[i], corpus);
   }
   for (const auto& b : corpus) LLVMFuzzerTestOneInput(b.data(), b.size());
   std::mt19937_64 rng(seed);

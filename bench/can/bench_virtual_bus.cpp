@@ -33,8 +33,8 @@ void BM_VirtualBusFanOut(benchmark::State& state) {
   }
   benchmark::DoNotOptimize(received);
   state.SetItemsProcessed(state.iterations() * batch);
-  state.counters["receptions_per_s"] =
-      benchmark::Counter(static_cast<double>(state.iterations() * batch * (participants - 1)), benchmark::Counter::kIsRate);
+  state.counters["receptions_per_s"] = benchmark::Counter(
+      static_cast<double>(state.iterations() * batch * (participants - 1)), benchmark::Counter::kIsRate);
 }
 BENCHMARK(BM_VirtualBusFanOut)->Args({2, 64})->Args({9, 64})->Args({33, 64});
 
@@ -48,7 +48,8 @@ void BM_VirtualBusFiltered(benchmark::State& state) {
   for (int i = 0; i < participants; ++i) {
     const auto node_id = static_cast<std::uint32_t>(i + 1);
     hil::can::FilterSet fs{.filters = {hil::can::Filter::exact(0x000), hil::can::Filter::exact(0x080),
-                                       hil::can::Filter::exact(0x200 + node_id), hil::can::Filter::exact(0x600 + node_id)}};
+                                       hil::can::Filter::exact(0x200 + node_id),
+                                       hil::can::Filter::exact(0x600 + node_id)}};
     nodes.push_back(bus.attach("n" + std::to_string(i), {.filters = fs}));
     nodes.back()->set_receive_handler([&received](const hil::can::Frame& f, hil::TimePoint) { received += f.dlc; });
   }

@@ -47,7 +47,8 @@ struct SdoPair {
     od.add(d);
     od.set_max_value_size(1 << 20);
     server = std::make_unique<co::SdoServer>(od, 2, [this](const hil::can::Frame& f) { (void)sch->send(f); });
-    client = std::make_unique<co::SdoClient>(2, [this](const hil::can::Frame& f) { (void)cch->send(f); }, o);
+    client = std::make_unique<co::SdoClient>(
+        2, [this](const hil::can::Frame& f) { (void)cch->send(f); }, o);
     sch->set_receive_handler([this](const hil::can::Frame& f, hil::TimePoint t) { server->on_frame(f, t); });
     cch->set_receive_handler([this](const hil::can::Frame& f, hil::TimePoint t) { client->on_frame(f, t); });
   }
@@ -62,7 +63,8 @@ void BM_SdoExpeditedRoundTrip(benchmark::State& state) {
     p.bus.deliver(p.clock.now());
     if (!done) state.SkipWithError("round trip did not complete");
   }
-  state.counters["round_trips_per_s"] = benchmark::Counter(static_cast<double>(state.iterations()), benchmark::Counter::kIsRate);
+  state.counters["round_trips_per_s"] =
+      benchmark::Counter(static_cast<double>(state.iterations()), benchmark::Counter::kIsRate);
 }
 BENCHMARK(BM_SdoExpeditedRoundTrip);
 

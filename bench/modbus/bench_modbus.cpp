@@ -76,13 +76,14 @@ void BM_Server(benchmark::State& state) {
   if (failures) state.SkipWithError("requests failed");
   state.SetItemsProcessed(state.iterations() * clients * kRequestsPerClient);
 }
-BENCHMARK(BM_Server)->Args({3, 1})->Args({3, 8})->Args({16, 1})->Args({16, 8})->UseRealTime()->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_Server)->Args({3, 1})->Args({3, 8})->Args({16, 1})->Args({16, 8})->UseRealTime()->Unit(
+    benchmark::kMillisecond);
 
 // The baseline: the classic single-threaded libmodbus server loop (as in libmodbus'
 // tests/bandwidth-server-many-up.c pattern): select() over the listener and the clients,
 // modbus_receive() + modbus_reply() per readable socket.
 class SelectServer {
-public:
+ public:
   SelectServer() {
     ctx_ = modbus_new_tcp("127.0.0.1", 0);
     mapping_ = modbus_mapping_new(0, 0, 500, 500);
@@ -102,7 +103,7 @@ public:
   }
   [[nodiscard]] std::uint16_t port() const { return port_; }
 
-private:
+ private:
   void loop() {
     fd_set refset;
     FD_ZERO(&refset);
@@ -190,9 +191,8 @@ BENCHMARK(BM_CycleReadWrite)->Unit(benchmark::kNanosecond);
 
 void BM_HandleRequest(benchmark::State& state) {
   mocks::DriveDevice device(profile());
-  const std::uint8_t req[] = {0x00, 0x01, 0x00, 0x00, 0x00, 0x17, 0x01, 0x17, 0x00, 0x0A, 0x00, 0x06, 0x00,
-                              0x00, 0x00, 0x06, 0x0C, 0x00, 0x0F, 0x00, 0x08, 0x00, 0x00, 0x10, 0x00,
-                              0x00, 0x00, 0x00, 0x00};
+  const std::uint8_t req[] = {0x00, 0x01, 0x00, 0x00, 0x00, 0x17, 0x01, 0x17, 0x00, 0x0A, 0x00, 0x06, 0x00, 0x00, 0x00,
+                              0x06, 0x0C, 0x00, 0x0F, 0x00, 0x08, 0x00, 0x00, 0x10, 0x00, 0x00, 0x00, 0x00, 0x00};
   std::uint8_t out[modbus::kMaxAduSize];
   modbus::HandlerOptions options;
   for (auto _ : state) {

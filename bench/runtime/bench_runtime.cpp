@@ -13,7 +13,7 @@
 namespace {
 
 class SimFactory : public hil::TransportFactory {
-public:
+ public:
   std::expected<hil::DrivePtr, hil::ConfigError> make_drive(const std::string& axis, const YAML::Node& node,
                                                             hil::RunEnvironment& env) override {
     auto config = hil::mocks::parse_sim_drive_config(node, hil::yaml::Where{env.source_file, "drive"});
@@ -26,9 +26,10 @@ public:
 std::string scenario_text(int axes, bool moving) {
   std::string s = "duration: 1s\nmachine:\n  axes:\n";
   for (int i = 0; i < axes; ++i)
-    s += fmt::format("    - {{name: a{}, inc_per_unit: 1000, limits: {{velocity: 100, acceleration: 1000, jerk: 10000}}, "
-                     "supervision: {{following_error: 1.0}}, drive: {{transport: sim, kv: 80, feedforward: 1.0}}}}\n",
-                     i);
+    s += fmt::format(
+        "    - {{name: a{}, inc_per_unit: 1000, limits: {{velocity: 100, acceleration: 1000, jerk: 10000}}, "
+        "supervision: {{following_error: 1.0}}, drive: {{transport: sim, kv: 80, feedforward: 1.0}}}}\n",
+        i);
   s += "program:\n  - enable: all\n";
   if (moving) {
     s += "  - parallel:\n";
@@ -62,8 +63,12 @@ void run_axes(benchmark::State& state, bool moving) {
   state.SetLabel("one iteration = 1 s of virtual time at 1 kHz (time per iteration = CPU per simulated second)");
 }
 
-void BM_RunVirtualSecondMoving(benchmark::State& state) { run_axes(state, true); }
-void BM_RunVirtualSecondHolding(benchmark::State& state) { run_axes(state, false); }
+void BM_RunVirtualSecondMoving(benchmark::State& state) {
+  run_axes(state, true);
+}
+void BM_RunVirtualSecondHolding(benchmark::State& state) {
+  run_axes(state, false);
+}
 
 }  // namespace
 

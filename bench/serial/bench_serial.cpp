@@ -67,7 +67,8 @@ struct PacedRig {
       if (out.empty()) return;
       wire_chars += out.size();
       clock.advance(format.line_time(out.size()));  // then the reply
-      (void)dev->write(std::span(reinterpret_cast<const std::uint8_t*>(out.data()), out.size()), std::chrono::seconds(1));
+      (void)dev->write(std::span(reinterpret_cast<const std::uint8_t*>(out.data()), out.size()),
+                       std::chrono::seconds(1));
     };
     line.set_mode(ClmMode::parameter);
   }
@@ -101,8 +102,12 @@ void run_paced(benchmark::State& state, bool program) {
   state.counters["line_fraction"] = limit_s / modelled_s;
 }
 
-void BM_Clm14PacedProgram(benchmark::State& s) { run_paced(s, true); }
-void BM_Clm14PacedParameters(benchmark::State& s) { run_paced(s, false); }
+void BM_Clm14PacedProgram(benchmark::State& s) {
+  run_paced(s, true);
+}
+void BM_Clm14PacedParameters(benchmark::State& s) {
+  run_paced(s, false);
+}
 BENCHMARK(BM_Clm14PacedProgram)->Arg(9600)->Arg(115200)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_Clm14PacedParameters)->Arg(9600)->Arg(115200)->Unit(benchmark::kMillisecond);
 

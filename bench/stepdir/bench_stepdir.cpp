@@ -40,7 +40,8 @@ void BM_PlanIp247Move(benchmark::State& state) {
     benchmark::DoNotOptimize(edges.data());
   }
   state.SetItemsProcessed(state.iterations() * n);
-  state.counters["steps_per_s"] = benchmark::Counter(static_cast<double>(state.iterations() * n), benchmark::Counter::kIsRate);
+  state.counters["steps_per_s"] =
+      benchmark::Counter(static_cast<double>(state.iterations() * n), benchmark::Counter::kIsRate);
 }
 BENCHMARK(BM_PlanIp247Move)->Arg(100'000)->Arg(1'000'000)->Unit(benchmark::kMillisecond);
 

@@ -15,14 +15,19 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   o.block_threshold = 0;
   o.timeout = std::chrono::milliseconds(5);
   o.retries = data[0] >> 6;
-  hil::canopen::SdoClient client(3, [](const hil::can::Frame& f) {
-    if (f.id != 0x603 || f.dlc != 8) std::abort();
-  }, o);
+  hil::canopen::SdoClient client(
+      3,
+      [](const hil::can::Frame& f) {
+        if (f.id != 0x603 || f.dlc != 8) std::abort();
+      },
+      o);
   int completions = 0;
   hil::TimePoint t{};
   auto done = [&](std::error_code, std::vector<std::uint8_t>) { ++completions; };
-  if (data[0] & 2) client.async_upload(0x1008, 0, t, done);
-  else client.async_download(0x2000, 0, std::vector<std::uint8_t>(static_cast<std::size_t>(data[0]) * 3, 0xAA), t, done);
+  if (data[0] & 2)
+    client.async_upload(0x1008, 0, t, done);
+  else
+    client.async_download(0x2000, 0, std::vector<std::uint8_t>(static_cast<std::size_t>(data[0]) * 3, 0xAA), t, done);
   for (std::size_t i = 1; i + 9 <= size; i += 9) {
     hil::can::Frame f;
     f.id = 0x583;

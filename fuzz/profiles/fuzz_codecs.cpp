@@ -27,7 +27,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   if (auto d = hp::parse_decimal_text(text, f)) {
     auto t = hp::make_decimal_text(*d, f);
     if (!t) {
-      std::fprintf(stderr, "make failed for [%.*s] units=%lld scale=%d: %s\n", static_cast<int>(text.size()), text.data(), static_cast<long long>(d->units), d->scale, t.error().message.c_str());
+      std::fprintf(stderr, "make failed for [%.*s] units=%lld scale=%d: %s\n", static_cast<int>(text.size()),
+                   text.data(), static_cast<long long>(d->units), d->scale, t.error().message.c_str());
       std::abort();
     }
     auto back = hp::parse_decimal_text(*t, f);
@@ -42,7 +43,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
       auto w = hp::make_bcd(*v, bf);
       if (!w) std::abort();
       if (*v != 0 && *w != static_cast<std::uint32_t>(word)) {
-        std::fprintf(stderr, "bcd %08X -> %lld -> %08X (digits %d sign %d)\n", static_cast<unsigned>(word), static_cast<long long>(*v), *w, bf.digits, static_cast<int>(sign));
+        std::fprintf(stderr, "bcd %08X -> %lld -> %08X (digits %d sign %d)\n", static_cast<unsigned>(word),
+                     static_cast<long long>(*v), *w, bf.digits, static_cast<int>(sign));
         std::abort();
       }
     }

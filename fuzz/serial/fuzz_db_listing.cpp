@@ -19,7 +19,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   for (auto kind : {hil::serial::clm14::FileKind::program, hil::serial::clm14::FileKind::parameters}) {
     auto f = hil::serial::clm14::parse_device_file(text, kind, **dd, 4, "fuzz");
     if (f) {
-      auto again = hil::serial::clm14::parse_device_file(hil::serial::clm14::make_device_file(*f, "x"), kind, **dd, 4, "fuzz");
+      auto again =
+          hil::serial::clm14::parse_device_file(hil::serial::clm14::make_device_file(*f, "x"), kind, **dd, 4, "fuzz");
       if (!again || again->items != f->items) std::abort();
     }
   }

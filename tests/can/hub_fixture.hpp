@@ -25,7 +25,7 @@
 namespace hil::can::test {
 
 class Inbox {
-public:
+ public:
   void push(const Frame& f) {
     {
       std::lock_guard lock(mu_);
@@ -47,21 +47,21 @@ public:
     return [this](const Frame& f, TimePoint) { push(f); };
   }
 
-private:
+ private:
   std::mutex mu_;
   std::condition_variable cv_;
   std::vector<Frame> frames_;
 };
 
 class Hub {
-public:
+ public:
   explicit Hub(socketcand::ServerOptions options = {}, std::string bus_name = "can0")
       : bus(clock, bus_name), bus_name_(std::move(bus_name)) {
     runner_ = std::make_unique<AsioBusRunner>(io.get_executor(), bus, clock);
     server = std::make_unique<socketcand::Server>(
         io.get_executor(), clock,
-        [this](std::string_view name, const std::string& peer)
-            -> std::expected<std::unique_ptr<Channel>, std::error_code> {
+        [this](std::string_view name,
+               const std::string& peer) -> std::expected<std::unique_ptr<Channel>, std::error_code> {
           if (name != bus_name_) return std::unexpected(std::make_error_code(std::errc::no_such_device));
           return bus.attach("socketcand:" + peer);
         },
@@ -97,7 +97,7 @@ public:
   VirtualBus bus;
   std::unique_ptr<socketcand::Server> server;
 
-private:
+ private:
   std::string bus_name_;
   asio::executor_work_guard<asio::io_context::executor_type> work_{io.get_executor()};
   std::unique_ptr<AsioBusRunner> runner_;
@@ -109,7 +109,7 @@ private:
 /// dispatched: the shared flag makes it a no-op, so `fn` never runs after stop() and the ticker
 /// may be destroyed right after it.
 class Ticker {
-public:
+ public:
   Ticker(asio::io_context& io, std::chrono::milliseconds period, std::function<void()> fn)
       : timer_(io), period_(period), fn_(std::move(fn)) {}
   ~Ticker() { stop(); }
@@ -124,7 +124,7 @@ public:
     timer_.cancel();
   }
 
-private:
+ private:
   void arm() {
     timer_.expires_after(period_);
     timer_.async_wait([this, running = running_](const std::error_code& ec) {

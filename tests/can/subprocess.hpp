@@ -19,7 +19,7 @@ extern char** environ;
 namespace hil::can::test {
 
 class Subprocess {
-public:
+ public:
   explicit Subprocess(const std::vector<std::string>& argv) {
     int fds[2];
     if (::pipe2(fds, O_CLOEXEC) != 0) return;
@@ -57,7 +57,8 @@ public:
         output_ += line + "\n";
         return line;
       }
-      const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(deadline - std::chrono::steady_clock::now());
+      const auto left =
+          std::chrono::duration_cast<std::chrono::milliseconds>(deadline - std::chrono::steady_clock::now());
       if (left.count() <= 0 || fd_ < 0) return std::nullopt;
       pollfd p{fd_, POLLIN, 0};
       if (::poll(&p, 1, static_cast<int>(left.count())) <= 0) return std::nullopt;
@@ -76,10 +77,12 @@ public:
     }
   }
   /// Read lines until one contains `needle` (bounded). Returns it.
-  std::optional<std::string> wait_for_line(const std::string& needle, std::chrono::milliseconds timeout = std::chrono::seconds(10)) {
+  std::optional<std::string> wait_for_line(const std::string& needle,
+                                           std::chrono::milliseconds timeout = std::chrono::seconds(10)) {
     const auto deadline = std::chrono::steady_clock::now() + timeout;
     while (std::chrono::steady_clock::now() < deadline) {
-      auto line = read_line(std::chrono::duration_cast<std::chrono::milliseconds>(deadline - std::chrono::steady_clock::now()));
+      auto line =
+          read_line(std::chrono::duration_cast<std::chrono::milliseconds>(deadline - std::chrono::steady_clock::now()));
       if (!line) return std::nullopt;
       if (line->find(needle) != std::string::npos) return line;
     }
@@ -89,7 +92,8 @@ public:
   int wait(std::chrono::milliseconds timeout = std::chrono::seconds(10)) {
     if (exit_code_) return *exit_code_;
     const auto deadline = std::chrono::steady_clock::now() + timeout;
-    while (read_line(std::chrono::duration_cast<std::chrono::milliseconds>(deadline - std::chrono::steady_clock::now()))) {
+    while (
+        read_line(std::chrono::duration_cast<std::chrono::milliseconds>(deadline - std::chrono::steady_clock::now()))) {
     }
     int st = 0;
     for (;;) {
@@ -113,7 +117,7 @@ public:
   }
   [[nodiscard]] const std::string& output() const { return output_; }
 
-private:
+ private:
   pid_t pid_ = -1;
   int fd_ = -1;
   std::string buf_;

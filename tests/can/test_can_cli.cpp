@@ -32,11 +32,12 @@ std::uint32_t be32(const std::vector<std::uint8_t>& b, std::size_t at) {
 }
 
 class CanCli : public ::testing::Test {
-protected:
+ protected:
   void SetUp() override {
     dir_ = std::filesystem::temp_directory_path() / ("hil-can-cli-" + std::to_string(::getpid()));
     std::filesystem::create_directories(dir_);
-    hub_ = std::make_unique<Subprocess>(std::vector<std::string>{hilbridge, "can", "hub", "--listen", "127.0.0.1:0", "--join-grace-ms", "0"});
+    hub_ = std::make_unique<Subprocess>(
+        std::vector<std::string>{hilbridge, "can", "hub", "--listen", "127.0.0.1:0", "--join-grace-ms", "0"});
     auto line = hub_->wait_for_line("connect with");
     ASSERT_TRUE(line) << hub_->output();
     const auto at = line->find("socketcand://");

@@ -32,12 +32,18 @@ TEST(CandumpSpec, ParsesCansendSyntax) {
 
 TEST(CandumpSpec, RejectsBadSpecsWithTheRightCode) {
   const std::pair<const char*, cd::ParseErrc> cases[] = {
-      {"123DEADBEEF", cd::ParseErrc::missing_separator}, {"12#00", cd::ParseErrc::bad_id},
-      {"1234#00", cd::ParseErrc::bad_id},                {"800#00", cd::ParseErrc::bad_id},
-      {"G23#00", cd::ParseErrc::bad_id},                 {"4FFFFFFF#00", cd::ParseErrc::bad_id},
-      {"123#0", cd::ParseErrc::bad_data},                {"123#001122334455667788", cd::ParseErrc::bad_data},
-      {"123#XY", cd::ParseErrc::bad_data},               {"123#R9", cd::ParseErrc::bad_rtr_length},
-      {"123#R12", cd::ParseErrc::bad_rtr_length},        {"123##1DEAD", cd::ParseErrc::fd_not_supported},
+      {"123DEADBEEF", cd::ParseErrc::missing_separator},
+      {"12#00", cd::ParseErrc::bad_id},
+      {"1234#00", cd::ParseErrc::bad_id},
+      {"800#00", cd::ParseErrc::bad_id},
+      {"G23#00", cd::ParseErrc::bad_id},
+      {"4FFFFFFF#00", cd::ParseErrc::bad_id},
+      {"123#0", cd::ParseErrc::bad_data},
+      {"123#001122334455667788", cd::ParseErrc::bad_data},
+      {"123#XY", cd::ParseErrc::bad_data},
+      {"123#R9", cd::ParseErrc::bad_rtr_length},
+      {"123#R12", cd::ParseErrc::bad_rtr_length},
+      {"123##1DEAD", cd::ParseErrc::fd_not_supported},
       {"123#1122_5", cd::ParseErrc::bad_data},
   };
   for (const auto& [text, code] : cases) {
@@ -74,10 +80,12 @@ TEST(CandumpLog, RoundTripsRandomRecords) {
     r.frame.extended = kind == 1;
     r.frame.rtr = kind == 2;
     r.frame.error = kind == 3;
-    r.frame.id = static_cast<std::uint32_t>(rng()) & (r.frame.extended || r.frame.error ? can::eff_mask : can::sff_mask);
+    r.frame.id =
+        static_cast<std::uint32_t>(rng()) & (r.frame.extended || r.frame.error ? can::eff_mask : can::sff_mask);
     r.frame.dlc = r.frame.error ? 8 : static_cast<std::uint8_t>(rng() % 9);
     if (!r.frame.rtr)
-      for (int k = 0; k < r.frame.dlc; ++k) r.frame.data[static_cast<std::size_t>(k)] = static_cast<std::uint8_t>(rng());
+      for (int k = 0; k < r.frame.dlc; ++k)
+        r.frame.data[static_cast<std::size_t>(k)] = static_cast<std::uint8_t>(rng());
     std::string s;
     cd::format_log_line(s, r);
     auto back = cd::parse_log_line(s);
@@ -88,20 +96,19 @@ TEST(CandumpLog, RoundTripsRandomRecords) {
 
 TEST(Pcap, GlobalHeaderIsLibpcapWithLinktype227) {
   const auto h = can::pcap::make_global_header();
-  const std::vector<std::uint8_t> expected = {0xD4, 0xC3, 0xB2, 0xA1, 0x02, 0x00, 0x04, 0x00, 0, 0, 0, 0, 0, 0, 0, 0,
-                                              0xFF, 0xFF, 0x00, 0x00, 0xE3, 0x00, 0x00, 0x00};
+  const std::vector<std::uint8_t> expected = {0xD4, 0xC3, 0xB2, 0xA1, 0x02, 0x00, 0x04, 0x00, 0,    0,    0,    0,
+                                              0,    0,    0,    0,    0xFF, 0xFF, 0x00, 0x00, 0xE3, 0x00, 0x00, 0x00};
   EXPECT_EQ(std::vector<std::uint8_t>(h.begin(), h.end()), expected);
 }
 
 TEST(Pcap, RecordHasBigEndianCanIdWithFlags) {
   const auto r = can::pcap::make_record(can::make_frame(0x123, {0xDE, 0xAD, 0xBE, 0xEF}), {1700000000, 123456});
-  const std::vector<std::uint8_t> expected = {
-      0x00, 0xF1, 0x53, 0x65,  // 1700000000 LE
-      0x40, 0xE2, 0x01, 0x00,  // 123456 LE
-      0x10, 0, 0, 0, 0x10, 0, 0, 0,  // incl/orig length 16
-      0x00, 0x00, 0x01, 0x23,  // can_id BE
-      0x04, 0x00, 0x00, 0x00,  // len, flags, reserved
-      0xDE, 0xAD, 0xBE, 0xEF, 0, 0, 0, 0};
+  const std::vector<std::uint8_t> expected = {0x00, 0xF1, 0x53, 0x65,                 // 1700000000 LE
+                                              0x40, 0xE2, 0x01, 0x00,                 // 123456 LE
+                                              0x10, 0,    0,    0,    0x10, 0, 0, 0,  // incl/orig length 16
+                                              0x00, 0x00, 0x01, 0x23,                 // can_id BE
+                                              0x04, 0x00, 0x00, 0x00,                 // len, flags, reserved
+                                              0xDE, 0xAD, 0xBE, 0xEF, 0,    0, 0, 0};
   EXPECT_EQ(std::vector<std::uint8_t>(r.begin(), r.end()), expected);
   const auto ext = can::pcap::make_record(can::make_extended_frame(0x1ABCDEF0, std::vector<std::uint8_t>{}), {});
   EXPECT_EQ(ext[16], 0x80 | 0x1A);  // CAN_EFF_FLAG

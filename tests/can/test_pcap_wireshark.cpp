@@ -23,11 +23,11 @@ TEST(PcapWireshark, TsharkDecodesOurCaptureAsCanAndCanopen) {
     const auto header = can::pcap::make_global_header();
     out.write(reinterpret_cast<const char*>(header.data()), header.size());
     const std::vector<can::Frame> frames = {
-        can::make_frame(0x000, {0x01, 0x00}),                                      // NMT start all
-        can::make_frame(0x080, {}),                                                // SYNC
-        can::make_frame(0x602, {0x40, 0x18, 0x10, 0x01, 0, 0, 0, 0}),              // SDO upload request
-        can::make_frame(0x705, {0x05}),                                            // heartbeat operational
-        can::make_remote_frame(0x705, 1),                                          // node guarding RTR
+        can::make_frame(0x000, {0x01, 0x00}),                          // NMT start all
+        can::make_frame(0x080, {}),                                    // SYNC
+        can::make_frame(0x602, {0x40, 0x18, 0x10, 0x01, 0, 0, 0, 0}),  // SDO upload request
+        can::make_frame(0x705, {0x05}),                                // heartbeat operational
+        can::make_remote_frame(0x705, 1),                              // node guarding RTR
         can::make_extended_frame(0x1F334455, std::vector<std::uint8_t>{0x11, 0x22}),
     };
     std::uint32_t usec = 0;

@@ -24,7 +24,7 @@ using can::socketcan::SocketCanOptions;
 namespace {
 
 class SocketCanPair : public ::testing::Test {
-protected:
+ protected:
   void SetUp() override { ASSERT_EQ(::socketpair(AF_UNIX, SOCK_SEQPACKET | SOCK_CLOEXEC, 0, fds_), 0); }
   void TearDown() override {
     if (fds_[1] >= 0) ::close(fds_[1]);
@@ -175,7 +175,8 @@ TEST_F(SocketCanPair, EagainBackPressureQueuesBoundedAndDrainsOnWritability) {
       ++received;
     }
     return received == accepted;
-  })) << "received " << received << " of " << accepted;
+  })) << "received "
+      << received << " of " << accepted;
   EXPECT_TRUE(in_order);
   EXPECT_EQ(ch->tx_queued(), 0u);
   EXPECT_EQ(ch->stats().tx_frames, accepted);
@@ -226,7 +227,8 @@ TEST(SocketCanOpen, MissingInterfaceOrKernelSupportGivesADiagnostic) {
   std::string diag;
   auto ch = SocketCanChannel::open(io.get_executor(), clock, "hilnocan7", {}, &diag);
   ASSERT_FALSE(ch.has_value());
-  EXPECT_TRUE(ch.error() == std::errc::no_such_device || ch.error() == std::errc::address_family_not_supported) << ch.error().message();
+  EXPECT_TRUE(ch.error() == std::errc::no_such_device || ch.error() == std::errc::address_family_not_supported)
+      << ch.error().message();
   EXPECT_NE(diag.find("hilnocan7"), std::string::npos) << diag;
   EXPECT_TRUE(diag.find("ip link add") != std::string::npos || diag.find("modprobe") != std::string::npos) << diag;
   EXPECT_FALSE(SocketCanChannel::open(io.get_executor(), clock, "", {}, &diag).has_value());

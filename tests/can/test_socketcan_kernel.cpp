@@ -36,15 +36,17 @@ namespace {
 
 constexpr const char* kIf = "vcan0";
 
-bool have_vcan0() { return ::if_nametoindex(kIf) != 0; }
+bool have_vcan0() {
+  return ::if_nametoindex(kIf) != 0;
+}
 
-#define REQUIRE_VCAN0()                                                                                      \
-  if (!have_vcan0())                                                                                         \
+#define REQUIRE_VCAN0()                                                                                       \
+  if (!have_vcan0())                                                                                          \
   GTEST_SKIP() << "vcan0 does not exist (run inside tests/vm/run-in-kernel.sh, or: modprobe vcan && ip link " \
                   "add dev vcan0 type vcan && ip link set up vcan0)"
 
 class KernelCan : public ::testing::Test {
-protected:
+ protected:
   std::unique_ptr<SocketCanChannel> open(SocketCanOptions o = {}) {
     std::string diag;
     auto ch = SocketCanChannel::open(io.get_executor(), clock, kIf, std::move(o), &diag);
@@ -74,9 +76,10 @@ TEST_F(KernelCan, TwoSocketsExchangeDataAndRemoteFrames) {
   b->set_receive_handler([&](const can::Frame& f, hil::TimePoint) { rx_b.push_back(f); });
   std::vector<can::Frame> rx_a;
   a->set_receive_handler([&](const can::Frame& f, hil::TimePoint) { rx_a.push_back(f); });
-  const std::vector<can::Frame> frames = {can::make_frame(0x123, {0xDE, 0xAD, 0xBE, 0xEF}), can::make_frame(0x080, {}),
-                                          can::make_extended_frame(0x1ABCDEF0, std::vector<std::uint8_t>{1, 2, 3, 4, 5, 6, 7, 8}),
-                                          can::make_remote_frame(0x705, 1)};
+  const std::vector<can::Frame> frames = {
+      can::make_frame(0x123, {0xDE, 0xAD, 0xBE, 0xEF}), can::make_frame(0x080, {}),
+      can::make_extended_frame(0x1ABCDEF0, std::vector<std::uint8_t>{1, 2, 3, 4, 5, 6, 7, 8}),
+      can::make_remote_frame(0x705, 1)};
   for (const auto& f : frames) ASSERT_FALSE(a->send(f));
   ASSERT_TRUE(run_until([&] { return rx_b.size() == frames.size(); }));
   EXPECT_EQ(rx_b, frames);
@@ -218,7 +221,8 @@ TEST_F(KernelCan, EnobufsFromAFullInterfaceQueueIsRetriedNotSpun) {
   rx->set_receive_handler([&](const can::Frame& f, hil::TimePoint) { order.push_back(f.data[0] | (f.data[1] << 8)); });
   std::uint64_t accepted = 0, refused = 0;
   for (int i = 0; i < 400; ++i) {
-    const auto ec = tx->send(can::make_frame(0x321, {static_cast<std::uint8_t>(accepted), static_cast<std::uint8_t>(accepted >> 8)}));
+    const auto ec = tx->send(
+        can::make_frame(0x321, {static_cast<std::uint8_t>(accepted), static_cast<std::uint8_t>(accepted >> 8)}));
     if (!ec)
       ++accepted;
     else if (ec == std::errc::no_buffer_space)
@@ -308,7 +312,8 @@ TEST_F(KernelCan, CanUtilsAreIndependentPeers) {
 TEST_F(KernelCan, PythonCanSocketcanIsAnIndependentPeer) {
   REQUIRE_VCAN0();
   if (!can::test::python_has("can.interfaces.socketcan"))
-    GTEST_SKIP() << "/usr/bin/python3 with python3-can (socketcan interface) is not installed (apt install python3-can)";
+    GTEST_SKIP()
+        << "/usr/bin/python3 with python3-can (socketcan interface) is not installed (apt install python3-can)";
   auto ch = open();
   std::vector<can::Frame> got;
   ch->set_receive_handler([&](const can::Frame& f, hil::TimePoint) { got.push_back(f); });
@@ -345,14 +350,14 @@ TEST(KernelCanBridge, SocketcandHubBridgesVcan0) {
   asio::io_context io;
   hil::SteadyClock clock;
   auto work = asio::make_work_guard(io);
-  can::socketcand::Server server(io.get_executor(), clock,
-                                 [&](std::string_view name, const std::string&)
-                                     -> std::expected<std::unique_ptr<can::Channel>, std::error_code> {
-                                   if (name != kIf) return std::unexpected(std::make_error_code(std::errc::no_such_device));
-                                   auto ch = SocketCanChannel::open(io.get_executor(), clock, kIf);
-                                   if (!ch) return std::unexpected(ch.error());
-                                   return std::unique_ptr<can::Channel>(std::move(*ch));
-                                 });
+  can::socketcand::Server server(
+      io.get_executor(), clock,
+      [&](std::string_view name, const std::string&) -> std::expected<std::unique_ptr<can::Channel>, std::error_code> {
+        if (name != kIf) return std::unexpected(std::make_error_code(std::errc::no_such_device));
+        auto ch = SocketCanChannel::open(io.get_executor(), clock, kIf);
+        if (!ch) return std::unexpected(ch.error());
+        return std::unique_ptr<can::Channel>(std::move(*ch));
+      });
   ASSERT_FALSE(server.listen({asio::ip::make_address("127.0.0.1"), 0}));
   can::test::Inbox local_rx, client_rx;
   auto local = SocketCanChannel::open(io.get_executor(), clock, kIf);
@@ -369,7 +374,9 @@ TEST(KernelCanBridge, SocketcandHubBridgesVcan0) {
   ASSERT_EQ(got.size(), 1u);
   EXPECT_EQ(got[0], can::make_frame(0x601, {0x40, 0x18, 0x10, 0x01, 0, 0, 0, 0}));
   std::promise<std::error_code> sent;
-  asio::post(io, [&] { sent.set_value((*local)->send(can::make_extended_frame(0x18FF0001, std::vector<std::uint8_t>{0xAA}))); });
+  asio::post(io, [&] {
+    sent.set_value((*local)->send(can::make_extended_frame(0x18FF0001, std::vector<std::uint8_t>{0xAA})));
+  });
   EXPECT_FALSE(sent.get_future().get());
   auto back = client_rx.wait_for(1, std::chrono::seconds(10));
   ASSERT_EQ(back.size(), 1u);

@@ -76,7 +76,8 @@ TEST(SocketcandLoopback, ClientsAndLocalNodeShareTheBus) {
 TEST(SocketcandLoopback, UnknownBusIsRefusedWithADiagnostic) {
   Hub hub;
   std::string diag;
-  auto ch = sc::SocketcandChannel::connect(hub.io.get_executor(), hub.clock, "127.0.0.1", hub.port(), "can7", {}, &diag);
+  auto ch =
+      sc::SocketcandChannel::connect(hub.io.get_executor(), hub.clock, "127.0.0.1", hub.port(), "can7", {}, &diag);
   ASSERT_FALSE(ch.has_value());
   EXPECT_EQ(ch.error(), std::make_error_code(std::errc::no_such_device));
   EXPECT_NE(diag.find("could not open bus"), std::string::npos) << diag;
@@ -95,10 +96,8 @@ TEST(SocketcandLoopback, ConnectionRefusedIsReported) {
 
 /// A raw TCP peer with bounded reads (the io thread of the hub serves the other end).
 class RawPeer {
-public:
-  explicit RawPeer(std::uint16_t port) {
-    sock_.connect({asio::ip::make_address("127.0.0.1"), port});
-  }
+ public:
+  explicit RawPeer(std::uint16_t port) { sock_.connect({asio::ip::make_address("127.0.0.1"), port}); }
   void send(std::string_view s) { asio::write(sock_, asio::buffer(s)); }
   /// Read until `count` elements arrived (bounded by the hub answering; test timeout otherwise).
   std::vector<std::string> read_elements(std::size_t count) {
@@ -118,7 +117,7 @@ public:
   }
   void close() { sock_.close(); }
 
-private:
+ private:
   asio::io_context io_;
   asio::ip::tcp::socket sock_{io_};
   sc::ElementSplitter splitter_;
@@ -151,9 +150,9 @@ TEST(SocketcandLoopback, WireBytesMatchTheDaemon) {
     EXPECT_FALSE(local->send(can::make_remote_frame(0x705, 1)));  // not representable: dropped
     EXPECT_FALSE(local->send(can::make_extended_frame(0x18FF0001, std::vector<std::uint8_t>{0xAA})));
   });
-  EXPECT_EQ(peer.read_elements(3), (std::vector<std::string>{"< frame 581 1700000000.000123 4318100104000000 >",
-                                                              "< frame 080 1700000000.000123  >",
-                                                              "< frame 18FF0001 1700000000.000123 AA >"}));
+  EXPECT_EQ(peer.read_elements(3),
+            (std::vector<std::string>{"< frame 581 1700000000.000123 4318100104000000 >",
+                                      "< frame 080 1700000000.000123  >", "< frame 18FF0001 1700000000.000123 AA >"}));
   EXPECT_EQ(hub.run([&] { return hub.server->stats().rtr_not_forwarded; }), 1u);
   peer.send("< echo >");
   EXPECT_EQ(peer.read_elements(1), std::vector<std::string>{"< echo >"});
@@ -240,7 +239,7 @@ TEST(SocketcandLoopback, ClientMayBeDestroyedFromAnotherThreadWhileFramesArrive)
       for (int i = 0; i < 2000; ++i) (void)local->send(can::make_frame(0x181, {static_cast<std::uint8_t>(i)}));
     });
     while (seen.load() == 0) std::this_thread::yield();  // bounded by the ctest timeout
-    a.reset();  // test thread, while the io thread is delivering
+    a.reset();                                           // test thread, while the io thread is delivering
     const int after = seen.load();
     hub.run([] {});  // let the io thread run any handler that was still queued
     EXPECT_EQ(seen.load(), after) << "no handler may run after the destructor returned";

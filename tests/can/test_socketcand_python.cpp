@@ -15,7 +15,8 @@ namespace {
 
 TEST(SocketcandPython, PythonCanExchangesFramesWithOurHub) {
   if (!can::test::python_has("can.interfaces.socketcand"))
-    GTEST_SKIP() << "/usr/bin/python3 with python3-can's socketcand interface is not installed (apt install python3-can)";
+    GTEST_SKIP()
+        << "/usr/bin/python3 with python3-can's socketcand interface is not installed (apt install python3-can)";
   Hub hub;
   Inbox rx;
   auto local = hub.run([&] {

@@ -27,10 +27,12 @@ struct Rx {
   }
 };
 
-TimePoint at(std::chrono::nanoseconds d) { return TimePoint{d}; }
+TimePoint at(std::chrono::nanoseconds d) {
+  return TimePoint{d};
+}
 
 class VirtualBusTest : public ::testing::Test {
-protected:
+ protected:
   VirtualClock clock;
   can::VirtualBus bus{clock, "can0"};
 };
@@ -92,11 +94,11 @@ TEST_F(VirtualBusTest, FiltersFollowCanRawSemantics) {
   auto range = bus.attach("range", {.filters = {.filters = {{0x580, 0x780, false}}}});  // 0x580..0x5FF
   auto inverted = bus.attach("inv", {.filters = {.filters = {{0x700, 0x780, true}}}});
   auto none = bus.attach("none", {.filters = {.filters = {}}});
-  auto joined = bus.attach("join", {.filters = {.filters = {{0x100, 0x700, false}, {0x001, 0x001, false}}, .join = true}});
+  auto joined =
+      bus.attach("join", {.filters = {.filters = {{0x100, 0x700, false}, {0x001, 0x001, false}}, .join = true}});
   Rx re, rr, ri, rn, rj;
   re.attach(*exact), rr.attach(*range), ri.attach(*inverted), rn.attach(*none), rj.attach(*joined);
-  for (std::uint32_t id : {0x181u, 0x182u, 0x585u, 0x705u, 0x101u})
-    ASSERT_FALSE(tx->send(can::make_frame(id, {0})));
+  for (std::uint32_t id : {0x181u, 0x182u, 0x585u, 0x705u, 0x101u}) ASSERT_FALSE(tx->send(can::make_frame(id, {0})));
   can::Frame ext = can::make_extended_frame(0x181, std::vector<std::uint8_t>{1});
   ASSERT_FALSE(tx->send(ext));
   bus.deliver(clock.now());
@@ -134,7 +136,8 @@ TEST_F(VirtualBusTest, OrderIsDueTimeThenSendOrderAcrossSenders) {
   auto rx = bus.attach("rx");
   Rx r;
   r.attach(*rx);
-  const auto slow = bus.inject({.action = can::FaultAction::delay, .match = [](const can::Frame& f) { return f.id == 1; }, .delay = 5us});
+  const auto slow = bus.inject(
+      {.action = can::FaultAction::delay, .match = [](const can::Frame& f) { return f.id == 1; }, .delay = 5us});
   ASSERT_FALSE(a->send(can::make_frame(1, {})));  // due 5us
   ASSERT_FALSE(b->send(can::make_frame(2, {})));  // due 0
   clock.advance(2us);
@@ -204,7 +207,8 @@ TEST_F(VirtualBusTest, DropNthMatchingFrameOnly) {
   auto b = bus.attach("b");
   Rx rb;
   rb.attach(*b);
-  const auto id = bus.inject({.action = can::FaultAction::drop, .match = [](const can::Frame& f) { return f.id == 0x181; }, .nth = 2});
+  const auto id = bus.inject(
+      {.action = can::FaultAction::drop, .match = [](const can::Frame& f) { return f.id == 0x181; }, .nth = 2});
   for (std::uint8_t i = 0; i < 4; ++i) {
     ASSERT_FALSE(a->send(can::make_frame(0x181, {i})));
     ASSERT_FALSE(a->send(can::make_frame(0x281, {i})));
@@ -286,7 +290,8 @@ TEST_F(VirtualBusTest, CorruptDefaultAndCustomMutation) {
   Rx rb;
   rb.attach(*b);
   bus.inject({.action = can::FaultAction::corrupt, .nth = 1});
-  bus.inject({.action = can::FaultAction::corrupt, .match = [](const can::Frame& f) { return f.id == 0x20; },
+  bus.inject({.action = can::FaultAction::corrupt,
+              .match = [](const can::Frame& f) { return f.id == 0x20; },
               .mutate = [](can::Frame& f) { f.dlc = 1; }});
   ASSERT_FALSE(a->send(can::make_frame(0x10, {0x0F, 0x01})));
   ASSERT_FALSE(a->send(can::make_frame(0x20, {0xAA, 0xBB})));
@@ -415,8 +420,10 @@ TEST_F(VirtualBusTest, DeterministicAcrossRunsWithManyParticipants) {
       nodes.push_back(b.attach("n" + std::to_string(i)));
       auto* self = nodes.back().get();
       self->set_receive_handler([&log, self, i](const can::Frame& f, TimePoint t) {
-        log.push_back(std::to_string(i) + ":" + std::to_string(f.id) + "@" + std::to_string(t.time_since_epoch().count()));
-        if (f.id < 0x700 && (f.id % 9) == static_cast<std::uint32_t>(i)) (void)self->send(can::make_frame(f.id + 0x80, {}));
+        log.push_back(std::to_string(i) + ":" + std::to_string(f.id) + "@" +
+                      std::to_string(t.time_since_epoch().count()));
+        if (f.id < 0x700 && (f.id % 9) == static_cast<std::uint32_t>(i))
+          (void)self->send(can::make_frame(f.id + 0x80, {}));
       });
     }
     b.inject({.action = can::FaultAction::delay, .nth = 3, .delay = 15us});

@@ -28,7 +28,8 @@ inline can::Frame f(std::string_view text) {
   for (char c : data)
     if (c != ' ' && c != '.') hex.push_back(c);
   fr.dlc = static_cast<std::uint8_t>(hex.size() / 2);
-  for (std::size_t i = 0; i < fr.dlc; ++i) fr.data[i] = static_cast<std::uint8_t>(std::stoul(hex.substr(2 * i, 2), nullptr, 16));
+  for (std::size_t i = 0; i < fr.dlc; ++i)
+    fr.data[i] = static_cast<std::uint8_t>(std::stoul(hex.substr(2 * i, 2), nullptr, 16));
   return fr;
 }
 

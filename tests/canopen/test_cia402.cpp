@@ -20,19 +20,27 @@ TEST(Cia402, StatuswordDecodingTable) {
     DriveState state;
   };
   const Row rows[] = {
-      {0x0000, DriveState::not_ready},          {0x0040, DriveState::switch_on_disabled},
-      {0x0250, DriveState::switch_on_disabled}, {0x0021, DriveState::ready_to_switch_on},
-      {0x0231, DriveState::ready_to_switch_on}, {0x0023, DriveState::switched_on},
-      {0x0233, DriveState::switched_on},        {0x0027, DriveState::operation_enabled},
-      {0x0637, DriveState::operation_enabled},  {0x0007, DriveState::quick_stop_active},
-      {0x1617, DriveState::quick_stop_active},  // real drive log: bit 5 clear with bits 0-2 set
-      {0x0640, DriveState::switch_on_disabled}, // real drive log: 181#4006
-      {0x000F, DriveState::fault_reaction_active}, {0x002F, DriveState::fault_reaction_active},
-      {0x0008, DriveState::fault},              {0x0228, DriveState::fault},
+      {0x0000, DriveState::not_ready},
+      {0x0040, DriveState::switch_on_disabled},
+      {0x0250, DriveState::switch_on_disabled},
+      {0x0021, DriveState::ready_to_switch_on},
+      {0x0231, DriveState::ready_to_switch_on},
+      {0x0023, DriveState::switched_on},
+      {0x0233, DriveState::switched_on},
+      {0x0027, DriveState::operation_enabled},
+      {0x0637, DriveState::operation_enabled},
+      {0x0007, DriveState::quick_stop_active},
+      {0x1617, DriveState::quick_stop_active},   // real drive log: bit 5 clear with bits 0-2 set
+      {0x0640, DriveState::switch_on_disabled},  // real drive log: 181#4006
+      {0x000F, DriveState::fault_reaction_active},
+      {0x002F, DriveState::fault_reaction_active},
+      {0x0008, DriveState::fault},
+      {0x0228, DriveState::fault},
   };
   for (const auto& r : rows) EXPECT_EQ(decode_state(r.sw), r.state) << std::hex << r.sw;
-  for (auto s : {DriveState::not_ready, DriveState::switch_on_disabled, DriveState::ready_to_switch_on, DriveState::switched_on,
-                 DriveState::operation_enabled, DriveState::quick_stop_active, DriveState::fault_reaction_active, DriveState::fault})
+  for (auto s : {DriveState::not_ready, DriveState::switch_on_disabled, DriveState::ready_to_switch_on,
+                 DriveState::switched_on, DriveState::operation_enabled, DriveState::quick_stop_active,
+                 DriveState::fault_reaction_active, DriveState::fault})
     EXPECT_EQ(decode_state(encode_state(s)), s);
 }
 

@@ -25,8 +25,8 @@ TEST(Nmt, CommandFramesAreByteExact) {
     const char* frame;
   };
   const Row rows[] = {
-      {NmtCommand::start, 0, "000#0100"},       {NmtCommand::reset_communication, 5, "000#8205"},
-      {NmtCommand::stop, 5, "000#0205"},        {NmtCommand::enter_preoperational, 127, "000#807F"},
+      {NmtCommand::start, 0, "000#0100"},      {NmtCommand::reset_communication, 5, "000#8205"},
+      {NmtCommand::stop, 5, "000#0205"},       {NmtCommand::enter_preoperational, 127, "000#807F"},
       {NmtCommand::reset_node, 1, "000#8101"},
   };
   for (const auto& r : rows) {
@@ -55,7 +55,8 @@ TEST(Heartbeat, StatesAreByteExact) {
   EXPECT_EQ(m->node, 5);
   EXPECT_EQ(m->state, NmtState::operational);
   EXPECT_TRUE(m->toggle);
-  for (const char* bad : {"705#", "705#06", "700#05", "780#05", "705#R1"}) EXPECT_FALSE(parse_error_control(f(bad))) << bad;
+  for (const char* bad : {"705#", "705#06", "700#05", "780#05", "705#R1"})
+    EXPECT_FALSE(parse_error_control(f(bad))) << bad;
 }
 
 TEST(Heartbeat, ProducerEmitsEveryPeriod) {
@@ -153,7 +154,9 @@ TEST(Emcy, FramesAndInhibit) {
 
 TEST(Crc16, CheckValuesMatchPublicTraces) {
   const std::string a = "123456789", b = "A really really long string...", c = "Tiny Node - Mega Domains !";
-  const auto span = [](const std::string& s) { return std::span(reinterpret_cast<const std::uint8_t*>(s.data()), s.size()); };
+  const auto span = [](const std::string& s) {
+    return std::span(reinterpret_cast<const std::uint8_t*>(s.data()), s.size());
+  };
   EXPECT_EQ(crc16_ccitt(span(a)), 0x31C3);
   EXPECT_EQ(crc16_ccitt(span(b)), 0x6945);
   EXPECT_EQ(crc16_ccitt(span(c)), 0xE140);
@@ -162,7 +165,8 @@ TEST(Crc16, CheckValuesMatchPublicTraces) {
 
 TEST(SdoAbortCodes, ValuesAreTheWireCodes) {
   EXPECT_EQ(static_cast<std::uint32_t>(SdoAbort::write_only), 0x06010001u) << "read of a write-only object";
-  EXPECT_EQ(static_cast<std::uint32_t>(SdoAbort::read_only), 0x06010002u) << "write of a read-only object (openCANopen swaps these)";
+  EXPECT_EQ(static_cast<std::uint32_t>(SdoAbort::read_only), 0x06010002u)
+      << "write of a read-only object (openCANopen swaps these)";
   std::error_code ec = SdoAbort::no_sub_index;
   EXPECT_EQ(ec.value(), 0x06090011);
   EXPECT_STREQ(ec.category().name(), "canopen.sdo");

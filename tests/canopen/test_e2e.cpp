@@ -34,7 +34,8 @@ struct Machine {
   std::vector<hil::DriveCommand> commands;
   std::function<void()> before_write;  ///< the motion core's part of a cycle
 
-  explicit Machine(int count, hil::cia402::AxisOptions axis = {}, std::function<void(hil::canopen::NodeConfig&)> tweak = {}) {
+  explicit Machine(int count, hil::cia402::AxisOptions axis = {},
+                   std::function<void(hil::canopen::NodeConfig&)> tweak = {}) {
     hil::canopen::MasterOptions mo;
     mo.sync_period = 1ms;
     mo.sdo.timeout = 20ms;
@@ -227,7 +228,8 @@ TEST(CanopenEndToEnd, HomingOnCurrentPosition) {
   // As the motion core does: hold the command at the feedback while homing runs.
   bool was_homing = false;
   m.before_write = [&] {
-    if (m.drives[0]->feedback().homing_active || was_homing) m.commands[0].position_inc = m.drives[0]->feedback().position_inc;
+    if (m.drives[0]->feedback().homing_active || was_homing)
+      m.commands[0].position_inc = m.drives[0]->feedback().position_inc;
     was_homing = m.drives[0]->feedback().homing_active;
   };
   ASSERT_TRUE(m.drives[0]->request(DriveRequest::home));

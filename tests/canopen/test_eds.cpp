@@ -11,8 +11,10 @@ namespace {
 const char* k_profile = HIL_CANOPEN_PROFILE_DIR "/hil_cia402_drive.eds";
 
 std::string minimal(std::string_view extra_objects, std::string_view extra_list = "") {
-  return std::string("[MandatoryObjects]\nSupportedObjects=1\n1=0x1000\n[OptionalObjects]\n") + std::string(extra_list) +
-         "\n[1000]\nParameterName=Device type\nObjectType=0x7\nDataType=0x0007\nAccessType = ro \nDefaultValue=0x192\n" +
+  return std::string("[MandatoryObjects]\nSupportedObjects=1\n1=0x1000\n[OptionalObjects]\n") +
+         std::string(extra_list) +
+         "\n[1000]\nParameterName=Device type\nObjectType=0x7\nDataType=0x0007\nAccessType = ro "
+         "\nDefaultValue=0x192\n" +
          std::string(extra_objects);
 }
 }  // namespace
@@ -24,10 +26,20 @@ TEST(Eds, IntegerExpressions) {
     std::optional<std::int64_t> value;
   };
   const Row rows[] = {
-      {"$NODEID+0x180", 5, 0x185}, {"0x580+$NODEID", 5, 0x585}, {"$nodeid + 0x200", 127, 0x27F}, {"10", 1, 10},
-      {"-100", 1, -100},           {"017", 1, 15},              {"0", 1, 0},                      {"0x80000000+$NODEID", 3, 0x80000003},
-      {"$NODEID-1", 4, 3},         {"", 1, std::nullopt},       {"0x", 1, std::nullopt},          {"12abc", 1, std::nullopt},
-      {"$NODEID+", 1, std::nullopt}, {"08", 1, std::nullopt},
+      {"$NODEID+0x180", 5, 0x185},
+      {"0x580+$NODEID", 5, 0x585},
+      {"$nodeid + 0x200", 127, 0x27F},
+      {"10", 1, 10},
+      {"-100", 1, -100},
+      {"017", 1, 15},
+      {"0", 1, 0},
+      {"0x80000000+$NODEID", 3, 0x80000003},
+      {"$NODEID-1", 4, 3},
+      {"", 1, std::nullopt},
+      {"0x", 1, std::nullopt},
+      {"12abc", 1, std::nullopt},
+      {"$NODEID+", 1, std::nullopt},
+      {"08", 1, std::nullopt},
   };
   for (const auto& r : rows) EXPECT_EQ(eval_eds_integer(r.text, r.node), r.value) << r.text;
 }
@@ -59,9 +71,10 @@ TEST(Eds, ShippedCia402ProfileLoads) {
 }
 
 TEST(Eds, DcfParameterValueAndNodeId) {
-  const auto text = minimal("[1017]\nParameterName=Heartbeat\nObjectType=0x7\nDataType=0x0006\nAccessType=rw\nDefaultValue=0\n"
-                            "ParameterValue=100\n[DeviceComissioning]\nNodeID=0x0C\n",
-                            "SupportedObjects=1\n1=0x1017");
+  const auto text = minimal(
+      "[1017]\nParameterName=Heartbeat\nObjectType=0x7\nDataType=0x0006\nAccessType=rw\nDefaultValue=0\n"
+      "ParameterValue=100\n[DeviceComissioning]\nNodeID=0x0C\n",
+      "SupportedObjects=1\n1=0x1017");
   auto d = parse_eds(text, "x.dcf", 0);
   ASSERT_TRUE(d) << d.error().describe();
   EXPECT_EQ(d->dcf_node_id, 12);
@@ -72,10 +85,11 @@ TEST(Eds, DcfParameterValueAndNodeId) {
 }
 
 TEST(Eds, CompactSubObjWithNameAndValueSections) {
-  const auto text = minimal("[1016]\nParameterName=HB\nObjectType=0x8\nDataType=0x0007\nAccessType=rw\nDefaultValue=0\n"
-                            "PDOMapping=0\nCompactSubObj=3\n[1016Name]\nNrOfEntries=1\n2=Watch node 9\n"
-                            "[1016Value]\nNrOfEntries=1\n2=0x00090064\n",
-                            "SupportedObjects=1\n1=0x1016");
+  const auto text = minimal(
+      "[1016]\nParameterName=HB\nObjectType=0x8\nDataType=0x0007\nAccessType=rw\nDefaultValue=0\n"
+      "PDOMapping=0\nCompactSubObj=3\n[1016Name]\nNrOfEntries=1\n2=Watch node 9\n"
+      "[1016Value]\nNrOfEntries=1\n2=0x00090064\n",
+      "SupportedObjects=1\n1=0x1016");
   auto d = parse_eds(text, "c.dcf", 1);
   ASSERT_TRUE(d) << d.error().describe();
   EXPECT_EQ(d->od.get_int(0x1016, 0), 3);
@@ -95,16 +109,19 @@ TEST(Eds, ErrorsNameFileLineSectionAndKey) {
     const char* message_part;
   };
   const Row rows[] = {
-      {minimal("[2000]\nObjectType=0x7\nDataType=0x0099\nAccessType=rw\n", "SupportedObjects=1\n1=0x2000"), 15, "[2000] DataType",
-       "unsupported data type"},
-      {minimal("[2000]\nObjectType=0x7\nDataType=0x0005\nAccessType=rx\n", "SupportedObjects=1\n1=0x2000"), 16, "[2000] AccessType",
-       "'rx'"},
-      {minimal("[2000]\nObjectType=0x7\nDataType=0x0005\nAccessType=rw\nDefaultValue=256\n", "SupportedObjects=1\n1=0x2000"), 17,
-       "[2000] DefaultValue", "does not fit UNSIGNED8"},
-      {minimal("[2000]\nObjectType=0x7\nDataType=0x0005\nAccessType=rw\nDefaultValue=$NODE\n", "SupportedObjects=1\n1=0x2000"), 17,
-       "[2000] DefaultValue", "not an integer"},
+      {minimal("[2000]\nObjectType=0x7\nDataType=0x0099\nAccessType=rw\n", "SupportedObjects=1\n1=0x2000"), 15,
+       "[2000] DataType", "unsupported data type"},
+      {minimal("[2000]\nObjectType=0x7\nDataType=0x0005\nAccessType=rx\n", "SupportedObjects=1\n1=0x2000"), 16,
+       "[2000] AccessType", "'rx'"},
+      {minimal("[2000]\nObjectType=0x7\nDataType=0x0005\nAccessType=rw\nDefaultValue=256\n",
+               "SupportedObjects=1\n1=0x2000"),
+       17, "[2000] DefaultValue", "does not fit UNSIGNED8"},
+      {minimal("[2000]\nObjectType=0x7\nDataType=0x0005\nAccessType=rw\nDefaultValue=$NODE\n",
+               "SupportedObjects=1\n1=0x2000"),
+       17, "[2000] DefaultValue", "not an integer"},
       {minimal("", "SupportedObjects=1\n1=0x2000"), 6, "[OptionalObjects] 1", "no [2000] section"},
-      {minimal("[2000]\nObjectType=0x9\nSubNumber=2\n[2000sub0]\nDataType=0x0005\nAccessType=ro\n", "SupportedObjects=1\n1=0x2000"),
+      {minimal("[2000]\nObjectType=0x9\nSubNumber=2\n[2000sub0]\nDataType=0x0005\nAccessType=ro\n",
+               "SupportedObjects=1\n1=0x2000"),
        15, "[2000] SubNumber", "says 2 sub-objects but 1"},
       {minimal("[2000\n"), 12, "[[2000]", "malformed section header"},
       {minimal("garbage line\n"), 12, "[1000] garbage line", "expected Key=Value"},

@@ -12,7 +12,8 @@ namespace can = hil::can;
 
 TEST(CanopenInterop, PythonCanMasterAgainstSimulatedNode) {
   if (!can::test::python_has("can.interfaces.socketcand"))
-    GTEST_SKIP() << "/usr/bin/python3 with python3-can's socketcand interface is not installed (apt install python3-can)";
+    GTEST_SKIP()
+        << "/usr/bin/python3 with python3-can's socketcand interface is not installed (apt install python3-can)";
   can::test::Hub hub;
   std::unique_ptr<can::VirtualChannel> channel;
   std::unique_ptr<hil::mocks::Cia402Node> node;
@@ -21,7 +22,8 @@ TEST(CanopenInterop, PythonCanMasterAgainstSimulatedNode) {
     channel = hub.bus.attach("node5");
     node = std::make_unique<hil::mocks::Cia402Node>(*channel, hil::mocks::Cia402NodeOptions{.node = 5});
     node->start(hub.clock.now());
-    ticker = std::make_unique<can::test::Ticker>(hub.io, std::chrono::milliseconds(1), [&] { node->step(hub.clock.now()); });
+    ticker =
+        std::make_unique<can::test::Ticker>(hub.io, std::chrono::milliseconds(1), [&] { node->step(hub.clock.now()); });
     ticker->start();
     return 0;
   });

@@ -11,7 +11,9 @@
 
 namespace {
 
-bool have_vcan0() { return ::if_nametoindex("vcan0") != 0; }
+bool have_vcan0() {
+  return ::if_nametoindex("vcan0") != 0;
+}
 
 std::pair<int, std::string> cli(std::vector<std::string> args, std::chrono::seconds limit = std::chrono::seconds(60)) {
   args.insert(args.begin(), HIL_BIN);
@@ -24,8 +26,9 @@ std::pair<int, std::string> cli(std::vector<std::string> args, std::chrono::seco
 
 TEST(CanopenKernel, MasterAndNodeInSeparateProcessesOverVcan0) {
   if (!have_vcan0())
-    GTEST_SKIP() << "vcan0 does not exist (run inside tests/vm/run-in-kernel.sh, or: modprobe vcan && ip link add dev vcan0 "
-                    "type vcan && ip link set up vcan0)";
+    GTEST_SKIP()
+        << "vcan0 does not exist (run inside tests/vm/run-in-kernel.sh, or: modprobe vcan && ip link add dev vcan0 "
+           "type vcan && ip link set up vcan0)";
   hil::can::test::Subprocess node({HIL_BIN, "emulate", "cia402", "--bus", "vcan0", "--node", "5", "--duration", "60"});
   ASSERT_TRUE(node.started());
   ASSERT_TRUE(node.wait_for_line("node 5 up", std::chrono::seconds(30))) << node.output();
@@ -33,7 +36,8 @@ TEST(CanopenKernel, MasterAndNodeInSeparateProcessesOverVcan0) {
   auto [rc, out] = cli({"sdo", "read", "--bus", "vcan0", "5", "0x1018:2", "--type", "x32", "--timeout", "2000"});
   EXPECT_EQ(rc, 0) << out;
   EXPECT_NE(out.find("0x00000402"), std::string::npos) << out;
-  std::tie(rc, out) = cli({"sdo", "read", "--bus", "vcan0", "5", "0x1008:0", "--type", "vs", "--block", "--timeout", "2000"});
+  std::tie(rc, out) =
+      cli({"sdo", "read", "--bus", "vcan0", "5", "0x1008:0", "--type", "vs", "--block", "--timeout", "2000"});
   EXPECT_NE(out.find("hilbridge simulated CiA 402 drive"), std::string::npos) << out;
   std::tie(rc, out) = cli({"scan", "--bus", "vcan0", "--timeout", "1000"});
   EXPECT_NE(out.find("   5  0x00020192   0x00000A11"), std::string::npos) << out;

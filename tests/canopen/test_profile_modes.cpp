@@ -135,9 +135,10 @@ TEST(Cia402ProfilePosition, MoveWithTheSetPointHandshakeOnTheWire) {
   const bool acknowledged = std::any_of(rig.statuswords.begin(), rig.statuswords.end(),
                                         [](std::uint16_t s) { return (s & cia402::sw::op_specific_12) != 0; });
   EXPECT_TRUE(acknowledged) << "the node acknowledged the set-point (statusword bit 12)";
-  const auto rises = std::count_if(rig.controlwords.begin() + 1, rig.controlwords.end(), [&, i = std::size_t{0}](std::uint16_t cw) mutable {
-    return (cw & cia402::cw::new_set_point) && !(rig.controlwords[i++] & cia402::cw::new_set_point);
-  });
+  const auto rises = std::count_if(
+      rig.controlwords.begin() + 1, rig.controlwords.end(), [&, i = std::size_t{0}](std::uint16_t cw) mutable {
+        return (cw & cia402::cw::new_set_point) && !(rig.controlwords[i++] & cia402::cw::new_set_point);
+      });
   EXPECT_EQ(rises + ((rig.controlwords.front() & cia402::cw::new_set_point) ? 1 : 0), 1) << "one move, one set-point";
   EXPECT_TRUE(rig.statuswords.back() & cia402::sw::target_reached);
 }
@@ -164,7 +165,8 @@ TEST(Cia402ProfileVelocity, VelocityMoveThenStopWithHalt) {
   EXPECT_NEAR(rig.axis->status().velocity, -40.0, 1.0);
   EXPECT_EQ(rig.node->od().get_int(0x60FF, 0), -40'000);
   ASSERT_FALSE(rig.axis->stop());
-  ASSERT_TRUE(rig.run_until([&] { return rig.axis->status().state == AxisState::standstill && !rig.axis->status().busy; }, 1s))
+  ASSERT_TRUE(
+      rig.run_until([&] { return rig.axis->status().state == AxisState::standstill && !rig.axis->status().busy; }, 1s))
       << rig.axis->status().fault.describe();
   rig.run_until([] { return false; }, 100ms);
   EXPECT_TRUE(rig.controlwords.back() & cia402::cw::halt);

@@ -22,7 +22,9 @@ namespace can = hil::can;
 
 namespace {
 
-std::vector<std::uint8_t> bytes(std::string_view s) { return {s.begin(), s.end()}; }
+std::vector<std::uint8_t> bytes(std::string_view s) {
+  return {s.begin(), s.end()};
+}
 
 Variable var(std::uint16_t index, std::uint8_t sub, const char* name, DataType type, Access access, bool mappable,
              std::vector<std::uint8_t> value) {
@@ -40,7 +42,8 @@ Variable var(std::uint16_t index, std::uint8_t sub, const char* name, DataType t
 ObjectDictionary make_od() {
   ObjectDictionary od;
   od.add(var(0x1000, 0, "Device type", DataType::unsigned32, Access::ro, false, {0x92, 0x01, 0x02, 0x00}));
-  od.add(var(0x1008, 0, "Device name", DataType::visible_string, Access::const_, false, bytes("Tiny Node - Mega Domains !")));
+  od.add(var(0x1008, 0, "Device name", DataType::visible_string, Access::const_, false,
+             bytes("Tiny Node - Mega Domains !")));
   od.add(var(0x1017, 0, "Producer heartbeat time", DataType::unsigned16, Access::rw, false, {}));
   od.add(var(0x1018, 0, "Identity", DataType::unsigned8, Access::const_, false, {4}));
   od.add(var(0x1018, 1, "Vendor-ID", DataType::unsigned32, Access::ro, false, {4, 0, 0, 0}));
@@ -93,7 +96,8 @@ TEST_F(ServerFixture, SegmentedDownloadTrace) {
             (Strings{"582#6000200000000000", "582#2000000000000000", "582#3000000000000000"}));
   const auto* v = od.find(0x2000, 0);
   EXPECT_EQ(std::string(v->value.begin(), v->value.end()), "A long string");
-  EXPECT_EQ(ask({"602#2100200000000000", "602#0F00000000000000"}), (Strings{"582#6000200000000000", "582#2000000000000000"}));
+  EXPECT_EQ(ask({"602#2100200000000000", "602#0F00000000000000"}),
+            (Strings{"582#6000200000000000", "582#2000000000000000"}));
   EXPECT_TRUE(od.find(0x2000, 0)->value.empty());
 }
 
@@ -262,8 +266,9 @@ TEST_F(ClientFixture, BlockDownloadTrace) {
   client.set_options(o);
   client.async_download(0x2000, 0, bytes("A really really long string..."), t, handler());
   EXPECT_EQ(rec.take(), Strings{"602#C60020001E000000"});
-  EXPECT_EQ(answer({"582#A40020007F000000"}), (Strings{"602#0141207265616C6C", "602#0279207265616C6C", "602#0379206C6F6E6720",
-                                                       "602#04737472696E672E", "602#852E2E0000000000"}));
+  EXPECT_EQ(answer({"582#A40020007F000000"}),
+            (Strings{"602#0141207265616C6C", "602#0279207265616C6C", "602#0379206C6F6E6720", "602#04737472696E672E",
+                     "602#852E2E0000000000"}));
   EXPECT_EQ(answer({"582#A2057F0000000000"}), Strings{"602#D545690000000000"});
   answer({"582#A100000000000000"});
   EXPECT_TRUE(done && !ec);
@@ -393,7 +398,8 @@ TEST_P(SdoRoundTrip, DownloadThenUploadIsIdentical) {
   EXPECT_EQ(back, payload);
 }
 INSTANTIATE_TEST_SUITE_P(Sizes, SdoRoundTrip,
-                         ::testing::Combine(::testing::Bool(), ::testing::Values(0u, 1u, 4u, 5u, 7u, 8u, 14u, 889u, 890u, 5000u)));
+                         ::testing::Combine(::testing::Bool(),
+                                            ::testing::Values(0u, 1u, 4u, 5u, 7u, 8u, 14u, 889u, 890u, 5000u)));
 
 TEST(SdoLoss, LostSegmentTimesOutWithoutRetryAndSucceedsWithRetry) {
   Pair p;

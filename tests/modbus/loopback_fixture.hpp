@@ -21,7 +21,7 @@ inline modbus::Profile shipped_profile(const std::string& file) {
 }
 
 class Loopback {
-public:
+ public:
   explicit Loopback(const std::string& profile_file, Duration response_timeout = std::chrono::milliseconds(200))
       : profile(shipped_profile(profile_file)) {
     server = std::make_unique<mocks::ModbusDriveServer>(mocks::DriveDevice(profile), mocks::ModbusServerConfig{});
@@ -50,7 +50,8 @@ public:
     drive->write(t, command);
   }
   /// Cycle until `pred()` or `max` cycles; returns whether pred() held.
-  template <class Pred> bool cycle_until(Pred pred, int max = 200, Duration period = std::chrono::milliseconds(1)) {
+  template <class Pred>
+  bool cycle_until(Pred pred, int max = 200, Duration period = std::chrono::milliseconds(1)) {
     for (int i = 0; i < max; ++i) {
       cycle(period);
       if (pred()) return true;

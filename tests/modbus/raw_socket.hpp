@@ -14,7 +14,7 @@
 namespace hil::test {
 
 class RawSocket {
-public:
+ public:
   explicit RawSocket(std::uint16_t port, int timeout_ms = 2000) {
     fd_ = ::socket(AF_INET, SOCK_STREAM, 0);
     timeval tv{timeout_ms / 1000, (timeout_ms % 1000) * 1000};
@@ -56,7 +56,7 @@ public:
     fd_ = -1;
   }
 
-private:
+ private:
   int fd_ = -1;
   bool connected_ = false;
 };

@@ -62,8 +62,11 @@ TEST(ModbusFaults, SlowResponsePastTimeoutFaultsThenRecovers) {
   EXPECT_FALSE(lb.drive->link_stats().connected);  // dropped: a late reply must not pass for the next one
   lb.server->set_response_delay(Duration{});
   // Reconnects after the back-off (virtual time), but stays faulted until reset.
-  ASSERT_TRUE(lb.cycle_until([&] { return lb.drive->link_stats().connected && lb.drive->link_stats().exchanges > 0 &&
-                                          lb.fb().age == Duration{}; }, 200));
+  ASSERT_TRUE(lb.cycle_until(
+      [&] {
+        return lb.drive->link_stats().connected && lb.drive->link_stats().exchanges > 0 && lb.fb().age == Duration{};
+      },
+      200));
   EXPECT_EQ(lb.fb().state, DriveState::fault);
   lb.drive->request(DriveRequest::fault_reset);
   lb.cycle();
@@ -139,8 +142,8 @@ TEST(ModbusFaults, MalformedClientsDoNotDisturbOthers) {
   EXPECT_EQ(ok[7], 0x03);
   EXPECT_EQ(ok[8], 0x02);
   // 5. Unknown function code with trailing bytes (desynchronises libmodbus 3.1.6 servers).
-  ASSERT_TRUE(wrong_len.send({0x00, 0x0B, 0x00, 0x00, 0x00, 0x05, 0x01, 0x42, 0x01, 0x02, 0x03,
-                              0x00, 0x0C, 0x00, 0x00, 0x00, 0x06, 0x01, 0x03, 0x00, 0x0A, 0x00, 0x01}));
+  ASSERT_TRUE(wrong_len.send({0x00, 0x0B, 0x00, 0x00, 0x00, 0x05, 0x01, 0x42, 0x01, 0x02, 0x03, 0x00,
+                              0x0C, 0x00, 0x00, 0x00, 0x06, 0x01, 0x03, 0x00, 0x0A, 0x00, 0x01}));
   EXPECT_EQ(wrong_len.recv(9), (std::vector<std::uint8_t>{0x00, 0x0B, 0x00, 0x00, 0x00, 0x03, 0x01, 0xC2, 0x01}));
   const auto next = wrong_len.recv(11);
   ASSERT_EQ(next.size(), 11u);
@@ -185,8 +188,10 @@ TEST(ModbusFaults, SeveralClientsAtOnceWhileTheAxisRuns) {
       }
       std::uint16_t regs[6];
       for (int i = 0; i < 200; ++i) {
-        if (modbus_read_registers(ctx, 10, 6, regs) != 6 || (regs[0] & 0x6F) != 0x27) ++failures;
-        else ++reads;
+        if (modbus_read_registers(ctx, 10, 6, regs) != 6 || (regs[0] & 0x6F) != 0x27)
+          ++failures;
+        else
+          ++reads;
         if (c == 0 && modbus_write_register(ctx, 10, 0) != -1) ++failures;  // read-only
       }
       modbus_close(ctx);

@@ -29,7 +29,7 @@ const char* kScript = "tests/modbus/pymodbus_cia402_server.py";
 
 /// The Python server as a child process; its first stdout line is "port N".
 class PythonServer {
-public:
+ public:
   explicit PythonServer(int port = 0) {
     int fds[2];
     if (::pipe(fds) != 0) return;
@@ -67,7 +67,7 @@ public:
   }
   [[nodiscard]] std::uint16_t port() const { return port_; }
 
-private:
+ private:
   pid_t pid_ = -1;
   int out_ = -1;
   std::uint16_t port_ = 0;
@@ -94,7 +94,8 @@ struct PeerDrive {
     drive->read({clock.now(), milliseconds(1)});
     drive->write({clock.now(), milliseconds(1)}, command);
   }
-  template <class Pred> bool until(Pred p, int max) {
+  template <class Pred>
+  bool until(Pred p, int max) {
     for (int i = 0; i < max; ++i) {
       cycle();
       if (p()) return true;
@@ -107,7 +108,7 @@ struct PeerDrive {
 };
 
 class ModbusPymodbusServer : public ::testing::Test {
-protected:
+ protected:
   void SetUp() override {
     if (!have_python()) GTEST_SKIP() << "/usr/bin/python3 with python3-pymodbus is not installed";
   }

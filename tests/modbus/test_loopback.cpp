@@ -50,7 +50,7 @@ TEST(ModbusLoopback, VendorProfileVelocityModeLowWordFirstAndScale) {
   });
   const auto raw = static_cast<std::int32_t>((std::uint32_t{hi} << 16) | lo);
   EXPECT_NEAR(static_cast<double>(raw), static_cast<double>(pos), 200.0 * 1.0 + 1.0);  // plant moved since the read
-  EXPECT_EQ(lb.server->stats().requests, 2 * lb.drive->link_stats().exchanges);  // FC 16 + FC 4
+  EXPECT_EQ(lb.server->stats().requests, 2 * lb.drive->link_stats().exchanges);        // FC 16 + FC 4
   // Disable: the drive leaves operation enabled and the axis coasts down.
   lb.drive->request(DriveRequest::disable);
   ASSERT_TRUE(lb.cycle_until([&] { return lb.fb().state == DriveState::switch_on_disabled; }, 10));
@@ -145,7 +145,8 @@ registers:
   target_position: {address: 41, type: s16, scale: 4}
   status_word:     {address: 50}
   actual_position: {address: 51, type: s16, scale: 4}
-)", "tiny.yaml");
+)",
+                                       "tiny.yaml");
   ASSERT_TRUE(profile) << profile.error().describe();
   mocks::ModbusDriveServer server(mocks::DriveDevice(*profile), {});
   ASSERT_FALSE(server.start());
@@ -170,7 +171,8 @@ registers:
   cmd.position_inc = -4000;  // register value -1000
   for (int i = 0; i < 400; ++i) cycle();
   EXPECT_EQ(drive.feedback().position_inc, -4000);
-  const auto raw = server.with_device([](mocks::DriveDevice& d) { return d.table().get(modbus::RegisterSpace::holding, 41); });
+  const auto raw =
+      server.with_device([](mocks::DriveDevice& d) { return d.table().get(modbus::RegisterSpace::holding, 41); });
   EXPECT_EQ(static_cast<std::int16_t>(raw), -1000);
   EXPECT_EQ(server.stats().requests, 3 * drive.link_stats().exchanges);  // 2 x FC 6 + 1 x FC 3
   EXPECT_EQ(drive.link_stats().errors, 0u);
@@ -191,12 +193,14 @@ TEST(ModbusLoopback, HomingOnTheCurrentPositionOverCia402Registers) {
   EXPECT_TRUE(lb.fb().homing_active);
   EXPECT_FALSE(lb.fb().referenced);
   std::int64_t mode_seen = 0;
-  ASSERT_TRUE(lb.cycle_until([&] {
-    mode_seen = std::max<std::int64_t>(mode_seen, lb.server->with_device([](mocks::DriveDevice& d) {
-      return static_cast<std::int64_t>(d.table().get(modbus::RegisterSpace::holding, 1));  // the mode register
-    }));
-    return !lb.fb().homing_active;
-  }, 50));
+  ASSERT_TRUE(lb.cycle_until(
+      [&] {
+        mode_seen = std::max<std::int64_t>(mode_seen, lb.server->with_device([](mocks::DriveDevice& d) {
+          return static_cast<std::int64_t>(d.table().get(modbus::RegisterSpace::holding, 1));  // the mode register
+        }));
+        return !lb.fb().homing_active;
+      },
+      50));
   EXPECT_EQ(mode_seen, 6) << "the homing mode went over the wire";
   EXPECT_TRUE(lb.fb().referenced);
   EXPECT_EQ(lb.fb().position_inc, 0) << "homed on the current position: it is the reference point now";
@@ -207,7 +211,9 @@ TEST(ModbusLoopback, HomingOnTheCurrentPositionOverCia402Registers) {
     lb.cycle();
   }
   EXPECT_NEAR(static_cast<double>(lb.fb().position_inc), 1000.0, 5.0);
-  EXPECT_EQ(lb.server->with_device([](mocks::DriveDevice& d) { return d.table().get(modbus::RegisterSpace::holding, 1); }), 8);
+  EXPECT_EQ(
+      lb.server->with_device([](mocks::DriveDevice& d) { return d.table().get(modbus::RegisterSpace::holding, 1); }),
+      8);
 }
 
 TEST(ModbusLoopback, HomingThatCannotRunEndsUnreferenced) {

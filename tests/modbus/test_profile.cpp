@@ -79,11 +79,15 @@ TEST(ModbusProfile, ErrorsNameLineKeyAndFix) {
     return s;
   };
   const std::vector<BadCase> cases = {
-      {"typo key", replace("control_word: {address: 0}", "control_wrd: {address: 0}"), 4, "registers.control_wrd", "unknown key"},
-      {"bad type", replace("type: s32}\n  status", "type: f32}\n  status"), 5, "registers.target_position.type", "u16, s16"},
-      {"overlap", replace("address: 11, type: s32", "address: 10, type: s32"), 7, "registers.actual_position", "overlaps"},
+      {"typo key", replace("control_word: {address: 0}", "control_wrd: {address: 0}"), 4, "registers.control_wrd",
+       "unknown key"},
+      {"bad type", replace("type: s32}\n  status", "type: f32}\n  status"), 5, "registers.target_position.type",
+       "u16, s16"},
+      {"overlap", replace("address: 11, type: s32", "address: 10, type: s32"), 7, "registers.actual_position",
+       "overlaps"},
       {"address range", replace("address: 0}", "address: 70000}"), 4, "registers.control_word.address", "0..65535"},
-      {"32-bit control word", replace("control_word: {address: 0}", "control_word: {address: 20, type: u32}"), 4, "registers.control_word.type", "16-bit"},
+      {"32-bit control word", replace("control_word: {address: 0}", "control_word: {address: 20, type: u32}"), 4,
+       "registers.control_word.type", "16-bit"},
       {"state machine", replace("cia402", "ds402"), 2, "state_machine", "'cia402' or 'vendor'"},
       {"missing status word", replace("  status_word: {address: 10}\n", ""), 4, "registers.status_word", "required"},
       {"fc6 with 32-bit", base + "function_codes: {write: 6}\n", 5, "registers.target_position.type", "FC 16"},

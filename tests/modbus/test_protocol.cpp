@@ -5,10 +5,10 @@
 #include <cerrno>
 #include <vector>
 
+#include "hil/mocks/modbus_responder.hpp"
 #include "hil/modbus/adu.hpp"
 #include "hil/modbus/error.hpp"
 #include "hil/modbus/packing.hpp"
-#include "hil/mocks/modbus_responder.hpp"
 #include "hil/modbus/request_handler.hpp"
 
 namespace hil::modbus {
@@ -74,7 +74,7 @@ TEST(ModbusError, CategoryAndLibmodbusErrno) {
 }
 
 class ModbusHandler : public ::testing::Test {
-protected:
+ protected:
   void SetUp() override {
     table.define(RegisterSpace::holding, 0, 6, Access::read_write);
     table.define(RegisterSpace::holding, 10, 7, Access::read_only);

@@ -38,7 +38,8 @@ struct RunHarness {
     for (std::size_t i = 0; i < drives.size(); ++i) drives[i]->write(t, commands[i]);
     factory->end_cycle(t);
   }
-  template <class Pred> bool until(Pred p, int max) {
+  template <class Pred>
+  bool until(Pred p, int max) {
     for (int i = 0; i < max; ++i) {
       cycle();
       if (p()) return true;
@@ -56,10 +57,12 @@ TEST(ModbusTransport, InProcessAxesEnableMoveAndSurviveServerDown) {
   EXPECT_EQ((*x)->name().substr(0, 17), "modbus:127.0.0.1:");
   (*x)->request(DriveRequest::enable);
   (*y)->request(DriveRequest::enable);
-  ASSERT_TRUE(run.until([&] {
-    return (*x)->feedback().state == DriveState::operation_enabled &&
-           (*y)->feedback().state == DriveState::operation_enabled;
-  }, 20));
+  ASSERT_TRUE(run.until(
+      [&] {
+        return (*x)->feedback().state == DriveState::operation_enabled &&
+               (*y)->feedback().state == DriveState::operation_enabled;
+      },
+      20));
   run.commands[0].position_inc = 3000;
   run.commands[1].position_inc = -3000;
   for (int i = 0; i < 500; ++i) run.cycle();
@@ -107,10 +110,12 @@ TEST(ModbusTransport, HostNamesAnExternalDrive) {
   ASSERT_TRUE(d) << d.error().describe();
   EXPECT_EQ(dynamic_cast<FaultInjectable*>(*d), nullptr);  // a real drive: nothing to inject
   (*d)->request(DriveRequest::enable);
-  ASSERT_TRUE(run.until([&] {
-    server.step(milliseconds(1));
-    return (*d)->feedback().state == DriveState::operation_enabled;
-  }, 20));
+  ASSERT_TRUE(run.until(
+      [&] {
+        server.step(milliseconds(1));
+        return (*d)->feedback().state == DriveState::operation_enabled;
+      },
+      20));
   EXPECT_GT(server.stats().requests, 0u);
 }
 
@@ -155,10 +160,12 @@ TEST(ModbusTransport, ExampleScenarioDriveBlocksWork) {
     run.commands.emplace_back();
   }
   ASSERT_EQ(run.drives.size(), 2u);
-  ASSERT_TRUE(run.until([&] {
-    return run.drives[0]->feedback().state == DriveState::operation_enabled &&
-           run.drives[1]->feedback().state == DriveState::operation_enabled;
-  }, 20));
+  ASSERT_TRUE(run.until(
+      [&] {
+        return run.drives[0]->feedback().state == DriveState::operation_enabled &&
+               run.drives[1]->feedback().state == DriveState::operation_enabled;
+      },
+      20));
 }
 
 }  // namespace

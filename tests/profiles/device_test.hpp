@@ -27,7 +27,7 @@ inline std::string read(const std::string& rel) {
 }
 
 class DeviceTest : public ::testing::Test {
-protected:
+ protected:
   explicit DeviceTest(std::string device) : device_(std::move(device)) {}
 
   void SetUp() override {
@@ -55,7 +55,7 @@ protected:
   std::shared_ptr<const Profile> profile_;
   std::unique_ptr<ParameterSetParser> parser_;
 
-private:
+ private:
   std::string device_;
 };
 

@@ -20,7 +20,7 @@ namespace {
 using hil::profiles::testing::read;
 
 class Amk : public hil::profiles::testing::DeviceTest {
-protected:
+ protected:
   Amk() : DeviceTest("amkasyn-sf") {}
   std::vector<hp::Problem> check(const std::string& text, hp::Settings s = {{"id2_ms", 2.0L}}) {
     return problems_of(parser_->parse(text), s);

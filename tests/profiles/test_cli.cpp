@@ -28,16 +28,21 @@ Run hilbridge(const std::string& args) {
   return r;
 }
 
-std::string data(const std::string& f) { return std::string(HIL_TEST_DATA) + "/" + f; }
+std::string data(const std::string& f) {
+  return std::string(HIL_TEST_DATA) + "/" + f;
+}
 
-bool contains(const std::string& s, const std::string& part) { return s.find(part) != std::string::npos; }
+bool contains(const std::string& s, const std::string& part) {
+  return s.find(part) != std::string::npos;
+}
 
 }  // namespace
 
 TEST(ProfileCli, ListsAllFiveDevices) {
   const auto r = hilbridge("profile list");
   ASSERT_EQ(r.status, 0) << r.out;
-  for (const char* d : {"clm14", "sinumerik-elg", "ip247", "wf725-726", "amkasyn-sf"}) EXPECT_TRUE(contains(r.out, d)) << d;
+  for (const char* d : {"clm14", "sinumerik-elg", "ip247", "wf725-726", "amkasyn-sf"})
+    EXPECT_TRUE(contains(r.out, d)) << d;
 }
 
 TEST(ProfileCli, ShowOverviewParameterAndErrors) {
@@ -107,7 +112,9 @@ struct SetCase {
 };
 
 // gtest prints the parameter into the ctest name: the device, file and options, not raw bytes.
-void PrintTo(const SetCase& c, std::ostream* os) { *os << c.device << ' ' << c.file << (*c.extra ? " " : "") << c.extra; }
+void PrintTo(const SetCase& c, std::ostream* os) {
+  *os << c.device << ' ' << c.file << (*c.extra ? " " : "") << c.extra;
+}
 
 class ValidateSets : public ::testing::TestWithParam<SetCase> {};
 
@@ -122,30 +129,57 @@ INSTANTIATE_TEST_SUITE_P(
     Devices, ValidateSets,
     ::testing::Values(
         SetCase{"clm14", "clm14_manual_defaults.txt", "", 0, {"valid clm14 parameter set (72 parameters)"}},
-        SetCase{"clm14", "clm14_errors.txt", "", 1,
-                {":73: A106 = 60000: rule range 0.1..50000", "possible Vmax", ":75: B010 = 2.2", ":76: A124.homed_output = I1.00.0",
-                 ":77: rule checksum 7D: RS Checksum Error (serial error 04)", ":78: X101 = 1", "serial error 11", ":79: A199", "serial error 07",
-                 ":80: A112 = 123456 10.0", ":81: A120.track_monitoring = 7", ":83: A109.accel", "A101 (Feed constant) is missing"}},
+        SetCase{"clm14",
+                "clm14_errors.txt",
+                "",
+                1,
+                {":73: A106 = 60000: rule range 0.1..50000", "possible Vmax", ":75: B010 = 2.2",
+                 ":76: A124.homed_output = I1.00.0", ":77: rule checksum 7D: RS Checksum Error (serial error 04)",
+                 ":78: X101 = 1", "serial error 11", ":79: A199", "serial error 07", ":80: A112 = 123456 10.0",
+                 ":81: A120.track_monitoring = 7", ":83: A109.accel", "A101 (Feed constant) is missing"}},
         SetCase{"wf725-726", "wf725_valid.txt", "", 0, {"valid wf725-726 parameter set (44 parameters)"}},
-        SetCase{"wf725-726", "wf725_errors.txt", "--partial", 1,
-                {":4: MD11 = -24537: rule step resolution", ":5: MD12 = BCD 8004 27A8", "not a decimal digit", ":6: MD12, MD11, MD13, MD14",
-                 ":9: MD19, MD20", ":11: MD22 = 12: rule range 0.2..9", ":12: MD34 [MD34=0]", ":13: MD36 = 32800", ":14: MD37 = 1",
-                 "does not exist for this configuration", ":15: MD51", "error 121", ":17: MD33, MD25", "11 problem(s)"}},
-        SetCase{"wf725-726", "wf725_valid.txt", "--set module=WF725A", 1, {"MD15", "MD27", "does not exist for this configuration"}},
+        SetCase{"wf725-726",
+                "wf725_errors.txt",
+                "--partial",
+                1,
+                {":4: MD11 = -24537: rule step resolution", ":5: MD12 = BCD 8004 27A8", "not a decimal digit",
+                 ":6: MD12, MD11, MD13, MD14", ":9: MD19, MD20", ":11: MD22 = 12: rule range 0.2..9",
+                 ":12: MD34 [MD34=0]", ":13: MD36 = 32800", ":14: MD37 = 1", "does not exist for this configuration",
+                 ":15: MD51", "error 121", ":17: MD33, MD25", "11 problem(s)"}},
+        SetCase{"wf725-726",
+                "wf725_valid.txt",
+                "--set module=WF725A",
+                1,
+                {"MD15", "MD27", "does not exist for this configuration"}},
         SetCase{"ip247", "ip247_manual_md.txt", "", 0, {"valid ip247 parameter set (35 parameters)"}},
-        SetCase{"ip247", "ip247_errors.txt", "", 1,
-                {":3: DW1 = 69", ":7: DW5, DW7, DW9", "MD error 6", ":13: DW11 = 40: rule range 1..31", ":14: DW12 = 65", ":16: DW14, DW13", "MD error 10",
-                 "MD error 7", "MD error 8", "DW 70 is outside", "KY '300,1'"}},
+        SetCase{
+            "ip247",
+            "ip247_errors.txt",
+            "",
+            1,
+            {":3: DW1 = 69", ":7: DW5, DW7, DW9", "MD error 6", ":13: DW11 = 40: rule range 1..31", ":14: DW12 = 65",
+             ":16: DW14, DW13", "MD error 10", "MD error 7", "MD error 8", "DW 70 is outside", "KY '300,1'"}},
         SetCase{"sinumerik-elg", "elg_valid.tape", "", 0, {"valid sinumerik-elg parameter set (19 parameters)"}},
-        SetCase{"sinumerik-elg", "elg_errors.tape", "", 1,
-                {":2: MD3960 = 2500000: rule range 0..2000000", ":4: MD2120, MD2040", "alarm 112*", ":5: MD2520", "alarm 2200", ":7: MD5002",
-                 ":8: MD5020.drive_axis", ":9: MD5022 = 0000010", "alarm 32", ":10: MD9999", "alarm 3018", ":15: R21 = 0", ":16: R40, MD169"}},
-        SetCase{"amkasyn-sf", "amk_fipw_printing_mark.txt", "--set id2_ms=2", 0, {"valid amkasyn-sf parameter set (39 parameters)"}},
+        SetCase{"sinumerik-elg",
+                "elg_errors.tape",
+                "",
+                1,
+                {":2: MD3960 = 2500000: rule range 0..2000000", ":4: MD2120, MD2040", "alarm 112*", ":5: MD2520",
+                 "alarm 2200", ":7: MD5002", ":8: MD5020.drive_axis", ":9: MD5022 = 0000010", "alarm 32", ":10: MD9999",
+                 "alarm 3018", ":15: R21 = 0", ":16: R40, MD169"}},
+        SetCase{"amkasyn-sf",
+                "amk_fipw_printing_mark.txt",
+                "--set id2_ms=2",
+                0,
+                {"valid amkasyn-sf parameter set (39 parameters)"}},
         SetCase{"amkasyn-sf", "amk_regl_force.txt", "--set id2_ms=1", 0, {"valid amkasyn-sf parameter set"}},
-        SetCase{"amkasyn-sf", "amk_errors.txt", "--set id2_ms=2", 1,
-                {"Printing mark control only in BA 2 or 98", ":5: INIT_DL2, INIT_DR2", ":8: INIT_DR4", ":12: DR0, INIT_DL0", ":16: DW3, id2_ms",
-                 ":18: DW5, DW4", ":21: DW12, DD10", ":22: DW22, DW18, DW23", ":24: DR7", ":25: DW30 = 5", ":26: DD2 = 1", ":27: DW2 = 40000",
-                 "12 problem(s)"}}),
+        SetCase{"amkasyn-sf",
+                "amk_errors.txt",
+                "--set id2_ms=2",
+                1,
+                {"Printing mark control only in BA 2 or 98", ":5: INIT_DL2, INIT_DR2", ":8: INIT_DR4",
+                 ":12: DR0, INIT_DL0", ":16: DW3, id2_ms", ":18: DW5, DW4", ":21: DW12, DD10", ":22: DW22, DW18, DW23",
+                 ":24: DR7", ":25: DW30 = 5", ":26: DD2 = 1", ":27: DW2 = 40000", "12 problem(s)"}}),
     [](const ::testing::TestParamInfo<SetCase>& p) {
       std::string name = p.param.file;
       name = name.substr(0, name.find('.'));

@@ -19,7 +19,7 @@ namespace {
 using hil::profiles::testing::read;
 
 class Clm14 : public hil::profiles::testing::DeviceTest {
-protected:
+ protected:
   Clm14() : DeviceTest("clm14") {}
   /// Problems of the manual's set with `line` appended (later lines win).
   std::vector<hp::Problem> problems_with(const std::string& extra, const hp::Settings& s = {}) {
@@ -27,7 +27,8 @@ protected:
   }
   static bool has(const std::vector<hp::Problem>& v, std::string_view param, std::string_view rule_part) {
     for (const auto& p : v)
-      if (p.param.find(param) != std::string::npos && (p.rule + " " + p.message).find(rule_part) != std::string::npos) return true;
+      if (p.param.find(param) != std::string::npos && (p.rule + " " + p.message).find(rule_part) != std::string::npos)
+        return true;
     return false;
   }
 };
@@ -75,11 +76,11 @@ TEST_F(Clm14, EncodeDecodeTelegramFields) {
   EXPECT_EQ(hp::to_string((*back)[0]), "Q1.00.0");
   EXPECT_EQ(hp::to_string((*back)[1]), "-100");
   EXPECT_FALSE(hp::decode_wire(*profile_, io->spec->variants.front(), "X1.00.0 -100 0"));
-  EXPECT_FALSE(hp::decode_wire(*profile_, v, "03000"));             // field missing
-  EXPECT_FALSE(hp::decode_wire(*profile_, v, "03000 10.0 1"));      // field too many
+  EXPECT_FALSE(hp::decode_wire(*profile_, v, "03000"));                                  // field missing
+  EXPECT_FALSE(hp::decode_wire(*profile_, v, "03000 10.0 1"));                           // field too many
   EXPECT_FALSE(hp::encode_value(*profile_, v, *hp::parse_value_input(v, "123456 10")));  // rpm field is 5 wide
   EXPECT_FALSE(profile_->resolve("A233")) << "Ax33-Ax42 exist for axis 1 only";
-  EXPECT_TRUE(profile_->resolve("A433"  ) == std::nullopt);
+  EXPECT_TRUE(profile_->resolve("A433") == std::nullopt);
   EXPECT_TRUE(profile_->resolve("A442") == std::nullopt);
   EXPECT_TRUE(profile_->resolve("A142"));
 }

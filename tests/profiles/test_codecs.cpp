@@ -15,8 +15,12 @@ namespace hp = hil::profiles;
 
 namespace {
 
-hp::Decimal dec(std::string_view s) { return *hp::parse_decimal(s); }
-hp::DecimalTextFormat fmt(std::string_view s) { return *hp::DecimalTextFormat::parse(s); }
+hp::Decimal dec(std::string_view s) {
+  return *hp::parse_decimal(s);
+}
+hp::DecimalTextFormat fmt(std::string_view s) {
+  return *hp::DecimalTextFormat::parse(s);
+}
 
 }  // namespace
 
@@ -37,11 +41,15 @@ TEST(Decimal, ParsesAndCompares) {
 
 TEST(DecimalText, ClmTemplates) {
   // §2.5 strings of the CLM manual: value → exact field text
-  struct V { const char* format; const char* value; const char* text; };
-  for (const V& v : {V{"+6.3", "123456.789", "+123456.789"}, V{"+6.3", "-111111.111", "-111111.111"},
-                     V{"4.5", "10", "0010.00000"}, V{"5", "3000", "03000"}, V{"2.1", "10", "10.0"},
-                     V{"1.3", "0.234", "0.234"}, V{"+5.3", "0", "+00000.000"}, V{"+3", "-100", "-100"},
-                     V{"2.2", "1", "01.00"}, V{"6", "10", "000010"}, V{"1.1", "0", "0.0"}}) {
+  struct V {
+    const char* format;
+    const char* value;
+    const char* text;
+  };
+  for (const V& v :
+       {V{"+6.3", "123456.789", "+123456.789"}, V{"+6.3", "-111111.111", "-111111.111"}, V{"4.5", "10", "0010.00000"},
+        V{"5", "3000", "03000"}, V{"2.1", "10", "10.0"}, V{"1.3", "0.234", "0.234"}, V{"+5.3", "0", "+00000.000"},
+        V{"+3", "-100", "-100"}, V{"2.2", "1", "01.00"}, V{"6", "10", "000010"}, V{"1.1", "0", "0.0"}}) {
     auto t = hp::make_decimal_text(dec(v.value), fmt(v.format));
     ASSERT_TRUE(t) << v.format << " " << v.value << ": " << t.error().message;
     EXPECT_EQ(*t, v.text);
@@ -87,16 +95,23 @@ TEST(DecimalText, RoundTripRandom) {
 
 // shared/vectors/wf725-726.md §7.1: value → BCD (bit-31 sign) / binary (two's complement)
 TEST(Bcd, Wf725Vectors) {
-  struct V { std::int64_t value; std::uint32_t bcd; std::uint32_t bin; };
+  struct V {
+    std::int64_t value;
+    std::uint32_t bcd;
+    std::uint32_t bin;
+  };
   const hp::BcdFormat wf{8, hp::BcdSign::bit31};
-  for (const V& v : {V{360000, 0x00360000, 0x00057E40}, V{1200, 0x00001200, 0x000004B0}, V{852100, 0x00852100, 0x000D0084},
-                     V{32768, 0x00032768, 0x00008000}, V{76, 0x00000076, 0x0000004C}, V{-24537, 0x80024537, 0xFFFFA027},
-                     V{-42728, 0x80042728, 0xFFFF5918}, V{96417, 0x00096417, 0x000178A1}, V{137428, 0x00137428, 0x000218D4},
-                     V{-824967, 0x80824967, 0xFFF36979}, V{-25, 0x80000025, 0xFFFFFFE7}, V{1246, 0x00001246, 0x000004DE},
-                     V{31830980, 0x31830980, 0x01E5B3C4}, V{112, 0x00000112, 0x00000070}, V{8000, 0x00008000, 0x00001F40},
-                     V{36700, 0x00036700, 0x00008F5C}, V{1427366, 0x01427366, 0x0015C7A6}, V{32775, 0x00032775, 0x00008007},
-                     V{65538, 0x00065538, 0x00010002}, V{50000, 0x00050000, 0x0000C350}, V{25000, 0x00025000, 0x000061A8},
-                     V{0, 0, 0}}) {
+  for (const V& v : {V{360000, 0x00360000, 0x00057E40},   V{1200, 0x00001200, 0x000004B0},
+                     V{852100, 0x00852100, 0x000D0084},   V{32768, 0x00032768, 0x00008000},
+                     V{76, 0x00000076, 0x0000004C},       V{-24537, 0x80024537, 0xFFFFA027},
+                     V{-42728, 0x80042728, 0xFFFF5918},   V{96417, 0x00096417, 0x000178A1},
+                     V{137428, 0x00137428, 0x000218D4},   V{-824967, 0x80824967, 0xFFF36979},
+                     V{-25, 0x80000025, 0xFFFFFFE7},      V{1246, 0x00001246, 0x000004DE},
+                     V{31830980, 0x31830980, 0x01E5B3C4}, V{112, 0x00000112, 0x00000070},
+                     V{8000, 0x00008000, 0x00001F40},     V{36700, 0x00036700, 0x00008F5C},
+                     V{1427366, 0x01427366, 0x0015C7A6},  V{32775, 0x00032775, 0x00008007},
+                     V{65538, 0x00065538, 0x00010002},    V{50000, 0x00050000, 0x0000C350},
+                     V{25000, 0x00025000, 0x000061A8},    V{0, 0, 0}}) {
     auto b = hp::make_bcd(v.value, wf);
     ASSERT_TRUE(b) << v.value;
     EXPECT_EQ(*b, v.bcd) << v.value;
@@ -172,10 +187,12 @@ TEST(TwosComplement, LimitsAndWidth) {
   EXPECT_EQ(*hp::parse_twos_complement(0x8000, {16, true}), -32768);
   EXPECT_EQ(hp::parse_twos_complement(0x10000, {16, true}).error().kind, hp::CodecError::Kind::syntax);
   EXPECT_EQ(*hp::make_twos_complement(INT32_MIN, {32, true}), 0x80000000u);
-  EXPECT_EQ(hp::make_twos_complement(std::int64_t{1} << 31, {32, true}).error().kind, hp::CodecError::Kind::out_of_range);
+  EXPECT_EQ(hp::make_twos_complement(std::int64_t{1} << 31, {32, true}).error().kind,
+            hp::CodecError::Kind::out_of_range);
   std::mt19937_64 rng(7);
   for (int bits : {8, 16, 32}) {
-    std::uniform_int_distribution<std::int64_t> d(-(std::int64_t{1} << (bits - 1)), (std::int64_t{1} << (bits - 1)) - 1);
+    std::uniform_int_distribution<std::int64_t> d(-(std::int64_t{1} << (bits - 1)),
+                                                  (std::int64_t{1} << (bits - 1)) - 1);
     for (int i = 0; i < 3000; ++i) {
       const auto v = d(rng);
       EXPECT_EQ(*hp::parse_twos_complement(*hp::make_twos_complement(v, {bits, true}), {bits, true}), v);
@@ -185,7 +202,8 @@ TEST(TwosComplement, LimitsAndWidth) {
 
 // WF 725/726 MD 41 check mask: K = 1, S = 2, U = 4, J = 65536, N = 131072; S + J = 65538
 TEST(BitField, Wf725CheckMask) {
-  hp::BitFieldFormat f{32, {{"K", 0, 1, ""}, {"S", 1, 1, ""}, {"U", 2, 1, ""}, {"J", 16, 1, ""}, {"N", 17, 1, ""}}, false};
+  hp::BitFieldFormat f{
+      32, {{"K", 0, 1, ""}, {"S", 1, 1, ""}, {"U", 2, 1, ""}, {"J", 16, 1, ""}, {"N", 17, 1, ""}}, false};
   auto names = hp::parse_bit_field_text("S|J", f);
   ASSERT_TRUE(names);
   EXPECT_EQ(*hp::make_bit_field(*names, f), 65538u);

@@ -32,7 +32,7 @@ std::string iso_tape(std::string_view text) {
 }
 
 class Elg : public hil::profiles::testing::DeviceTest {
-protected:
+ protected:
   Elg() : DeviceTest("sinumerik-elg") {}
   std::vector<hp::Problem> check(const std::string& text, hp::Settings s = {}) {
     return problems_of(parser_->parse(text, s), s);
@@ -140,7 +140,8 @@ TEST_F(Elg, RulesAndAlarmConditions) {
 }
 
 TEST_F(Elg, TapeFormatErrors) {
-  auto r = parser_->parse("%TEA1\nN5002=0010\nN3960=1234567890\nN9999=1\nX12\n%XYZ\nN169=20\n" + std::string(300, ' ') + "N1=1\n");
+  auto r = parser_->parse("%TEA1\nN5002=0010\nN3960=1234567890\nN9999=1\nX12\n%XYZ\nN169=20\n" + std::string(300, ' ') +
+                          "N1=1\n");
   ASSERT_GE(r.problems.size(), 6u);
   EXPECT_NE(r.problems[0].message.find("alarm 32"), std::string::npos);
   EXPECT_NE(r.problems[1].message.find("alarm 32"), std::string::npos);

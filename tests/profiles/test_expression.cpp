@@ -35,7 +35,8 @@ TEST(Expression, ChainedComparisonWf725Limits) {
 }
 
 TEST(Expression, ArithmeticFunctionsAndStrings) {
-  auto l = table({{"Ax12.rpm", 3000.0L}, {"Ax01", 10.0L}, {"Ax06", 100.0L}, {"encoder", std::string("I")}, {"n", 8.0L}});
+  auto l =
+      table({{"Ax12.rpm", 3000.0L}, {"Ax01", 10.0L}, {"Ax06", 100.0L}, {"encoder", std::string("I")}, {"n", 8.0L}});
   EXPECT_TRUE(test("Ax06 <= Ax12.rpm / 60 * Ax01", l));
   EXPECT_TRUE(test("encoder == 'I' && not (encoder == 'A')", l));
   EXPECT_TRUE(test("n in [1, 2, 4, 8]", l));

@@ -20,7 +20,7 @@ namespace {
 using hil::profiles::testing::read;
 
 class Ip247 : public hil::profiles::testing::DeviceTest {
-protected:
+ protected:
   Ip247() : DeviceTest("ip247") {}
   std::vector<hp::Problem> problems_with(const std::string& extra, hp::Settings s = {}) {
     return problems_of(parser_->parse(read("ip247_manual_md.txt") + extra), s);
@@ -73,24 +73,26 @@ TEST_F(Ip247, FieldEncodings) {
 }
 
 TEST_F(Ip247, MachineDataChecks) {
-  EXPECT_TRUE(has(problems_with("11: KF = +00200\n"), "MD error 2"));           // 200 µs > ½ period at 5 kHz
+  EXPECT_TRUE(has(problems_with("11: KF = +00200\n"), "MD error 2"));  // 200 µs > ½ period at 5 kHz
   EXPECT_TRUE(has(problems_with("11: KF = +00040\n"), "range 1..31"));
-  EXPECT_TRUE(has(problems_with("17: DD = 6000\n"), "MD error 4"));             // 10 kHz > fmax
+  EXPECT_TRUE(has(problems_with("17: DD = 6000\n"), "MD error 4"));  // 10 kHz > fmax
   EXPECT_TRUE(has(problems_with("9: DH = 00000010\n"), "range 0.02..2599.999"));
-  EXPECT_TRUE(has(problems_with("9: DD = 2000000\n"), "MD error 6"));           // τ = 2.5 ms < 5 ms
+  EXPECT_TRUE(has(problems_with("9: DD = 2000000\n"), "MD error 6"));  // τ = 2.5 ms < 5 ms
   EXPECT_TRUE(has(problems_with("29: DD = 600000\n"), "MD error 7"));
-  EXPECT_TRUE(has(problems_with("15: DD = 100\n"), "MD error 9"));             // 0.5 BU/pulse
-  EXPECT_TRUE(has(problems_with("13: KF = +00006\n"), "MD error 10"));         // 200 not a multiple of 6
+  EXPECT_TRUE(has(problems_with("15: DD = 100\n"), "MD error 9"));      // 0.5 BU/pulse
+  EXPECT_TRUE(has(problems_with("13: KF = +00006\n"), "MD error 10"));  // 200 not a multiple of 6
   EXPECT_TRUE(has(problems_with("38: DD = 99999999\n"), "MD error 13"));
   EXPECT_TRUE(has(problems_with("34: DD = 99900000\n"), "MD error 14"));
-  EXPECT_TRUE(has(problems_with("23: DD = 100\n"), "MD error 17"));            // 166 Hz < fss
+  EXPECT_TRUE(has(problems_with("23: DD = 100\n"), "MD error 17"));  // 166 Hz < fss
   EXPECT_TRUE(has(problems_with("46: KH = 0080\n29: DD = 600000\n"), "MD error 21"));
   EXPECT_TRUE(has(problems_with("3: KY = 005,001\n", {{"sysid_module", 4.0L}}), "MD error 12"));
   EXPECT_TRUE(has(problems_with("12: KH = 0041\n"), "one of 0, 64"));
   EXPECT_TRUE(has(problems_with("5: DD = 30\n"), "range fmax_min_hz..100000"));
-  EXPECT_FALSE(has(problems_with("5: DD = 30\n11: KF = +00001\n7: DD = 1\n9: DH = 00000014\n17: DD = 1\n19: DD = 1\n21: DD = 1\n23: DD = 1\n",
-                                 {{"fmax_min_hz", 12.0L}}),
-                   "range fmax_min_hz"));
+  EXPECT_FALSE(has(
+      problems_with(
+          "5: DD = 30\n11: KF = +00001\n7: DD = 1\n9: DH = 00000014\n17: DD = 1\n19: DD = 1\n21: DD = 1\n23: DD = 1\n",
+          {{"fmax_min_hz", 12.0L}}),
+      "range fmax_min_hz"));
 }
 
 TEST_F(Ip247, ListingErrorsCarryTheirLine) {

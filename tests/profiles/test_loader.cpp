@@ -3,8 +3,8 @@
 // wire round trip; the loader reports bad YAML with file, line and key.
 #include <gtest/gtest.h>
 
-#include <filesystem>
 #include <cstdlib>
+#include <filesystem>
 #include <fstream>
 
 #include "hil/profiles/loader.hpp"
@@ -99,7 +99,8 @@ TEST_P(EveryProfile, DefaultsAreValidAndRoundTrip) {
 INSTANTIATE_TEST_SUITE_P(Shipped, EveryProfile, ::testing::ValuesIn(hp::list_profiles()));
 
 TEST(Loader, ReportsFileLineAndKey) {
-  auto r = hp::load_profile_text("device: x\nparameters:\n  - id: P1\n    fields:\n      - {name: a, format: \"x.3\"}\n", "bad.yaml");
+  auto r = hp::load_profile_text(
+      "device: x\nparameters:\n  - id: P1\n    fields:\n      - {name: a, format: \"x.3\"}\n", "bad.yaml");
   ASSERT_FALSE(r);
   EXPECT_EQ(r.error().file, "bad.yaml");
   EXPECT_EQ(r.error().line, 5);
@@ -108,8 +109,8 @@ TEST(Loader, ReportsFileLineAndKey) {
       "device: x\ncatalogues:\n  - id: e\n    entries:\n      - {code: '1', text: t, acknowledge: a}\n", "e.yaml");
   ASSERT_FALSE(no_reaction);
   EXPECT_NE(no_reaction.error().message.find("reaction"), std::string::npos);
-  auto dup = hp::load_profile_text(
-      "device: x\nparameters:\n  - {id: P1, range: [0, 1]}\n  - {id: p1, range: [0, 1]}\n", "d.yaml");
+  auto dup = hp::load_profile_text("device: x\nparameters:\n  - {id: P1, range: [0, 1]}\n  - {id: p1, range: [0, 1]}\n",
+                                   "d.yaml");
   ASSERT_FALSE(dup);
   EXPECT_NE(dup.error().message.find("twice"), std::string::npos);
   auto bad_expr = hp::load_profile_text("device: x\nconstraints:\n  - {id: c, rule: 'a <'}\n", "c.yaml");
@@ -123,7 +124,8 @@ TEST(Loader, ReportsFileLineAndKey) {
 TEST(Loader, IncludesAreMerged) {
   const auto dir = std::filesystem::temp_directory_path() / "hil_profiles_include_test";
   std::filesystem::create_directories(dir / "part");
-  std::ofstream(dir / "dev.yaml") << "device: dev\ntext_format: wf-md\ninclude: [part/a.yaml]\nparameters:\n  - {id: MD1, number: 1, range: [0, 10]}\n";
+  std::ofstream(dir / "dev.yaml") << "device: dev\ntext_format: wf-md\ninclude: [part/a.yaml]\nparameters:\n  - {id: "
+                                     "MD1, number: 1, range: [0, 10]}\n";
   std::ofstream(dir / "part" / "a.yaml") << "device: dev\nparameters:\n  - {id: MD2, number: 2, range: [0, 10]}\n";
   auto p = hp::load_profile(dir / "dev.yaml");
   ASSERT_TRUE(p) << p.error().describe();
@@ -138,8 +140,9 @@ TEST(Loader, IncludesAreMerged) {
 TEST(Loader, SearchPathHonoursHilbridgeProfiles) {
   const auto dir = std::filesystem::temp_directory_path() / "hil_profiles_env_test";
   std::filesystem::create_directories(dir);
-  std::ofstream(dir / "env-only-device.yaml") << "device: env-only-device\ntext_format: wf-md\nparameters:\n  - {id: MD1, number: 1, range: [0, 10]}\n"
-                                                   "catalogues:\n  - id: e\n    entries:\n      - {code: '1', text: t, reaction: stop, acknowledge: a}\n";
+  std::ofstream(dir / "env-only-device.yaml")
+      << "device: env-only-device\ntext_format: wf-md\nparameters:\n  - {id: MD1, number: 1, range: [0, 10]}\n"
+         "catalogues:\n  - id: e\n    entries:\n      - {code: '1', text: t, reaction: stop, acknowledge: a}\n";
   const char* old = std::getenv("HILBRIDGE_PROFILES");
   const std::string saved = old ? old : "";
   ::setenv("HILBRIDGE_PROFILES", dir.c_str(), 1);
@@ -149,7 +152,9 @@ TEST(Loader, SearchPathHonoursHilbridgeProfiles) {
   auto p = hp::find_profile("env-only-device");
   ASSERT_TRUE(p) << p.error().describe();
   EXPECT_EQ((*p)->catalogue("e")->category().name(), std::string("env-only-device.e"));
-  if (old) ::setenv("HILBRIDGE_PROFILES", saved.c_str(), 1);
-  else ::unsetenv("HILBRIDGE_PROFILES");
+  if (old)
+    ::setenv("HILBRIDGE_PROFILES", saved.c_str(), 1);
+  else
+    ::unsetenv("HILBRIDGE_PROFILES");
   std::filesystem::remove_all(dir);
 }

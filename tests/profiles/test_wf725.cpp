@@ -13,7 +13,7 @@ namespace hp = hil::profiles;
 namespace {
 
 class Wf725 : public ::testing::Test {
-protected:
+ protected:
   void SetUp() override {
     auto p = hp::find_profile("wf725-726");
     ASSERT_TRUE(p) << p.error().describe();
@@ -21,7 +21,8 @@ protected:
     parser_ = hp::make_parameter_set_parser(profile_);
   }
   /// Encodes MD `md` = `value` for a set with `md4` and `module`; returns "BCD / HEX" or the error.
-  std::string encode(int md, std::string_view value, int md4 = 1, std::string module = "WF726A", std::string extra = "") {
+  std::string encode(int md, std::string_view value, int md4 = 1, std::string module = "WF726A",
+                     std::string extra = "") {
     auto parsed = parser_->parse(fmt("MD 4 = {}\n{}", md4, extra));
     hp::Settings s{{"module", module}};
     const hp::Scope scope(*profile_, &parsed.set, s);
@@ -34,7 +35,8 @@ protected:
     auto img = hp::encode_value(*profile_, *v, *val);
     if (!img) return img.error();
     char buf[64];
-    std::snprintf(buf, sizeof buf, "%04X %04X / %04X %04X", *img->bcd >> 16, *img->bcd & 0xFFFF, *img->binary >> 16, *img->binary & 0xFFFF);
+    std::snprintf(buf, sizeof buf, "%04X %04X / %04X %04X", *img->bcd >> 16, *img->bcd & 0xFFFF, *img->binary >> 16,
+                  *img->binary & 0xFFFF);
     return buf;
   }
   template <typename... A>
@@ -145,7 +147,8 @@ TEST_F(Wf725, DecodeBothFormats) {
 
 TEST_F(Wf725, ModeChangeChecks) {
   const std::string base =
-      "MD 49 = 1\nMD 4 = 1\nMD 11 = -24537\nMD 12 = -42728\nMD 13 = 96417\nMD 14 = 137428\nMD 19 = 1\nMD 20 = 0\nMD 34 = 10000\n";
+      "MD 49 = 1\nMD 4 = 1\nMD 11 = -24537\nMD 12 = -42728\nMD 13 = 96417\nMD 14 = 137428\nMD 19 = 1\nMD 20 = 0\nMD 34 "
+      "= 10000\n";
   EXPECT_FALSE(has(check(base), "wf.")) << "the manual's ordering example is valid";
   EXPECT_TRUE(has(check(base + "MD 19 = 0\n"), "error 19"));
   EXPECT_TRUE(has(check(base + "MD 34 = 0\n"), "error 1A"));

@@ -12,7 +12,7 @@
 namespace hil::testing {
 
 class SimFactory : public TransportFactory {
-public:
+ public:
   std::expected<DrivePtr, ConfigError> make_drive(const std::string& axis, const YAML::Node& node,
                                                   RunEnvironment& env) override {
     auto config = mocks::parse_sim_drive_config(node, yaml::Where{env.source_file, env.drive_path(axis)});
@@ -24,7 +24,7 @@ public:
 
 /// Wraps a SimDrive and logs read/write, so tests see the order of a cycle.
 class LoggingDrive final : public Drive, public FaultInjectable {
-public:
+ public:
   LoggingDrive(DrivePtr inner, std::string axis, std::vector<std::string>& log)
       : inner_(std::move(inner)), axis_(std::move(axis)), log_(log) {}
   std::string_view name() const noexcept override { return inner_->name(); }
@@ -42,16 +42,18 @@ public:
   std::vector<std::string> injectable_faults() const override {
     return dynamic_cast<FaultInjectable&>(*inner_).injectable_faults();
   }
-  bool inject_fault(std::string_view n, bool a) override { return dynamic_cast<FaultInjectable&>(*inner_).inject_fault(n, a); }
+  bool inject_fault(std::string_view n, bool a) override {
+    return dynamic_cast<FaultInjectable&>(*inner_).inject_fault(n, a);
+  }
 
-private:
+ private:
   DrivePtr inner_;
   std::string axis_;
   std::vector<std::string>& log_;
 };
 
 class LoggingFactory final : public TransportFactory {
-public:
+ public:
   explicit LoggingFactory(std::vector<std::string>& log, bool report_ok = true) : log_(log), report_ok_(report_ok) {}
   std::expected<DrivePtr, ConfigError> make_drive(const std::string& axis, const YAML::Node& node,
                                                   RunEnvironment& env) override {
@@ -69,7 +71,7 @@ public:
     return TransportReport{{"logged " + std::to_string(log_.size()) + " events"}, report_ok_};
   }
 
-private:
+ private:
   std::vector<std::string>& log_;
   bool report_ok_;
 };

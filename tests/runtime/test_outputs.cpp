@@ -120,8 +120,9 @@ TEST(TraceCsv, HeaderQuotesAUnitWithACommaOrQuote) {
   std::ifstream in(path);
   std::string header;
   std::getline(in, header);
-  EXPECT_EQ(header.substr(0, header.find(",x_state")),
-            "t_s,\"x_position_m,\"\"m\",\"x_command_m,\"\"m\",\"x_velocity_m,\"\"m_per_s\",\"x_following_error_m,\"\"m\"");
+  EXPECT_EQ(
+      header.substr(0, header.find(",x_state")),
+      "t_s,\"x_position_m,\"\"m\",\"x_command_m,\"\"m\",\"x_velocity_m,\"\"m_per_s\",\"x_following_error_m,\"\"m\"");
   std::filesystem::remove(path);
 }
 
@@ -211,8 +212,8 @@ TEST(JUnit, StructureCountsAndMessages) {
   fail.scenario = "bad <&>";
   fail.file = "bad.yaml";
   fail.ok = false;
-  fail.expectations.push_back({"x", "position 100.000 +/- 0.010 mm at t=2.000 s", false,
-                               "was 99.412 mm (off by 0.588 mm)", 12, "expect[1]"});
+  fail.expectations.push_back(
+      {"x", "position 100.000 +/- 0.010 mm at t=2.000 s", false, "was 99.412 mm (off by 0.588 mm)", 12, "expect[1]"});
   fail.expectations.push_back({"x", "no fault", true, "", 13, "expect[2]"});
   fail.failures = {"axis x: expected position 100.000 +/- 0.010 mm at t=2.000 s, was 99.412 mm (off by 0.588 mm)",
                    "program failed: t=1.000 s: bad.yaml:9 program[1] (move_absolute x): did not complete"};

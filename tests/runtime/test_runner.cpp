@@ -69,11 +69,12 @@ TEST(Runner, FailedTransportReportFailsTheRun) {
   std::vector<std::string> log;
   hil::TransportRegistry reg;
   reg.add("logging", [&log] { return std::make_unique<hil::testing::LoggingFactory>(log, false); });
-  const RunResult r = run(load(
-      "duration: 2ms\n"
-      "machine:\n"
-      "  axes:\n"
-      "    - {name: a, inc_per_unit: 1000, limits: {velocity: 10, acceleration: 100}, drive: {transport: logging}}\n"), reg);
+  const RunResult r = run(load("duration: 2ms\n"
+                               "machine:\n"
+                               "  axes:\n"
+                               "    - {name: a, inc_per_unit: 1000, limits: {velocity: 10, acceleration: 100}, drive: "
+                               "{transport: logging}}\n"),
+                          reg);
   EXPECT_FALSE(r.ok);
   ASSERT_FALSE(r.failures.empty());
   EXPECT_NE(r.failures.back().find("transport logging reported a failure: logged"), std::string::npos);
@@ -99,16 +100,15 @@ TEST(Runner, DemoOnVirtualTimeEndsAtHome) {
 }
 
 TEST(Runner, PassingExpectations) {
-  const RunResult r = run(load(one_axis +
-                               "program:\n"
-                               "  - enable: x\n"
-                               "  - move_absolute: {axis: x, position: 100}\n"
-                               "expect:\n"
-                               "  - {axis: x, position: 100, tolerance: 0.01, by: 2s}\n"
-                               "  - {axis: x, position: 100, tolerance: 0.01, at: 2.5s}\n"
-                               "  - {axis: x, state: standstill, at: 2.5s}\n"
-                               "  - {axis: x, no_fault: true}\n"
-                               "  - {axis: x, max_following_error: 0.5}\n"));
+  const RunResult r = run(load(one_axis + "program:\n"
+                                          "  - enable: x\n"
+                                          "  - move_absolute: {axis: x, position: 100}\n"
+                                          "expect:\n"
+                                          "  - {axis: x, position: 100, tolerance: 0.01, by: 2s}\n"
+                                          "  - {axis: x, position: 100, tolerance: 0.01, at: 2.5s}\n"
+                                          "  - {axis: x, state: standstill, at: 2.5s}\n"
+                                          "  - {axis: x, no_fault: true}\n"
+                                          "  - {axis: x, max_following_error: 0.5}\n"));
   for (const auto& f : r.failures) ADD_FAILURE() << f;
   EXPECT_TRUE(r.ok);
   ASSERT_EQ(r.expectations.size(), 5u);
@@ -117,12 +117,11 @@ TEST(Runner, PassingExpectations) {
 }
 
 TEST(Runner, WrongPositionExpectationSaysWhichWhenAndByHowMuch) {
-  const RunResult r = run(load(one_axis +
-                               "program:\n"
-                               "  - enable: x\n"
-                               "  - move_absolute: {axis: x, position: 100}\n"
-                               "expect:\n"
-                               "  - {axis: x, position: 100, tolerance: 0.01, at: 0.5s}\n"));
+  const RunResult r = run(load(one_axis + "program:\n"
+                                          "  - enable: x\n"
+                                          "  - move_absolute: {axis: x, position: 100}\n"
+                                          "expect:\n"
+                                          "  - {axis: x, position: 100, tolerance: 0.01, at: 0.5s}\n"));
   EXPECT_FALSE(r.ok);
   ASSERT_EQ(r.failures.size(), 1u);
   const std::regex re(
@@ -138,23 +137,21 @@ TEST(Runner, WrongPositionExpectationSaysWhichWhenAndByHowMuch) {
 }
 
 TEST(Runner, OtherFailedExpectationsExplainThemselves) {
-  const RunResult r = run(load(one_axis +
-                               "program:\n"
-                               "  - enable: x\n"
-                               "  - move_absolute: {axis: x, position: 50}\n"
-                               "expect:\n"
-                               "  - {axis: x, fault: \"motion:1\", by: 1s}\n"
-                               "  - {axis: x, state: moving}\n"
-                               "  - {axis: x, max_following_error: 0.000001}\n"
-                               "  - {axis: x, position: 80, tolerance: 0.01, by: 1s}\n"));
+  const RunResult r = run(load(one_axis + "program:\n"
+                                          "  - enable: x\n"
+                                          "  - move_absolute: {axis: x, position: 50}\n"
+                                          "expect:\n"
+                                          "  - {axis: x, fault: \"motion:1\", by: 1s}\n"
+                                          "  - {axis: x, state: moving}\n"
+                                          "  - {axis: x, max_following_error: 0.000001}\n"
+                                          "  - {axis: x, position: 80, tolerance: 0.01, by: 1s}\n"));
   EXPECT_FALSE(r.ok);
   ASSERT_EQ(r.expectations.size(), 4u);
   for (const auto& e : r.expectations) EXPECT_FALSE(e.passed) << e.description;
   EXPECT_EQ(r.expectations[0].detail, "no fault occurred");
   EXPECT_NE(r.expectations[1].detail.find("was standstill"), std::string::npos) << r.expectations[1].detail;
   EXPECT_NE(r.expectations[2].detail.find("reached"), std::string::npos) << r.expectations[2].detail;
-  EXPECT_NE(r.expectations[3].detail.find("was 50.000 mm (off by 30.000 mm); closest 29.99"),
-            std::string::npos)
+  EXPECT_NE(r.expectations[3].detail.find("was 50.000 mm (off by 30.000 mm); closest 29.99"), std::string::npos)
       << r.expectations[3].detail;
 }
 
@@ -182,11 +179,10 @@ TEST(Runner, InjectedFaultIsExpectedOrFailsTheRun) {
 }
 
 TEST(Runner, StepTimeoutAndRejectedCommandFailTheProgram) {
-  const RunResult slow = run(load(one_axis +
-                                  "program:\n"
-                                  "  - enable: x\n"
-                                  "  - move_absolute: {axis: x, position: 100}\n"
-                                  "    timeout: 300ms\n"));
+  const RunResult slow = run(load(one_axis + "program:\n"
+                                             "  - enable: x\n"
+                                             "  - move_absolute: {axis: x, position: 100}\n"
+                                             "    timeout: 300ms\n"));
   EXPECT_FALSE(slow.ok);
   ASSERT_FALSE(slow.failures.empty());
   EXPECT_NE(slow.failures[0].find("t.yaml:10 program[1] (move_absolute x): did not complete within 0.300 s"),
@@ -200,16 +196,18 @@ TEST(Runner, StepTimeoutAndRejectedCommandFailTheProgram) {
 }
 
 TEST(Runner, ScenarioTimeout) {
-  const RunResult r = run(load(one_axis + "timeout: 1s\nprogram:\n  - enable: x\n  - wait_until: {axis: x, position_above: 5}\n"));
+  const RunResult r =
+      run(load(one_axis + "timeout: 1s\nprogram:\n  - enable: x\n  - wait_until: {axis: x, position_above: 5}\n"));
   EXPECT_FALSE(r.ok);
   ASSERT_FALSE(r.failures.empty());
   EXPECT_NE(r.failures[0].find("timeout 1.000 s"), std::string::npos) << r.failures[0];
 }
 
 TEST(Runner, BuildErrorsNameTheDriveBlock) {
-  auto unknown = run_scenario(load(
-      "machine:\n  axes:\n    - name: x\n      inc_per_unit: 1\n      limits: {velocity: 1, acceleration: 1}\n"
-      "      drive: {transport: warp}\n"), hil::testing::sim_registry(), RunOptions{});
+  auto unknown = run_scenario(
+      load("machine:\n  axes:\n    - name: x\n      inc_per_unit: 1\n      limits: {velocity: 1, acceleration: 1}\n"
+           "      drive: {transport: warp}\n"),
+      hil::testing::sim_registry(), RunOptions{});
   ASSERT_FALSE(unknown.has_value());
   EXPECT_EQ(unknown.error().line, 6);
   EXPECT_EQ(unknown.error().key, "machine.axes[0].drive.transport");
@@ -222,9 +220,10 @@ TEST(Runner, BuildErrorsNameTheDriveBlock) {
   EXPECT_NE(bad_fault.error().message.find("has no fault 'gremlins'; it accepts: encoder"), std::string::npos)
       << bad_fault.error().describe();
 
-  auto factory_error = run_scenario(load(
-      "machine:\n  axes:\n    - name: x\n      inc_per_unit: 1\n      limits: {velocity: 1, acceleration: 1}\n"
-      "      drive: {transport: sim, kv: -3}\n"), hil::testing::sim_registry(), RunOptions{});
+  auto factory_error = run_scenario(
+      load("machine:\n  axes:\n    - name: x\n      inc_per_unit: 1\n      limits: {velocity: 1, acceleration: 1}\n"
+           "      drive: {transport: sim, kv: -3}\n"),
+      hil::testing::sim_registry(), RunOptions{});
   ASSERT_FALSE(factory_error.has_value());
   EXPECT_EQ(factory_error.error().line, 6);
   // The transport's own keys use the same path as the loader's (RunEnvironment::drive_key).
@@ -234,7 +233,7 @@ TEST(Runner, BuildErrorsNameTheDriveBlock) {
 namespace {
 /// Records the first scenario time each axis moved.
 class FirstMotion final : public RunObserver {
-public:
+ public:
   void on_cycle(hil::Duration t, const Machine& m) noexcept override {
     for (const auto& a : m.axes())
       if (!first.contains(a.spec->name) && std::abs(a.axis->status().command_velocity) > 0.0) first[a.spec->name] = t;
@@ -247,9 +246,12 @@ TEST(Runner, AtDelaysAStepParallelStartsTogetherNonBlockingGoesOn) {
   const std::string machine =
       "machine:\n"
       "  axes:\n"
-      "    - {name: a, inc_per_unit: 1000, limits: {velocity: 100, acceleration: 1000}, drive: {transport: sim, kv: 80, feedforward: 1.0}}\n"
-      "    - {name: b, inc_per_unit: 1000, limits: {velocity: 100, acceleration: 1000}, drive: {transport: sim, kv: 80, feedforward: 1.0}}\n"
-      "    - {name: c, inc_per_unit: 1000, limits: {velocity: 100, acceleration: 1000}, drive: {transport: sim, kv: 80, feedforward: 1.0}}\n";
+      "    - {name: a, inc_per_unit: 1000, limits: {velocity: 100, acceleration: 1000}, drive: {transport: sim, kv: "
+      "80, feedforward: 1.0}}\n"
+      "    - {name: b, inc_per_unit: 1000, limits: {velocity: 100, acceleration: 1000}, drive: {transport: sim, kv: "
+      "80, feedforward: 1.0}}\n"
+      "    - {name: c, inc_per_unit: 1000, limits: {velocity: 100, acceleration: 1000}, drive: {transport: sim, kv: "
+      "80, feedforward: 1.0}}\n";
   auto s = parse_scenario(machine +
                               "program:\n"
                               "  - enable: all\n"
@@ -282,7 +284,7 @@ TEST(Runner, AtDelaysAStepParallelStartsTogetherNonBlockingGoesOn) {
 
 namespace {
 class EnvProbe final : public hil::testing::SimFactory {
-public:
+ public:
   explicit EnvProbe(std::vector<std::string>& seen) : seen_(seen) {}
   std::expected<hil::DrivePtr, hil::ConfigError> make_drive(const std::string& axis, const YAML::Node& node,
                                                             hil::RunEnvironment& env) override {
@@ -293,7 +295,7 @@ public:
     return SimFactory::make_drive(axis, plain, env);
   }
 
-private:
+ private:
   std::vector<std::string>& seen_;
 };
 }  // namespace
@@ -318,8 +320,9 @@ TEST(Runner, TransportsSeeTheRunEnvironment) {
 
 TEST(Runner, RealTimeSmokeRun) {
   // ~60 ms of real time on the Asio scheduler: same cycle code, real-time statistics filled in.
-  const Scenario s = load(one_axis + "duration: 60ms\nprogram:\n  - enable: x\n  - move_relative: {axis: x, distance: 0.5}\n"
-                                     "    blocking: false\n");
+  const Scenario s = load(one_axis +
+                          "duration: 60ms\nprogram:\n  - enable: x\n  - move_relative: {axis: x, distance: 0.5}\n"
+                          "    blocking: false\n");
   RunOptions o;
   o.virtual_time = false;
   auto r = run_scenario(s, hil::testing::sim_registry(), o);

@@ -139,7 +139,9 @@ struct BadFile {
 
 // gtest prints the parameter into the ctest name; without this it would be the raw bytes of the
 // struct (pointers included), a name that changes from build to build.
-void PrintTo(const BadFile& b, std::ostream* os) { *os << b.file; }
+void PrintTo(const BadFile& b, std::ostream* os) {
+  *os << b.file;
+}
 
 class ScenarioLoaderBadFile : public ::testing::TestWithParam<BadFile> {};
 
@@ -158,13 +160,15 @@ TEST_P(ScenarioLoaderBadFile, NamesFileLineKeyAndExpectation) {
 
 INSTANTIATE_TEST_SUITE_P(
     Files, ScenarioLoaderBadFile,
-    ::testing::Values(
-        BadFile{"typo_key.yaml", 9, "machine.axes[0].limits.jerck", "unknown key 'jerck'; allowed here: velocity, acceleration, jerk"},
-        BadFile{"bad_number.yaml", 9, "program[1].move_absolute.velocity", "expected a velocity in units/s, got 'fast'"},
-        BadFile{"unknown_axis.yaml", 15, "program[1].parallel[1].move_relative.axis", "unknown axis 'z'; the machine has: x, y"},
-        BadFile{"missing_drive.yaml", 3, "machine.axes[0].drive", "missing key 'drive'"},
-        BadFile{"bad_yaml.yaml", 5, "", "not valid YAML"},
-        BadFile{"bad_expectation.yaml", 9, "expect[1].fault", "expected a fault code 'category:number'"}),
+    ::testing::Values(BadFile{"typo_key.yaml", 9, "machine.axes[0].limits.jerck",
+                              "unknown key 'jerck'; allowed here: velocity, acceleration, jerk"},
+                      BadFile{"bad_number.yaml", 9, "program[1].move_absolute.velocity",
+                              "expected a velocity in units/s, got 'fast'"},
+                      BadFile{"unknown_axis.yaml", 15, "program[1].parallel[1].move_relative.axis",
+                              "unknown axis 'z'; the machine has: x, y"},
+                      BadFile{"missing_drive.yaml", 3, "machine.axes[0].drive", "missing key 'drive'"},
+                      BadFile{"bad_yaml.yaml", 5, "", "not valid YAML"},
+                      BadFile{"bad_expectation.yaml", 9, "expect[1].fault", "expected a fault code 'category:number'"}),
     [](const ::testing::TestParamInfo<BadFile>& p) {
       std::string n = p.param.file;
       return n.substr(0, n.find('.'));
@@ -202,21 +206,29 @@ TEST(ScenarioLoader, RejectsStructuralMistakes) {
       {axes_header() + "expect:\n  - {axis: x, position: 1, tolerance: 0.1, at: 1, by: 2}\n", "expect[0].by",
        "either 'at'"},
       {axes_header() + "period: 1us\n", "period", "between 50us and 1s"},
-      {"machine:\n  axes:\n    - {name: x, inc_per_unit: 0, limits: {velocity: 1, acceleration: 1}, drive: {transport: sim}}\n",
+      {"machine:\n  axes:\n    - {name: x, inc_per_unit: 0, limits: {velocity: 1, acceleration: 1}, drive: {transport: "
+       "sim}}\n",
        "machine.axes[0].inc_per_unit", "expected increments per unit"},
-      {"machine:\n  axes:\n    - {name: all, inc_per_unit: 1, limits: {velocity: 1, acceleration: 1}, drive: {transport: sim}}\n",
+      {"machine:\n  axes:\n    - {name: all, inc_per_unit: 1, limits: {velocity: 1, acceleration: 1}, drive: "
+       "{transport: sim}}\n",
        "machine.axes[0].name", "not 'all'"},
-      {"machine:\n  axes:\n    - {name: x, inc_per_unit: 1, limits: {velocity: 1, acceleration: 1}, drive: {transport: sim}}\n"
+      {"machine:\n  axes:\n    - {name: x, inc_per_unit: 1, limits: {velocity: 1, acceleration: 1}, drive: {transport: "
+       "sim}}\n"
        "    - {name: x, inc_per_unit: 1, limits: {velocity: 1, acceleration: 1}, drive: {transport: sim}}\n",
        "machine.axes[1].name", "defined twice"},
-      {"machine:\n  axes:\n    - {name: x, inc_per_unit: 1, limits: {velocity: 1, acceleration: 1}, drive: {port: 3}}\n",
+      {"machine:\n  axes:\n    - {name: x, inc_per_unit: 1, limits: {velocity: 1, acceleration: 1}, drive: {port: "
+       "3}}\n",
        "machine.axes[0].drive.transport", "missing key 'transport'"},
-      {"machine:\n  axes:\n    - {name: x, inc_per_unit: 1, modulo: 360, limits: {velocity: 1, acceleration: 1}, drive: {transport: sim}}\n",
+      {"machine:\n  axes:\n    - {name: x, inc_per_unit: 1, modulo: 360, limits: {velocity: 1, acceleration: 1}, "
+       "drive: {transport: sim}}\n",
        "machine.axes[0].modulo", "needs 'rotary: true'"},
-      {"machine:\n  axes:\n    - {name: x, inc_per_unit: 1, limits: {velocity: 1, acceleration: .nan}, drive: {transport: sim}}\n",
+      {"machine:\n  axes:\n    - {name: x, inc_per_unit: 1, limits: {velocity: 1, acceleration: .nan}, drive: "
+       "{transport: sim}}\n",
        "machine.axes[0].limits.acceleration", "expected an acceleration"},
-      {"machine:\n  axes:\n    - {name: x, inc_per_unit: 1, limits: {velocity: 1, acceleration: 1}, drive: {transport: sim}}\n"
-       "machine: {}\n", "machine", "key 'machine' appears twice"},
+      {"machine:\n  axes:\n    - {name: x, inc_per_unit: 1, limits: {velocity: 1, acceleration: 1}, drive: {transport: "
+       "sim}}\n"
+       "machine: {}\n",
+       "machine", "key 'machine' appears twice"},
   };
   for (const auto& c : cases) {
     const auto e = error_of(c.text);

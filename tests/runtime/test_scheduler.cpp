@@ -6,8 +6,8 @@
 // an alloc-dealloc mismatch between TUs).
 #include <vector>
 
-#include <asio/io_context.hpp>
 #include <gtest/gtest.h>
+#include <asio/io_context.hpp>
 
 #include "hil/runtime/latency_histogram.hpp"
 #include "hil/runtime/scheduler.hpp"
@@ -38,7 +38,12 @@ TEST(VirtualScheduler, StopsAtMaxCycles) {
   hil::VirtualClock clock(hil::TimePoint{5s});
   hil::runtime::VirtualScheduler s(clock, 250us);
   int n = 0;
-  const auto stats = s.run([&](const CycleTime&) { ++n; return CycleControl::proceed; }, 40);
+  const auto stats = s.run(
+      [&](const CycleTime&) {
+        ++n;
+        return CycleControl::proceed;
+      },
+      40);
   EXPECT_EQ(n, 40);
   EXPECT_EQ(stats.cycles, 40u);
   EXPECT_EQ(stats.simulated, 10ms);
@@ -69,11 +74,13 @@ TEST(AsioScheduler, RealTimeSmokeRun) {
   hil::runtime::AsioScheduler s(io, clock, 1ms);
   std::vector<hil::TimePoint> deadlines;
   std::vector<hil::TimePoint> woke;
-  const auto stats = s.run([&](const CycleTime& c) {
-    deadlines.push_back(c.now);
-    woke.push_back(clock.now());
-    return CycleControl::proceed;
-  }, 50);
+  const auto stats = s.run(
+      [&](const CycleTime& c) {
+        deadlines.push_back(c.now);
+        woke.push_back(clock.now());
+        return CycleControl::proceed;
+      },
+      50);
   ASSERT_EQ(stats.cycles, 50u);
   ASSERT_EQ(deadlines.size(), 50u);
   EXPECT_FALSE(stats.virtual_time);
@@ -118,15 +125,17 @@ TEST(AsioScheduler, OverrunKeepsTheGridAndSkipsMissedDeadlines) {
   hil::SteadyClock clock;
   hil::runtime::AsioScheduler s(io, clock, 2ms);
   std::vector<hil::TimePoint> deadlines;
-  const auto stats = s.run([&](const CycleTime& c) {
-    deadlines.push_back(c.now);
-    if (deadlines.size() == 3) {
-      const auto until = clock.now() + 7ms;
-      while (clock.now() < until) {
-      }
-    }
-    return CycleControl::proceed;
-  }, 6);
+  const auto stats = s.run(
+      [&](const CycleTime& c) {
+        deadlines.push_back(c.now);
+        if (deadlines.size() == 3) {
+          const auto until = clock.now() + 7ms;
+          while (clock.now() < until) {
+          }
+        }
+        return CycleControl::proceed;
+      },
+      6);
   ASSERT_EQ(deadlines.size(), 6u);
   EXPECT_GE(stats.overruns, 1u);
   EXPECT_GE(stats.skipped_cycles, 3u);

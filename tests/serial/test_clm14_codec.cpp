@@ -85,7 +85,12 @@ TEST(Clm14Telegram, FormatErrors) {
   EXPECT_EQ(parse_telegram("Z N0000", false).error().code, SyntaxError::format);
   EXPECT_EQ(parse_telegram("#", false).error().code, SyntaxError::format);
   EXPECT_EQ(parse_telegram(std::string(200, '#'), false).error().code, SyntaxError::format);
-  EXPECT_EQ(parse_telegram("# N00\x01" "0", false).error().code, SyntaxError::format);
+  EXPECT_EQ(parse_telegram("# N00\x01"
+                           "0",
+                           false)
+                .error()
+                .code,
+            SyntaxError::format);
   EXPECT_TRUE(parse_telegram("Y", true)->is_confirmation());
   EXPECT_EQ(make_telegram(Telegram{'Y', ' ', {}, {}}), "Y\r\n");
 }

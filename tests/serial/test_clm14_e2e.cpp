@@ -59,7 +59,8 @@ struct PtyRig {
 
 std::vector<Item> program(int lines) {
   std::vector<Item> items;
-  for (int i = 0; i < lines; ++i) items.push_back(Item{fmt::format("{:04d}", i), i % 2 ? "WAI 00.500" : "AEA Q1.00.3 1"});
+  for (int i = 0; i < lines; ++i)
+    items.push_back(Item{fmt::format("{:04d}", i), i % 2 ? "WAI 00.500" : "AEA Q1.00.3 1"});
   return items;
 }
 }  // namespace
@@ -113,8 +114,8 @@ struct VirtualRig {
   std::unique_ptr<SerialStream> client_stream;
   RawLine* device_raw;
   std::function<void(std::string&)> damage_reply;  // fault injection on the way back
-  bool deaf = false;                                // the station does not answer at all
-  std::uint8_t hold_xoff = 0;                       // send this XOFF byte and never XON
+  bool deaf = false;                               // the station does not answer at all
+  std::uint8_t hold_xoff = 0;                      // send this XOFF byte and never XON
   LineFormat format;
 
   explicit VirtualRig(int stations, LineFormat f = *parse_char_format("7E1")) : line(data(), stations), format(f) {

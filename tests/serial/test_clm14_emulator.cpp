@@ -44,14 +44,14 @@ TEST(Clm14Emulator, ProgramWriteConfirmAndReadBack) {
 
 TEST(Clm14Emulator, SerialErrorsWithTheirTexts) {
   Clm14Station s(0, data());
-  EXPECT_EQ(s.on_line("# N0101 AEA Q1.00.3 1 $C1"), err(4));                   // checksum
-  EXPECT_EQ(ask(s, '?', "N3000"), err(12));                                   // block # too large
-  EXPECT_EQ(ask(s, '?', "N30X0"), err(1));                                    // not decimal
-  EXPECT_EQ(ask(s, '#', "N0001 XYZ 1 "), err(13));                            // invalid command
-  EXPECT_EQ(ask(s, '#', "K B002 019200 0 1 8 1"), err(5));                    // not in Parameter mode
-  EXPECT_EQ(ask(s, '?', "X  01 "), err(9));                                   // status 01 cannot be queried
+  EXPECT_EQ(s.on_line("# N0101 AEA Q1.00.3 1 $C1"), err(4));  // checksum
+  EXPECT_EQ(ask(s, '?', "N3000"), err(12));                   // block # too large
+  EXPECT_EQ(ask(s, '?', "N30X0"), err(1));                    // not decimal
+  EXPECT_EQ(ask(s, '#', "N0001 XYZ 1 "), err(13));            // invalid command
+  EXPECT_EQ(ask(s, '#', "K B002 019200 0 1 8 1"), err(5));    // not in Parameter mode
+  EXPECT_EQ(ask(s, '?', "X  01 "), err(9));                   // status 01 cannot be queried
   EXPECT_EQ(ask(s, '?', "X  5A "), err(8));
-  EXPECT_EQ(ask(s, '#', "V100 +00000001.000000 "), err(23));                  // system variable
+  EXPECT_EQ(ask(s, '#', "V100 +00000001.000000 "), err(23));  // system variable
   EXPECT_EQ(ask(s, '#', "V600 +0000000A.000000 "), err(18));
   EXPECT_EQ(ask(s, '?', "K Z000"), err(11));
   EXPECT_EQ(ask(s, '?', "K B0X1"), err(6));
@@ -93,11 +93,11 @@ TEST(Clm14Emulator, VariablesStatusCommandsAndPoll) {
   EXPECT_EQ(ask(s, '#', "V601 -12,5 "), "Y\r\n");
   EXPECT_EQ(ask(s, '?', "V601"), make_telegram('V', ' ', "601 -00000012.500000 "));
   EXPECT_NE(ask(s, '?', "X 53 ").find("X 53 00 "), std::string::npos);  // one space accepted too
-  EXPECT_EQ(s.on_line("! START $10"), err(5));                       // only in Automatic
+  EXPECT_EQ(s.on_line("! START $10"), err(5));                          // only in Automatic
   s.set_mode(ClmMode::automatic);
   EXPECT_EQ(s.on_line("! START $10"), "Y\r\n");
   EXPECT_EQ(s.on_line("! STOP $58"), "Y\r\n");
-  EXPECT_EQ(s.on_line("! CSETPA $DD"), err(5));                      // Parameter mode only
+  EXPECT_EQ(s.on_line("! CSETPA $DD"), err(5));  // Parameter mode only
   EXPECT_EQ(ask(s, '!', "START"), "Y\r\n");
   EXPECT_EQ(s.on_line("! START "), err(4)) << "'!' commands always need the checksum";
   EXPECT_EQ(ask(s, '!', "FOO"), err(2));

@@ -36,17 +36,19 @@ std::shared_ptr<const clm14::DeviceData> data() {
 }  // namespace
 
 TEST(Examples, ClmProgramAndParametersValidate) {
-  auto prog = clm14::parse_device_file(read("examples/serial/clm14-feed.prg"), clm14::FileKind::program, *data(), 2, "feed.prg");
+  auto prog = clm14::parse_device_file(read("examples/serial/clm14-feed.prg"), clm14::FileKind::program, *data(), 2,
+                                       "feed.prg");
   ASSERT_TRUE(prog) << prog.error().front();
   EXPECT_EQ(prog->items.size(), 6U);
-  auto par = clm14::parse_device_file(read("examples/serial/clm14-parameters.par"), clm14::FileKind::parameters, *data(), 2, "p");
+  auto par = clm14::parse_device_file(read("examples/serial/clm14-parameters.par"), clm14::FileKind::parameters,
+                                      *data(), 2, "p");
   ASSERT_TRUE(par) << par.error().front();
   EXPECT_EQ(par->items.size(), data()->parameter_numbers(2).size());
 }
 
 TEST(Examples, InvalidParameterFileListsEveryProblemWithItsLine) {
-  auto par = clm14::parse_device_file("B002 019200 0 1 8 1\nA101 abc\nX999 1\nB002 1\nA112 99999999 10.0\n", clm14::FileKind::parameters,
-                                      *data(), 2, "bad.par");
+  auto par = clm14::parse_device_file("B002 019200 0 1 8 1\nA101 abc\nX999 1\nB002 1\nA112 99999999 10.0\n",
+                                      clm14::FileKind::parameters, *data(), 2, "bad.par");
   ASSERT_FALSE(par);
   ASSERT_EQ(par.error().size(), 4U);
   EXPECT_NE(par.error()[0].find("bad.par:2: A101"), std::string::npos) << par.error()[0];
@@ -62,7 +64,8 @@ TEST(Examples, ElgTapeAndIp247ImageValidate) {
   for (const auto& s : *elg)
     for (const auto& e : s.entries) EXPECT_FALSE((*check)(s.kind, e.number, e.value)) << e.number;
   EXPECT_TRUE((*check)(tape::ElgSectionKind::machine_data, 396, "180000")) << "MD 396* is per axis: MD3960..3963";
-  EXPECT_TRUE((*check)(tape::ElgSectionKind::machine_data, 3962, "2500000")) << "above the 2 000 000 maximum (alarm 2200)";
+  EXPECT_TRUE((*check)(tape::ElgSectionKind::machine_data, 3962, "2500000"))
+      << "above the 2 000 000 maximum (alarm 2200)";
   auto dbs = s5::parse_db_listing(read("examples/serial/ip247-md-db1.s5db"), "md");
   ASSERT_TRUE(dbs);
   auto ip = load_ip247_check();
@@ -143,7 +146,8 @@ TEST(ElgEndpoint, AcceptsTapesPunchesOnDataStartAndRejectsAtomically) {
   // Data Start (DC2) punches the MD tape; the output reads back as the same data.
   const std::uint8_t dc2 = 0x12;
   const std::string out = ep.on_bytes(std::span(&dc2, 1), now);
-  auto r = tape::read_tape(std::span(reinterpret_cast<const std::uint8_t*>(out.data()), out.size()), tape::TapeReaderOptions{});
+  auto r = tape::read_tape(std::span(reinterpret_cast<const std::uint8_t*>(out.data()), out.size()),
+                           tape::TapeReaderOptions{});
   ASSERT_FALSE(r.error);
   auto s = tape::parse_elg_blocks(r.blocks);
   ASSERT_TRUE(s);

@@ -89,7 +89,7 @@ TEST(SerialStream, SoftwareParityRoundTripAndErrorReported) {
 namespace {
 /// Raw line fed from a script (for PARMRK marks as a tty delivers them).
 class ScriptedLine final : public RawLine {
-public:
+ public:
   std::deque<std::vector<std::uint8_t>> chunks;
   std::uint64_t overruns = 0;
   ReadResult read_some(std::span<std::uint8_t> buf, hil::Duration) override {

@@ -146,7 +146,8 @@ TEST(Rk512, BoschExampleHeader) {
   Bytes data(100, 0x55);
   auto t = make_rk512_request(h, data);
   ASSERT_EQ(t.size(), 1U);
-  EXPECT_EQ(Bytes(t[0].begin(), t[0].begin() + 10), (Bytes{0x00, 0x00, 0x41, 0x44, 0x0A, 0x80, 0x00, 0x32, 0xFF, 0xFF}));
+  EXPECT_EQ(Bytes(t[0].begin(), t[0].begin() + 10),
+            (Bytes{0x00, 0x00, 0x41, 0x44, 0x0A, 0x80, 0x00, 0x32, 0xFF, 0xFF}));
   auto parsed = parse_rk512(t[0]);
   ASSERT_TRUE(parsed);
   EXPECT_EQ(parsed->header, h);
@@ -216,14 +217,16 @@ struct S5Fixture {
       (void)dev;
       std::string out = e->on_bytes(bytes, clk->now());
       bytes.clear();  // consumed by the endpoint directly
-      if (!out.empty()) (void)dev->raw().write(std::span(reinterpret_cast<const std::uint8_t*>(out.data()), out.size()), 1s);
+      if (!out.empty())
+        (void)dev->raw().write(std::span(reinterpret_cast<const std::uint8_t*>(out.data()), out.size()), 1s);
     };
   }
 };
 }  // namespace
 
 TEST(Ip247Endpoint, WriteReadNoOverwriteDeleteAndRejectedImage) {
-  S5Fixture f(hil::mocks::legacy::make_ip247_policy([](std::uint8_t, const std::vector<std::uint16_t>& w) { return w[6] == 0 ? 3 : 0; }));
+  S5Fixture f(hil::mocks::legacy::make_ip247_policy(
+      [](std::uint8_t, const std::vector<std::uint16_t>& w) { return w[6] == 0 ? 3 : 0; }));
   Rk512Client c(*f.client_stream, f.clock);
   const auto img = md_image(10, 1);
   ASSERT_TRUE(c.send_db(10, 0, img));
@@ -256,7 +259,8 @@ TEST(Ip247Endpoint, StateSurvivesSaveAndLoad) {
 
 TEST(Wf725Endpoint, DataCodesAndMdArea) {
   // The check stands in for the profile: MD34 (pulse check, DW 66/67) must not be 0.
-  S5Fixture f(hil::mocks::legacy::make_wf725_policy([](const std::vector<std::uint16_t>& w) { return w[66] != 0 || w[67] != 0; }));
+  S5Fixture f(hil::mocks::legacy::make_wf725_policy(
+      [](const std::vector<std::uint16_t>& w) { return w[66] != 0 || w[67] != 0; }));
   f.ep->store()[1] = std::vector<std::uint16_t>(100, 0);
   f.ep->store()[1][67] = 4000;
   Rk512Client c(*f.client_stream, f.clock);
@@ -265,9 +269,9 @@ TEST(Wf725Endpoint, DataCodesAndMdArea) {
   auto back = c.fetch_db(1, 20, 2);
   ASSERT_TRUE(back);
   EXPECT_EQ(*back, (std::vector<std::uint16_t>{0xFFFF, 0xA027}));
-  EXPECT_EQ(c.fetch_db(0, 0, 2).error().code, Rk512Error::header_error);     // data code 0 (WF 112)
-  EXPECT_EQ(c.fetch_db(0x77, 0, 2).error().code, Rk512Error::header_error);  // unknown code (WF 113)
-  EXPECT_TRUE(c.fetch_db(0x03, 0, 2));                                       // speed in rpm
+  EXPECT_EQ(c.fetch_db(0, 0, 2).error().code, Rk512Error::header_error);         // data code 0 (WF 112)
+  EXPECT_EQ(c.fetch_db(0x77, 0, 2).error().code, Rk512Error::header_error);      // unknown code (WF 113)
+  EXPECT_TRUE(c.fetch_db(0x03, 0, 2));                                           // speed in rpm
   EXPECT_EQ(c.send_db(1, 66, {0, 0}).error().code, Rk512Error::image_rejected);  // MD34 = 0
   EXPECT_EQ(f.ep->store()[1][67], 4000) << "a rejected write changes nothing";
   EXPECT_EQ(c.send_db(1, 100, {0, 0}).error().code, Rk512Error::target_too_small);  // MD51 (WF 121)

@@ -20,11 +20,12 @@ std::vector<std::uint8_t> iso(std::string_view s, std::size_t leader = 0) {
 TEST(IsoCode, DigestTableOfEvenParityBytes) {
   // sinumerik-elg.md §7.9
   const std::pair<char, std::uint8_t> table[] = {
-      {'\0', 0x00}, {'\x03', 0x03}, {'\n', 0x0A}, {'\r', 0x8D}, {'\x11', 0x11}, {'\x12', 0x12}, {'\x13', 0x93}, {'\x14', 0x14},
-      {' ', 0xA0},  {'\x7F', 0xFF}, {'%', 0xA5},  {'(', 0x28},  {')', 0xA9},    {'+', 0x2B},    {'-', 0x2D},    {'.', 0x2E},
-      {'/', 0xAF},  {'=', 0xBD},    {'0', 0x30},  {'1', 0xB1},  {'2', 0xB2},    {'3', 0x33},    {'4', 0xB4},    {'5', 0x35},
-      {'6', 0x36},  {'7', 0xB7},    {'8', 0xB8},  {'9', 0x39},  {'A', 0x41},    {'E', 0xC5},    {'M', 0x4D},    {'N', 0x4E},
-      {'P', 0x50},  {'R', 0xD2},    {'S', 0x53},  {'T', 0xD4}};
+      {'\0', 0x00},   {'\x03', 0x03}, {'\n', 0x0A}, {'\r', 0x8D},   {'\x11', 0x11}, {'\x12', 0x12},
+      {'\x13', 0x93}, {'\x14', 0x14}, {' ', 0xA0},  {'\x7F', 0xFF}, {'%', 0xA5},    {'(', 0x28},
+      {')', 0xA9},    {'+', 0x2B},    {'-', 0x2D},  {'.', 0x2E},    {'/', 0xAF},    {'=', 0xBD},
+      {'0', 0x30},    {'1', 0xB1},    {'2', 0xB2},  {'3', 0x33},    {'4', 0xB4},    {'5', 0x35},
+      {'6', 0x36},    {'7', 0xB7},    {'8', 0xB8},  {'9', 0x39},    {'A', 0x41},    {'E', 0xC5},
+      {'M', 0x4D},    {'N', 0x4E},    {'P', 0x50},  {'R', 0xD2},    {'S', 0x53},    {'T', 0xD4}};
   for (auto [c, b] : table) {
     EXPECT_EQ(make_iso(c), b) << static_cast<int>(c);
     EXPECT_EQ(parse_iso(b), c);
@@ -51,7 +52,7 @@ TEST(EiaCode, EveryCodeHasOddParityAndRoundTrips) {
   EXPECT_EQ(make_eia('('), 0x1A);  // tracks 2-4-5 (control out)
   EXPECT_EQ(make_eia(')'), 0x4A);  // tracks 2-4-7 (control in)
   EXPECT_EQ(make_eia('\n'), 0x80);
-  EXPECT_FALSE(make_eia('='));     // '=' does not exist in EIA
+  EXPECT_FALSE(make_eia('='));  // '=' does not exist in EIA
   EXPECT_FALSE(parse_eia(0x03).parity_ok);
   EXPECT_TRUE(parse_eia(0x0D).parity_ok);  // good parity ...
   EXPECT_FALSE(parse_eia(0x0D).c);         // ... but no meaning: alarm 24
@@ -139,7 +140,8 @@ TEST(TapeReader, EiaTapeDetectedOrRejected) {
 
 TEST(TapeWriter, ElgRoundTripBothBlockEnds) {
   ElgSection md{ElgSectionKind::machine_data, {{396, "180000"}, {11, "-24537"}, {5002, "00100010"}}};
-  for (auto end : {TapeWriterOptions::BlockEnd::lf, TapeWriterOptions::BlockEnd::cr_lf, TapeWriterOptions::BlockEnd::lf_cr_cr}) {
+  for (auto end :
+       {TapeWriterOptions::BlockEnd::lf, TapeWriterOptions::BlockEnd::cr_lf, TapeWriterOptions::BlockEnd::lf_cr_cr}) {
     TapeWriterOptions w;
     w.block_end = end;
     auto tape = make_tape(make_elg_blocks(md), w);

@@ -11,7 +11,9 @@ using hil::mocks::PlantConfig;
 using hil::mocks::PlantInput;
 
 namespace {
-PlantInput hold(double p) { return PlantInput{true, hil::CommandMode::position, p, 0.0}; }
+PlantInput hold(double p) {
+  return PlantInput{true, hil::CommandMode::position, p, 0.0};
+}
 }  // namespace
 
 TEST(Plant, SettlesOnPositionCommand) {
@@ -53,7 +55,8 @@ TEST(Plant, VelocityLimitClamps) {
 }
 
 TEST(Plant, EncoderQuantisation) {
-  Plant plant(PlantConfig{.kv_per_s = 50, .velocity_lag_s = 0.0, .encoder_step_inc = 16, .initial_position_inc = 100.0});
+  Plant plant(
+      PlantConfig{.kv_per_s = 50, .velocity_lag_s = 0.0, .encoder_step_inc = 16, .initial_position_inc = 100.0});
   EXPECT_EQ(plant.encoder_position_inc(), 96);
   plant.set_position(-1.0);
   EXPECT_EQ(plant.encoder_position_inc(), -16);

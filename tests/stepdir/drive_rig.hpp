@@ -48,8 +48,9 @@ struct DriveRig {
   void refresh() { drive->read(hil::CycleTime{clock.now(), period}); }
   bool enable() {
     drive->request(hil::DriveRequest::enable);
-    return run_until(drive->feedback().position_inc,
-                     [&] { return drive->feedback().state == hil::DriveState::operation_enabled; }, 5'000);
+    return run_until(
+        drive->feedback().position_inc, [&] { return drive->feedback().state == hil::DriveState::operation_enabled; },
+        5'000);
   }
   std::int64_t plant_position() { return axis().decoder->position_at(clock.now().time_since_epoch().count()); }
   void expect_clean() {

@@ -80,7 +80,8 @@ TEST(StepDirDrive, ReadyLossIsFault53AndLosesSynchronisation) {
 TEST(StepDirDrive, ReadyNeverComingIsFault53) {
   DriveRig r(std::string(base) + "mock: {ready: false}\nready_timeout_ms: 50\n");
   r.drive->request(hil::DriveRequest::enable);
-  ASSERT_TRUE(r.run_until(0, [&] { return r.drive->feedback().state == DriveState::fault; }, 1000));
+  ASSERT_TRUE(r.run_until(
+      0, [&] { return r.drive->feedback().state == DriveState::fault; }, 1000));
   EXPECT_EQ(r.drive->feedback().fault.code.value(), 53);
   EXPECT_GE(r.clock.now().time_since_epoch(), 150ms);
 }
@@ -89,11 +90,15 @@ TEST(StepDirDrive, LimitEndStopsLocksAndUnlocksMovingAway) {
   DriveRig r(std::string(base) + "mock: {limit_end_at: 500, limit_start_at: -500}\n");
   ASSERT_TRUE(r.enable());
   std::int64_t cmd = 0;
-  ASSERT_TRUE(r.run_until(0, [&] {
-    cmd = std::min<std::int64_t>(cmd + 5, 2000);  // 5 kHz toward the end switch
-    r.drive->write(hil::CycleTime{r.clock.now(), r.period}, hil::DriveCommand{hil::CommandMode::position, cmd, 0, 0});
-    return r.drive->feedback().state == DriveState::fault;
-  }, 1000));
+  ASSERT_TRUE(r.run_until(
+      0,
+      [&] {
+        cmd = std::min<std::int64_t>(cmd + 5, 2000);  // 5 kHz toward the end switch
+        r.drive->write(hil::CycleTime{r.clock.now(), r.period},
+                       hil::DriveCommand{hil::CommandMode::position, cmd, 0, 0});
+        return r.drive->feedback().state == DriveState::fault;
+      },
+      1000));
   const auto& fb = r.drive->feedback();
   EXPECT_EQ(fb.fault.code, make_error_code(Ip247Error::limit_end_overrun));
   EXPECT_GE(fb.position_inc, 500);
@@ -139,7 +144,8 @@ TEST(StepDirDrive, Ip247ProfileHitsAbsoluteTargetWithFirstIntervalOneOverFss) {
   DriveRig r(std::string(base) + "profile: ip247\nbacklash: 7\n");
   ASSERT_TRUE(r.enable());
   ASSERT_TRUE(r.run_until(4000, [&] { return !r.sd->planner().moving() && r.drive->feedback().position_inc == 4000; }));
-  ASSERT_TRUE(r.run_until(-1234, [&] { return !r.sd->planner().moving() && r.drive->feedback().position_inc == -1234; }));
+  ASSERT_TRUE(
+      r.run_until(-1234, [&] { return !r.sd->planner().moving() && r.drive->feedback().position_inc == -1234; }));
   EXPECT_EQ(r.plant_position(), -1234 - 7);  // backlash taken up on the reversal, position unchanged by it
   EXPECT_EQ(r.axis().sink.verifier.stats().first_interval_ns, 2'000'000);  // 1/500 Hz
   r.expect_clean();

@@ -48,8 +48,8 @@ void sim_pull(const Chip& c, int line, bool up) {
   f << (up ? "pull-up" : "pull-down");
 }
 
-#define REQUIRE_CHIP(var)                  \
-  std::string skip_reason;                 \
+#define REQUIRE_CHIP(var)                      \
+  std::string skip_reason;                     \
   auto var = chip_or_skip_reason(skip_reason); \
   if (!var) GTEST_SKIP() << skip_reason
 
@@ -110,8 +110,8 @@ TEST(GpioSim, EdgeWriterOutputsEveryEdgeAndMeasuresItsTiming) {
   EXPECT_EQ(sim_read(*chip, 0, "value"), "0");
   std::printf("gpio-sim writer: mean %.1f us, p99 <= %.1f us, max %.1f us, late %llu of %llu\n",
               w.stats().mean_error_ns() / 1000.0, static_cast<double>(w.stats().quantile_bound_ns(0.99)) / 1000.0,
-              static_cast<double>(w.stats().max_error_ns) / 1000.0,
-              static_cast<unsigned long long>(w.stats().late), static_cast<unsigned long long>(w.stats().edges));
+              static_cast<double>(w.stats().max_error_ns) / 1000.0, static_cast<unsigned long long>(w.stats().late),
+              static_cast<unsigned long long>(w.stats().edges));
 }
 
 TEST(GpioSim, StepDirDriveOnARealChip) {

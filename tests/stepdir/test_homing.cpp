@@ -15,7 +15,9 @@ fmax_hz: 20000
 fss_hz: 500
 accel_hz_per_s: 200000
 pulse_us: 10
-homing: {direction: backward, speed_hz: 8000, coordinate: 100000)") + homing_extra + "}\n" + "mock: {limit_end_at: 3000, limit_start_at: -6000, cam: [-2000, -1500], initial_position: " +
+homing: {direction: backward, speed_hz: 8000, coordinate: 100000)") +
+         homing_extra + "}\n" +
+         "mock: {limit_end_at: 3000, limit_start_at: -6000, cam: [-2000, -1500], initial_position: " +
          std::to_string(start) + "}\n";
 }
 
@@ -35,7 +37,7 @@ bool home(DriveRig& r, Track& t) {
     t.min = std::min(t.min, p);
     t.max = std::max(t.max, p);
     if (!r.sd->planner().moving() && (r.sd->homing_phase() == hil::drives::stepdir::HomingPhase::idle ||
-                                       r.drive->feedback().state == DriveState::fault)) {
+                                      r.drive->feedback().state == DriveState::fault)) {
       r.drive->read(hil::CycleTime{r.clock.now(), r.period});
       return true;
     }
@@ -52,8 +54,8 @@ TEST(ReferenceRun, NormalSequenceReversesAtLimitAndReferencesAtCamEdge) {
   ASSERT_TRUE(home(r, t));
   ASSERT_EQ(r.drive->feedback().state, DriveState::operation_enabled) << r.drive->feedback().fault.describe();
   EXPECT_TRUE(r.drive->feedback().referenced);
-  EXPECT_GE(t.max, 3000);             // went against the reference direction to the end limit
-  EXPECT_LT(t.min, -2000);            // passed the cam in the reference direction
+  EXPECT_GE(t.max, 3000);                // went against the reference direction to the end limit
+  EXPECT_LT(t.min, -2000);               // passed the cam in the reference direction
   EXPECT_EQ(r.plant_position(), -2001);  // first position off the cam, reached in single steps
   EXPECT_EQ(r.drive->feedback().position_inc, 100000);
   r.cycle(100000);

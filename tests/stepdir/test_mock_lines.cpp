@@ -64,8 +64,8 @@ TEST(StepDirDecoder, PositionAtTimeCountsOnlyEdgesUpToThatTime) {
   VirtualClock clock;
   mock::MockLines l(specs(), clock);
   mock::StepDirDecoder d(l, 0, 1, true, true, 100);
-  const std::vector<Edge> e = {{10, 0, true}, {12, 0, false}, {20, 0, true}, {22, 0, false},
-                               {30, 1, false}, {40, 0, true}, {42, 0, false}};
+  const std::vector<Edge> e = {{10, 0, true},  {12, 0, false}, {20, 0, true}, {22, 0, false},
+                               {30, 1, false}, {40, 0, true},  {42, 0, false}};
   l.output(e);
   EXPECT_EQ(d.position_at(9), 100);
   EXPECT_EQ(d.position_at(10), 101);

@@ -177,7 +177,7 @@ TEST(StepPlanner, ShortMoveNeverReachesSpeedAndIsSymmetric) {
   ASSERT_EQ(iv.size(), 40U);
   for (std::size_t i = 0; i < iv.size(); ++i) EXPECT_EQ(iv[i], iv[iv.size() - 1 - i]);
   EXPECT_GT(iv[19], s.ramp->interval_ns(s.ramp->table().size()));  // peak below fmax
-  EXPECT_EQ(iv[19], s.ramp->interval_ns(19));                        // braking point at the middle
+  EXPECT_EQ(iv[19], s.ramp->interval_ns(19));                      // braking point at the middle
 }
 
 TEST(StepPlanner, BacklashAddedOnReversalWithoutChangingPosition) {

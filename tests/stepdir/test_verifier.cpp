@@ -29,7 +29,7 @@ std::optional<Violation> check(std::vector<Edge> e, std::optional<std::int64_t> 
 
 TEST(StepVerifier, CleanStreamPasses) {
   VerifyStats st;
-  const std::vector<Edge> e = {{0, 0, true},       {2'000, 0, false},  {10'000, 0, true}, {12'000, 0, false},
+  const std::vector<Edge> e = {{0, 0, true},       {2'000, 0, false}, {10'000, 0, true}, {12'000, 0, false},
                                {15'000, 1, false}, {20'000, 0, true}, {22'000, 0, false}};
   auto v = verify_edges(e, rules(), 1, {}, &st);
   EXPECT_FALSE(v) << v->describe();

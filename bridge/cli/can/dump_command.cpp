@@ -4,10 +4,10 @@
 #include <cstdio>
 #include <memory>
 
+#include <fmt/format.h>
 #include <asio/io_context.hpp>
 #include <asio/signal_set.hpp>
 #include <asio/steady_timer.hpp>
-#include <fmt/format.h>
 
 #include "commands.hpp"
 #include "hil/can/candump.hpp"
@@ -95,7 +95,8 @@ int run_dump(const DumpOptions& o) {
   signals.async_wait([&](const std::error_code&, int) { io.stop(); });
   asio::steady_timer deadline(io);
   if (o.duration_s > 0) {
-    deadline.expires_after(std::chrono::duration_cast<std::chrono::steady_clock::duration>(std::chrono::duration<double>(o.duration_s)));
+    deadline.expires_after(
+        std::chrono::duration_cast<std::chrono::steady_clock::duration>(std::chrono::duration<double>(o.duration_s)));
     deadline.async_wait([&](const std::error_code& ec) {
       if (!ec) io.stop();
     });

@@ -4,10 +4,10 @@
 #include <cstdio>
 #include <memory>
 
+#include <fmt/format.h>
 #include <asio/io_context.hpp>
 #include <asio/ip/tcp.hpp>
 #include <asio/signal_set.hpp>
-#include <fmt/format.h>
 
 #include "commands.hpp"
 #include "hil/can/bus_runner.hpp"
@@ -41,7 +41,8 @@ std::expected<asio::ip::tcp::endpoint, std::string> parse_listen(const std::stri
     port = text.substr(close + 2);
   } else {
     const auto colon = text.rfind(':');
-    if (colon == std::string::npos) return std::unexpected("--listen '" + text + "': expected HOST:PORT, e.g. 127.0.0.1:29536");
+    if (colon == std::string::npos)
+      return std::unexpected("--listen '" + text + "': expected HOST:PORT, e.g. 127.0.0.1:29536");
     host = text.substr(0, colon);
     port = text.substr(colon + 1);
   }
@@ -75,8 +76,9 @@ int run_hub(const HubOptions& o) {
     bus = std::make_unique<can::VirtualBus>(clock, bus_name,
                                             can::VirtualBusOptions{.latency = std::chrono::microseconds(o.latency_us)});
     runner = std::make_unique<can::AsioBusRunner>(io.get_executor(), *bus, clock);
-    opener = [&bus, bus_name, error_frames = o.error_frames](std::string_view name, const std::string& peer)
-        -> std::expected<std::unique_ptr<can::Channel>, std::error_code> {
+    opener = [&bus, bus_name, error_frames = o.error_frames](
+                 std::string_view name,
+                 const std::string& peer) -> std::expected<std::unique_ptr<can::Channel>, std::error_code> {
       if (name != bus_name) return std::unexpected(std::make_error_code(std::errc::no_such_device));
       can::ParticipantOptions po;
       if (error_frames) po.filters.error_mask = can::error_class::all;
@@ -90,7 +92,8 @@ int run_hub(const HubOptions& o) {
       return 2;
     }
     opener = [&io, &clock, bus_name, iface = o.bridge, error_frames = o.error_frames](
-                 std::string_view name, const std::string&) -> std::expected<std::unique_ptr<can::Channel>, std::error_code> {
+                 std::string_view name,
+                 const std::string&) -> std::expected<std::unique_ptr<can::Channel>, std::error_code> {
       if (name != bus_name) return std::unexpected(std::make_error_code(std::errc::no_such_device));
       can::socketcan::SocketCanOptions so;
       so.filters.error_mask = error_frames ? can::error_class::all : 0;
@@ -104,12 +107,13 @@ int run_hub(const HubOptions& o) {
   server_options.raw_mode_grace = std::chrono::milliseconds(o.join_grace_ms);
   can::socketcand::Server server(io.get_executor(), clock, opener, server_options);
   if (auto ec = server.listen(*endpoint)) {
-    fmt::print(stderr, "hilbridge can hub: cannot listen on {}: {} (another hub or socketcand on that port?)\n", o.listen,
-               ec.message());
+    fmt::print(stderr, "hilbridge can hub: cannot listen on {}: {} (another hub or socketcand on that port?)\n",
+               o.listen, ec.message());
     return 2;
   }
   const auto local = server.local_endpoint();
-  const std::string host = local.address().is_v6() ? "[" + local.address().to_string() + "]" : local.address().to_string();
+  const std::string host =
+      local.address().is_v6() ? "[" + local.address().to_string() + "]" : local.address().to_string();
   fmt::print("hilbridge can hub: {} bus '{}' on {}:{}; connect with socketcand://{}:{}/{} (Ctrl-C to stop)\n",
              o.bridge.empty() ? "virtual" : "SocketCAN " + o.bridge, bus_name, host, local.port(), host, local.port(),
              bus_name);
@@ -122,10 +126,11 @@ int run_hub(const HubOptions& o) {
   });
   io.run();
   const auto& s = server.stats();
-  fmt::print("hilbridge can hub: stopped; clients {} (refused {}), frames from clients {}, to clients {}, dropped for slow "
-             "clients {}, dropped while joining {}, protocol errors {}\n",
-             s.accepted, s.refused, s.frames_from_clients, s.frames_to_clients, s.dropped_slow_client, s.dropped_during_grace,
-             s.protocol_errors);
+  fmt::print(
+      "hilbridge can hub: stopped; clients {} (refused {}), frames from clients {}, to clients {}, dropped for slow "
+      "clients {}, dropped while joining {}, protocol errors {}\n",
+      s.accepted, s.refused, s.frames_from_clients, s.frames_to_clients, s.dropped_slow_client, s.dropped_during_grace,
+      s.protocol_errors);
   return 0;
 }
 
@@ -141,7 +146,8 @@ void add_hub(CLI::App& can, Context& ctx) {
       "python-can: can.Bus(interface='socketcand', host=HOST, port=PORT, channel=BUS)");
   cmd->add_option("--listen", o->listen, "HOST:PORT to listen on (port 0: any free port, printed at start)")
       ->capture_default_str();
-  cmd->add_option("--bus-name", o->bus_name, "Bus name clients open (`< open NAME >`); default can0, or the --bridge interface");
+  cmd->add_option("--bus-name", o->bus_name,
+                  "Bus name clients open (`< open NAME >`); default can0, or the --bridge interface");
   cmd->add_option("--bridge", o->bridge, "Expose this SocketCAN interface (vcan0, can0) instead of a virtual bus");
   cmd->add_option("--latency-us", o->latency_us, "Virtual bus: delivery latency per frame in microseconds")
       ->check(CLI::Range(0L, 1'000'000L))

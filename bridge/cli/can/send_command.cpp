@@ -5,9 +5,9 @@
 #include <memory>
 #include <vector>
 
+#include <fmt/format.h>
 #include <asio/io_context.hpp>
 #include <asio/steady_timer.hpp>
-#include <fmt/format.h>
 
 #include "commands.hpp"
 #include "hil/can/candump.hpp"
@@ -69,14 +69,15 @@ int send_all(const std::string& bus, const std::vector<Timed>& frames, const cha
       (void)ec;
     }
     std::error_code ec = (*channel)->send(t.frame);
-    for (int retry = 0; ec == std::errc::no_buffer_space && retry < 500; ++retry) {  // back-pressure: let the queue drain
+    for (int retry = 0; ec == std::errc::no_buffer_space && retry < 500;
+         ++retry) {  // back-pressure: let the queue drain
       io.run_one_for(std::chrono::milliseconds(10));
       io.restart();
       ec = (*channel)->send(t.frame);
     }
     if (ec) {
-      fmt::print(stderr, "hilbridge can {}: frame {} ({}) not sent: {}\n", verb, sent + 1, can::candump::format_frame_spec(t.frame),
-                 ec.message());
+      fmt::print(stderr, "hilbridge can {}: frame {} ({}) not sent: {}\n", verb, sent + 1,
+                 can::candump::format_frame_spec(t.frame), ec.message());
       return 1;
     }
     ++sent;
@@ -104,7 +105,8 @@ int run_send(const SendOptions& o) {
       fmt::print(stderr, "hilbridge can send: frame {} '{}': {}\n", i + 1, o.frames[i], f.error().message());
       return 2;
     }
-    frames.push_back({*f, std::chrono::duration_cast<Duration>(std::chrono::duration<double, std::milli>(o.interval_ms * static_cast<double>(i)))});
+    frames.push_back({*f, std::chrono::duration_cast<Duration>(
+                              std::chrono::duration<double, std::milli>(o.interval_ms * static_cast<double>(i)))});
   }
   return send_all(o.bus, frames, "send", false);
 }
@@ -152,7 +154,8 @@ void add_send(CLI::App& can, Context& ctx) {
       "705#R or 705#R1 (remote frame), 080# (no data). socketcand cannot carry remote frames.");
   cmd->add_option("--bus", o->bus, bus_help)->required();
   cmd->add_option("frames", o->frames, "Frames to send, in order")->required();
-  cmd->add_option("--interval-ms", o->interval_ms, "Pause between frames in milliseconds")->check(CLI::NonNegativeNumber);
+  cmd->add_option("--interval-ms", o->interval_ms, "Pause between frames in milliseconds")
+      ->check(CLI::NonNegativeNumber);
   cmd->callback([o, &ctx] { ctx.exit_code = run_send(*o); });
 }
 

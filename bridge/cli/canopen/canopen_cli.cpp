@@ -53,7 +53,8 @@ int run_sdo(const SdoArgs& a, bool upload) {
   std::vector<std::uint8_t> data;
   if (!upload) {
     if (a.type.empty()) {
-      std::fprintf(stderr, "hilbridge %s: --type is required for a write (one of: %s)\n", cmd, value_types_help().c_str());
+      std::fprintf(stderr, "hilbridge %s: --type is required for a write (one of: %s)\n", cmd,
+                   value_types_help().c_str());
       return 2;
     }
     auto enc = encode_value(a.type, a.value);
@@ -63,7 +64,8 @@ int run_sdo(const SdoArgs& a, bool upload) {
     }
     data = std::move(*enc);
   } else if (!a.type.empty() && !is_value_type(a.type)) {
-    std::fprintf(stderr, "hilbridge %s: unknown --type '%s'; use one of: %s\n", cmd, a.type.c_str(), value_types_help().c_str());
+    std::fprintf(stderr, "hilbridge %s: unknown --type '%s'; use one of: %s\n", cmd, a.type.c_str(),
+                 value_types_help().c_str());
     return 2;
   }
   BusSession s(a.bus, "hilbridge-sdo");
@@ -75,9 +77,13 @@ int run_sdo(const SdoArgs& a, bool upload) {
   o.timeout = std::chrono::milliseconds(a.timeout_ms);
   o.retries = a.retries;
   o.block = a.block;
-  co::SdoClient client(static_cast<co::NodeId>(a.node), [&](const can::Frame& f) {
-    if (auto ec = s.channel().send(f)) std::fprintf(stderr, "hilbridge %s: send failed: %s\n", cmd, ec.message().c_str());
-  }, o);
+  co::SdoClient client(
+      static_cast<co::NodeId>(a.node),
+      [&](const can::Frame& f) {
+        if (auto ec = s.channel().send(f))
+          std::fprintf(stderr, "hilbridge %s: send failed: %s\n", cmd, ec.message().c_str());
+      },
+      o);
   s.channel().set_receive_handler([&](const can::Frame& f, TimePoint t) { client.on_frame(f, t); });
   std::optional<ProgressBar> bar;
   client.set_progress([&](std::size_t done, std::size_t total) {
@@ -93,8 +99,10 @@ int run_sdo(const SdoArgs& a, bool upload) {
     result = ec;
     value = std::move(d);
   };
-  if (upload) client.async_upload(obj->first, obj->second, s.now(), done);
-  else client.async_download(obj->first, obj->second, data, s.now(), done);
+  if (upload)
+    client.async_upload(obj->first, obj->second, s.now(), done);
+  else
+    client.async_download(obj->first, obj->second, data, s.now(), done);
   const auto limit = o.timeout * (a.retries + 1) * 4 + std::chrono::seconds(2) + std::chrono::milliseconds(data.size());
   s.run([&] { return finished; }, [&](TimePoint t) { client.step(t); }, limit);
   if (bar) bar->finish(finished && !result ? "done" : "failed");
@@ -103,7 +111,8 @@ int run_sdo(const SdoArgs& a, bool upload) {
     return 1;
   }
   if (result) {
-    std::fprintf(stderr, "hilbridge %s: node %d %s: SDO abort %s\n", cmd, a.node, a.object.c_str(), result.message().c_str());
+    std::fprintf(stderr, "hilbridge %s: node %d %s: SDO abort %s\n", cmd, a.node, a.object.c_str(),
+                 result.message().c_str());
     return 1;
   }
   if (upload) std::printf("%s\n", format_value(a.type, value).c_str());
@@ -121,9 +130,12 @@ void register_sdo(Context& ctx) {
     c->add_option("--bus", a->bus, k_bus_help)->required();
     c->add_option("node", a->node, "Node-ID 1..127")->required()->check(CLI::Range(1, 127));
     c->add_option("object", a->object, "Object as INDEX:SUB in hex, e.g. 0x1018:1 or 6041:0")->required();
-    if (!upload) c->add_option("value", a->value, "Value in the --type's notation (integers: decimal or 0x hex)")->required();
-    c->add_option("--type,-t", a->type, "Value type: " + value_types_help() + (upload ? " (default: raw hex and unsigned)" : ""));
-    c->add_option("--timeout", a->timeout_ms, "Timeout per SDO answer in ms (default 500)")->check(CLI::Range(1, 600000));
+    if (!upload)
+      c->add_option("value", a->value, "Value in the --type's notation (integers: decimal or 0x hex)")->required();
+    c->add_option("--type,-t", a->type,
+                  "Value type: " + value_types_help() + (upload ? " (default: raw hex and unsigned)" : ""));
+    c->add_option("--timeout", a->timeout_ms, "Timeout per SDO answer in ms (default 500)")
+        ->check(CLI::Range(1, 600000));
     c->add_option("--retries", a->retries, "Retries after a timeout (default 0)")->check(CLI::Range(0, 10));
     c->add_flag("--block", a->block, "Use SDO block transfer (CRC-16) for values over 28 bytes");
     c->footer(upload ? "Examples:\n  hilbridge sdo read --bus vcan0 5 0x1018:1 --type x32\n"
@@ -147,8 +159,9 @@ void register_nmt(Context& ctx) {
       ->check(CLI::IsMember({"start", "stop", "preop", "reset", "reset-comm"}));
   c->add_option("target", a->node, "Node-ID 1..127, or `all`")->required();
   c->add_option("--bus", a->bus, k_bus_help)->required();
-  c->footer("Examples:\n  hilbridge nmt start --bus vcan0 all\n  hilbridge nmt reset-comm --bus vcan0 5\n"
-            "`reset` is NMT reset node (0x81), `reset-comm` reset communication (0x82).");
+  c->footer(
+      "Examples:\n  hilbridge nmt start --bus vcan0 all\n  hilbridge nmt reset-comm --bus vcan0 5\n"
+      "`reset` is NMT reset node (0x81), `reset-comm` reset communication (0x82).");
   c->callback([&ctx, a] {
     co::NodeId node = 0;
     if (a->node != "all") {
@@ -194,11 +207,14 @@ void register_scan(Context& ctx) {
     int timeout_ms = 300;
   };
   auto a = std::make_shared<ScanArgs>();
-  auto* c = ctx.app.add_subcommand("scan", "Find CANopen nodes (SDO upload of 0x1000 to 1..127) and read their identity 0x1018");
+  auto* c = ctx.app.add_subcommand(
+      "scan", "Find CANopen nodes (SDO upload of 0x1000 to 1..127) and read their identity 0x1018");
   c->add_option("--bus", a->bus, k_bus_help)->required();
-  c->add_option("--timeout", a->timeout_ms, "How long to wait for answers, ms (default 300)")->check(CLI::Range(10, 60000));
-  c->footer("Prints one line per node: node-ID, device type, vendor-ID, product code, revision, serial, name.\n"
-            "Example:\n  hilbridge scan --bus vcan0");
+  c->add_option("--timeout", a->timeout_ms, "How long to wait for answers, ms (default 300)")
+      ->check(CLI::Range(10, 60000));
+  c->footer(
+      "Prints one line per node: node-ID, device type, vendor-ID, product code, revision, serial, name.\n"
+      "Example:\n  hilbridge scan --bus vcan0");
   c->callback([&ctx, a] {
     BusSession s(a->bus, "hilbridge-scan");
     if (!s.ok()) {
@@ -223,7 +239,8 @@ void register_scan(Context& ctx) {
       return v;
     };
     for (int n = 1; n <= 127; ++n) {
-      clients[n] = std::make_unique<co::SdoClient>(static_cast<co::NodeId>(n), [&](const can::Frame& f) { (void)s.channel().send(f); }, o);
+      clients[n] = std::make_unique<co::SdoClient>(
+          static_cast<co::NodeId>(n), [&](const can::Frame& f) { (void)s.channel().send(f); }, o);
       ++outstanding;
       clients[n]->async_upload(0x1000, 0, s.now(), [&, n](std::error_code ec, std::vector<std::uint8_t> d) {
         --outstanding;
@@ -259,8 +276,8 @@ void register_scan(Context& ctx) {
     for (const auto& [n, f] : found) {
       if (!f.alive) continue;
       ++count;
-      std::printf("%4d  0x%08X   0x%08X  0x%08X  0x%08X  0x%08X  %s\n", n, f.values[0], f.values[1], f.values[2], f.values[3],
-                  f.values[4], f.name.c_str());
+      std::printf("%4d  0x%08X   0x%08X  0x%08X  0x%08X  0x%08X  %s\n", n, f.values[0], f.values[1], f.values[2],
+                  f.values[3], f.values[4], f.name.c_str());
     }
     std::fprintf(stderr, "%d node(s) answered on %s\n", count, a->bus.c_str());
     ctx.exit_code = 0;

@@ -10,8 +10,8 @@
 #include <string>
 #include <vector>
 
-#include <asio/io_context.hpp>
 #include <fmt/format.h>
+#include <asio/io_context.hpp>
 
 #include "hil/can/make_channel.hpp"
 #include "hil/can/virtual_bus.hpp"
@@ -30,7 +30,7 @@ namespace fs = std::filesystem;
 
 /// An axis whose node is simulated in this process: the Drive plus fault injection on the node.
 class InProcessAxis final : public Drive, public FaultInjectable {
-public:
+ public:
   /// `master_node` != 0: the master produces a heartbeat the node watches, and the fault
   /// `master_heartbeat_loss` drops it on the bus (the node faults with 0x8130 after its consumer time).
   InProcessAxis(std::unique_ptr<cia402::Cia402Drive> drive, mocks::Cia402Node& node, const Clock& clock,
@@ -52,8 +52,8 @@ public:
     if (master_node_ == 0) return false;
     if (active && !master_drop_) {
       const std::uint32_t id = 0x700u + master_node_;
-      master_drop_ = bus_.inject(can::FrameFault{.action = can::FaultAction::drop,
-                                                 .match = [id](const can::Frame& f) { return f.id == id; }});
+      master_drop_ = bus_.inject(
+          can::FrameFault{.action = can::FaultAction::drop, .match = [id](const can::Frame& f) { return f.id == id; }});
     } else if (!active && master_drop_) {
       bus_.remove_fault(*master_drop_);
       master_drop_.reset();
@@ -61,7 +61,7 @@ public:
     return true;
   }
 
-private:
+ private:
   std::unique_ptr<cia402::Cia402Drive> drive_;
   mocks::Cia402Node& node_;
   const Clock& clock_;
@@ -73,7 +73,7 @@ private:
 /// What the one master of a bus is set up with (from the first axis on it; the others must agree).
 struct BusMaster {
   Duration sdo_timeout{};
-  Duration heartbeat{};        ///< 0 = the master produces no heartbeat
+  Duration heartbeat{};         ///< 0 = the master produces no heartbeat
   canopen::NodeId node_id = 0;  ///< the master's node-ID when it produces one
   bool operator==(const BusMaster&) const = default;
 };
@@ -92,21 +92,24 @@ struct Bus {
 };
 
 class CanopenTransport final : public TransportFactory {
-public:
+ public:
   std::expected<DrivePtr, ConfigError> make_drive(const std::string& axis_name, const YAML::Node& node,
                                                   RunEnvironment& env) override {
     const yaml::Where where{env.source_file, env.drive_path(axis_name)};
-    if (auto k = yaml::check_keys(node, where,
-                                  {"transport", "node", "bus", "eds", "heartbeat", "heartbeat_timeout", "sdo_timeout", "kv",
-                                   "max_velocity", "velocity_lag", "feedforward", "homing", "check_identity", "mode",
-                                   "position_gain", "master_heartbeat", "master_heartbeat_timeout", "master_node"});
+    if (auto k =
+            yaml::check_keys(node, where,
+                             {"transport", "node", "bus", "eds", "heartbeat", "heartbeat_timeout", "sdo_timeout", "kv",
+                              "max_velocity", "velocity_lag", "feedforward", "homing", "check_identity", "mode",
+                              "position_gain", "master_heartbeat", "master_heartbeat_timeout", "master_node"});
         !k)
       return std::unexpected(k.error());
     auto id = yaml::get_int(node, where, "node");
     if (!id) return std::unexpected(id.error());
-    if (!id->has_value()) return std::unexpected(yaml::error_at(node, where.key("node"), "missing: the node-ID 1..127 of the drive"));
+    if (!id->has_value())
+      return std::unexpected(yaml::error_at(node, where.key("node"), "missing: the node-ID 1..127 of the drive"));
     if (**id < 1 || **id > 127)
-      return std::unexpected(yaml::error_at(node["node"], where.key("node"), fmt::format("node-ID must be 1..127, got {}", **id)));
+      return std::unexpected(
+          yaml::error_at(node["node"], where.key("node"), fmt::format("node-ID must be 1..127, got {}", **id)));
     const int nid = static_cast<int>(**id);
     auto bus_name = yaml::get_string(node, where, "bus");
     if (!bus_name) return std::unexpected(bus_name.error());
@@ -115,18 +118,21 @@ public:
     if (!parsed) return std::unexpected(yaml::error_at(node["bus"], where.key("bus"), parsed.error()));
     const bool simulated = parsed->kind == can::BusUrl::Kind::virtual_bus;
     if (!simulated && env.virtual_time)
-      return std::unexpected(yaml::error_at(node["bus"], where.key("bus"),
-                                            fmt::format("'{}' is a real CAN bus: it needs a real-time run (hilbridge run without "
-                                                        "--virtual); leave `bus:` out to simulate the nodes",
-                                                        url)));
+      return std::unexpected(
+          yaml::error_at(node["bus"], where.key("bus"),
+                         fmt::format("'{}' is a real CAN bus: it needs a real-time run (hilbridge run without "
+                                     "--virtual); leave `bus:` out to simulate the nodes",
+                                     url)));
     if (!simulated && env.io == nullptr)
-      return std::unexpected(yaml::error_at(node["bus"], where.key("bus"), "a real CAN bus needs the run's I/O context"));
+      return std::unexpected(
+          yaml::error_at(node["bus"], where.key("bus"), "a real CAN bus needs the run's I/O context"));
     auto ms = [&](std::string_view key, long long dflt) -> std::expected<Duration, ConfigError> {
       auto v = yaml::get_int(node, where, key);
       if (!v) return std::unexpected(v.error());
       const auto x = v->value_or(dflt);
       if (x < 0 || x > 65535)
-        return std::unexpected(yaml::error_at(node[std::string(key)], where.key(key), fmt::format("must be 0..65535 ms, got {}", x)));
+        return std::unexpected(
+            yaml::error_at(node[std::string(key)], where.key(key), fmt::format("must be 0..65535 ms, got {}", x)));
       return std::chrono::milliseconds(x);
     };
     auto hb = ms("heartbeat", 20);
@@ -136,7 +142,8 @@ public:
     for (auto* r : {&hb, &hb_timeout, &sdo_timeout, &master_hb})
       if (!*r) return std::unexpected(r->error());
     // The master's own heartbeat, watched by the node (0x1016:1): a drive whose master dies stops.
-    auto master_hb_timeout = ms("master_heartbeat_timeout", 3 * std::chrono::duration_cast<std::chrono::milliseconds>(*master_hb).count());
+    auto master_hb_timeout =
+        ms("master_heartbeat_timeout", 3 * std::chrono::duration_cast<std::chrono::milliseconds>(*master_hb).count());
     if (!master_hb_timeout) return std::unexpected(master_hb_timeout.error());
     auto master_node = yaml::get_int(node, where, "master_node");
     if (!master_node) return std::unexpected(master_node.error());
@@ -145,11 +152,13 @@ public:
       return std::unexpected(yaml::error_at(node["master_node"], where.key("master_node"),
                                             fmt::format("the master's node-ID must be 1..127, got {}", master_id)));
     if (master_hb->count() == 0 && (node["master_heartbeat_timeout"] || node["master_node"]))
-      return std::unexpected(yaml::error_at(node, where.key(node["master_node"] ? "master_node" : "master_heartbeat_timeout"),
-                                            "set `master_heartbeat` (ms) for the master to produce a heartbeat the node watches"));
+      return std::unexpected(
+          yaml::error_at(node, where.key(node["master_node"] ? "master_node" : "master_heartbeat_timeout"),
+                         "set `master_heartbeat` (ms) for the master to produce a heartbeat the node watches"));
     if (master_hb->count() > 0 && *master_hb_timeout <= *master_hb)
-      return std::unexpected(yaml::error_at(node["master_heartbeat_timeout"], where.key("master_heartbeat_timeout"),
-                                            "must be longer than master_heartbeat (one missed heartbeat must not fault the drive)"));
+      return std::unexpected(
+          yaml::error_at(node["master_heartbeat_timeout"], where.key("master_heartbeat_timeout"),
+                         "must be longer than master_heartbeat (one missed heartbeat must not fault the drive)"));
     auto homing = yaml::get_bool(node, where, "homing");
     auto check_identity = yaml::get_bool(node, where, "check_identity");
     if (!homing) return std::unexpected(homing.error());
@@ -158,23 +167,28 @@ public:
     if (!mode_name) return std::unexpected(mode_name.error());
     cia402::OperatingSetup setup = cia402::OperatingSetup::csp;
     if (mode_name->has_value()) {
-      if (**mode_name == "csp") setup = cia402::OperatingSetup::csp;
-      else if (**mode_name == "csv") setup = cia402::OperatingSetup::csv;
-      else if (**mode_name == "pp") setup = cia402::OperatingSetup::pp;
+      if (**mode_name == "csp")
+        setup = cia402::OperatingSetup::csp;
+      else if (**mode_name == "csv")
+        setup = cia402::OperatingSetup::csv;
+      else if (**mode_name == "pp")
+        setup = cia402::OperatingSetup::pp;
       else
-        return std::unexpected(yaml::error_at(node["mode"], where.key("mode"),
-                                              fmt::format("unknown mode '{}': csp (cyclic position), csv (cyclic velocity, "
-                                                          "hilbridge closes the position loop) or pp (the drive's own profile "
-                                                          "position / profile velocity)",
-                                                          **mode_name)));
+        return std::unexpected(
+            yaml::error_at(node["mode"], where.key("mode"),
+                           fmt::format("unknown mode '{}': csp (cyclic position), csv (cyclic velocity, "
+                                       "hilbridge closes the position loop) or pp (the drive's own profile "
+                                       "position / profile velocity)",
+                                       **mode_name)));
     }
     auto gain = yaml::get_double(node, where, "position_gain");
     if (!gain) return std::unexpected(gain.error());
     if (gain->has_value() && (setup != cia402::OperatingSetup::csv || !(**gain > 0.0) || **gain > 10000.0))
-      return std::unexpected(yaml::error_at(node["position_gain"], where.key("position_gain"),
-                                            setup != cia402::OperatingSetup::csv
-                                                ? std::string("position_gain is the csv position loop: set `mode: csv` or leave it out")
-                                                : fmt::format("must be > 0 and <= 10000 1/s, got {}", **gain)));
+      return std::unexpected(
+          yaml::error_at(node["position_gain"], where.key("position_gain"),
+                         setup != cia402::OperatingSetup::csv
+                             ? std::string("position_gain is the csv position loop: set `mode: csv` or leave it out")
+                             : fmt::format("must be > 0 and <= 10000 1/s, got {}", **gain)));
 
     // The node's EDS: a file (relative to the scenario) or the simulated drive's.
     auto eds_path = yaml::get_string(node, where, "eds");
@@ -193,13 +207,14 @@ public:
       return std::unexpected(e);
     }
 
-    const BusMaster wanted{*sdo_timeout, *master_hb, master_hb->count() > 0 ? static_cast<canopen::NodeId>(master_id) : canopen::NodeId{0}};
+    const BusMaster wanted{*sdo_timeout, *master_hb,
+                           master_hb->count() > 0 ? static_cast<canopen::NodeId>(master_id) : canopen::NodeId{0}};
     auto& bus = get_bus(url, simulated, wanted, env);
     if (!bus.network) return std::unexpected(yaml::error_at(node["bus"], where.key("bus"), bus_error_));
     if (bus.master != wanted) {
       const char* key = bus.master.sdo_timeout != wanted.sdo_timeout ? "sdo_timeout"
-                        : bus.master.heartbeat != wanted.heartbeat ? "master_heartbeat"
-                                                                   : "master_node";
+                        : bus.master.heartbeat != wanted.heartbeat   ? "master_heartbeat"
+                                                                     : "master_node";
       return std::unexpected(yaml::error_at(node[key] ? node[key] : node, where.key(key),
                                             fmt::format("{} differs from axis '{}' on {}: one master serves the bus, "
                                                         "so every axis on it must give the same value",
@@ -209,8 +224,9 @@ public:
       return std::unexpected(yaml::error_at(node["node"], where.key("node"),
                                             fmt::format("node-ID {} is the master's own (master_node)", nid)));
     if (bus.axis_of_node.contains(nid))
-      return std::unexpected(yaml::error_at(node["node"], where.key("node"),
-                                            fmt::format("node {} on {} is already used by axis '{}'", nid, url, bus.axis_of_node[nid])));
+      return std::unexpected(
+          yaml::error_at(node["node"], where.key("node"),
+                         fmt::format("node {} on {} is already used by axis '{}'", nid, url, bus.axis_of_node[nid])));
     bus.axis_of_node[nid] = axis_name;
 
     mocks::Cia402Node* sim = nullptr;
@@ -231,7 +247,8 @@ public:
         if (!r) return std::unexpected(r.error());
       can::ParticipantOptions po;
       po.filters = mocks::predefined_filters(static_cast<canopen::NodeId>(nid));  // like the node's CAN controller
-      if (wanted.node_id != 0) po.filters.filters.push_back(can::Filter::exact(0x700u + wanted.node_id));  // the master's heartbeat
+      if (wanted.node_id != 0)
+        po.filters.filters.push_back(can::Filter::exact(0x700u + wanted.node_id));  // the master's heartbeat
       bus.node_channels.push_back(bus.vbus->attach(fmt::format("node{}", nid), po));
       bus.nodes.push_back(std::make_unique<mocks::Cia402Node>(*bus.node_channels.back(), o));
       sim = bus.nodes.back().get();
@@ -251,7 +268,8 @@ public:
     dopt.setup = setup;
     if (gain->has_value()) dopt.csv_position_gain_per_s = **gain;
     auto drive = std::make_unique<cia402::Cia402Drive>(*bus.network, static_cast<canopen::NodeId>(nid), dopt);
-    if (sim != nullptr) return std::make_unique<InProcessAxis>(std::move(drive), *sim, env.clock, *bus.vbus, wanted.node_id);
+    if (sim != nullptr)
+      return std::make_unique<InProcessAxis>(std::move(drive), *sim, env.clock, *bus.vbus, wanted.node_id);
     return drive;
   }
 
@@ -289,19 +307,22 @@ public:
       int started = 0;
       for (auto id : m.nodes()) {
         const auto& st = m.status(id);
-        if (st.boot == canopen::NodeBootState::started) ++started;
+        if (st.boot == canopen::NodeBootState::started)
+          ++started;
         else if (st.boot_error) {
-          r.lines.push_back(fmt::format("canopen {}: node {} boot failed: {} {}", name, id, st.boot_error.message(), st.detail));
+          r.lines.push_back(
+              fmt::format("canopen {}: node {} boot failed: {} {}", name, id, st.boot_error.message(), st.detail));
           r.ok = false;
         }
       }
-      r.lines.push_back(fmt::format("canopen {}: {} of {} node(s) started{}, {} transmit error(s)", name, started, m.nodes().size(),
-                                    bus.simulated ? " (simulated CiA 402 nodes)" : "", bus.network->stats().tx_errors));
+      r.lines.push_back(fmt::format("canopen {}: {} of {} node(s) started{}, {} transmit error(s)", name, started,
+                                    m.nodes().size(), bus.simulated ? " (simulated CiA 402 nodes)" : "",
+                                    bus.network->stats().tx_errors));
     }
     return r;
   }
 
-private:
+ private:
   Bus& get_bus(const std::string& url, bool simulated, const BusMaster& master, RunEnvironment& env) {
     auto it = buses_.find(url);
     if (it != buses_.end()) return it->second;
@@ -323,7 +344,8 @@ private:
       bus.vbus = &registry_->get(parsed->name);
       bus.master_channel = bus.vbus->attach("master");
     } else {
-      auto ch = can::make_channel(url, can::ChannelRequest{env.io->get_executor(), env.clock, registry_.get(), "hilbridge-master"});
+      auto ch = can::make_channel(
+          url, can::ChannelRequest{env.io->get_executor(), env.clock, registry_.get(), "hilbridge-master"});
       if (!ch) {
         bus_error_ = fmt::format("cannot open CAN bus '{}': {}", url, ch.error().message);
         buses_.erase(url);

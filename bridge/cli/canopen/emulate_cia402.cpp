@@ -37,7 +37,8 @@ int run_emulate(const EmulateArgs& a) {
   std::vector<std::unique_ptr<can::Channel>> channels;
   std::vector<std::unique_ptr<mocks::Cia402Node>> nodes;
   for (int n : a.nodes) {
-    auto ch = can::make_channel(a.bus, can::ChannelRequest{io.get_executor(), clock, &vbuses, "cia402-node-" + std::to_string(n)});
+    auto ch = can::make_channel(
+        a.bus, can::ChannelRequest{io.get_executor(), clock, &vbuses, "cia402-node-" + std::to_string(n)});
     if (!ch) {
       std::fprintf(stderr, "hilbridge emulate cia402: --bus %s: %s\n", a.bus.c_str(), ch.error().message.c_str());
       return 1;
@@ -89,14 +90,15 @@ int run_emulate(const EmulateArgs& a) {
 
 void register_emulate_cia402(Context& ctx) {
   auto a = std::make_shared<EmulateArgs>();
-  auto* c = ctx.emulate.add_subcommand("cia402", "Simulated CiA 402 servo drive(s) on a CAN bus (CANopen slave, plant model)");
-  c->add_option("--bus", a->bus,
-                "Bus URL: vcan0, can0, socketcand://HOST[:PORT]/BUS, or virtual:NAME")
-      ->required();
+  auto* c = ctx.emulate.add_subcommand("cia402",
+                                       "Simulated CiA 402 servo drive(s) on a CAN bus (CANopen slave, plant model)");
+  c->add_option("--bus", a->bus, "Bus URL: vcan0, can0, socketcand://HOST[:PORT]/BUS, or virtual:NAME")->required();
   c->add_option("--node", a->nodes, "Node-ID 1..127 (repeat for several nodes)")->required()->check(CLI::Range(1, 127));
-  c->add_option("--duration", a->duration_s, "Stop after this many seconds (default: until SIGINT/SIGTERM)")->check(CLI::NonNegativeNumber);
+  c->add_option("--duration", a->duration_s, "Stop after this many seconds (default: until SIGINT/SIGTERM)")
+      ->check(CLI::NonNegativeNumber);
   c->add_option("--kv", a->kv, "Plant position-loop gain Kv in 1/s (default 50)")->check(CLI::PositiveNumber);
-  c->add_option("--max-velocity", a->max_velocity, "Plant velocity limit in increments/s (default 5e6)")->check(CLI::PositiveNumber);
+  c->add_option("--max-velocity", a->max_velocity, "Plant velocity limit in increments/s (default 5e6)")
+      ->check(CLI::PositiveNumber);
   c->footer(
       "The node's object dictionary is the EDS profiles/canopen/hil_cia402_drive.eds (compiled in).\n"
       "Fault injection over SDO: 0x2100 error code (u16, 0 clears), 0x2101 heartbeat loss (u8),\n"

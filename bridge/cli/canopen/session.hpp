@@ -18,7 +18,7 @@
 namespace hil::cli::canopen_cli {
 
 class BusSession {
-public:
+ public:
   /// Opens `url`; on failure error() says why (and what to do).
   BusSession(const std::string& url, const std::string& participant);
   [[nodiscard]] bool ok() const noexcept { return channel_ != nullptr; }
@@ -31,7 +31,7 @@ public:
   /// Returns whether done() became true.
   bool run(const std::function<bool()>& done, const std::function<void(TimePoint)>& tick, Duration limit);
 
-private:
+ private:
   asio::io_context io_;
   SteadyClock clock_;
   can::VirtualBusRegistry virtual_buses_{clock_};

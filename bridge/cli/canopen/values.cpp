@@ -18,7 +18,7 @@ struct TypeInfo {
   char kind;         // 'i' signed, 'u' unsigned, 'x' hex unsigned, 'r' real, 's' string, 'o' octets, 'b' bool
 };
 constexpr TypeInfo k_types[] = {
-    {"b", 1, 'b'},   {"i8", 1, 'i'},  {"i16", 2, 'i'}, {"i32", 4, 'i'}, {"i64", 8, 'i'},  {"u8", 1, 'u'},
+    {"b", 1, 'b'},   {"i8", 1, 'i'},  {"i16", 2, 'i'}, {"i32", 4, 'i'}, {"i64", 8, 'i'}, {"u8", 1, 'u'},
     {"u16", 2, 'u'}, {"u32", 4, 'u'}, {"u64", 8, 'u'}, {"x8", 1, 'x'},  {"x16", 2, 'x'}, {"x32", 4, 'x'},
     {"x64", 8, 'x'}, {"r32", 4, 'r'}, {"r64", 8, 'r'}, {"vs", 0, 's'},  {"os", 0, 'o'},  {"d", 0, 'o'},
 };
@@ -48,7 +48,9 @@ std::optional<long long> parse_int(std::string_view s) {
 
 }  // namespace
 
-bool is_value_type(std::string_view type) noexcept { return find(type) != nullptr; }
+bool is_value_type(std::string_view type) noexcept {
+  return find(type) != nullptr;
+}
 
 std::string value_types_help() {
   return "b (boolean), i8 i16 i32 i64, u8 u16 u32 u64, x8 x16 x32 x64 (hex), r32 r64, vs (visible string), "
@@ -60,7 +62,9 @@ std::expected<std::vector<std::uint8_t>, std::string> encode_value(std::string_v
   if (t == nullptr) return std::unexpected(fmt::format("unknown type '{}'; use one of: {}", type, value_types_help()));
   std::vector<std::uint8_t> out;
   switch (t->kind) {
-    case 's': out.assign(text.begin(), text.end()); return out;
+    case 's':
+      out.assign(text.begin(), text.end());
+      return out;
     case 'o': {
       std::string hex;
       for (char c : text)
@@ -77,7 +81,8 @@ std::expected<std::vector<std::uint8_t>, std::string> encode_value(std::string_v
     case 'r': {
       double d = 0;
       auto [p, ec] = std::from_chars(text.data(), text.data() + text.size(), d);
-      if (ec != std::errc{} || p != text.data() + text.size()) return std::unexpected(fmt::format("'{}' is not a number", text));
+      if (ec != std::errc{} || p != text.data() + text.size())
+        return std::unexpected(fmt::format("'{}' is not a number", text));
       out.resize(t->size);
       if (t->size == 4) {
         const auto bits = std::bit_cast<std::uint32_t>(static_cast<float>(d));
@@ -87,7 +92,8 @@ std::expected<std::vector<std::uint8_t>, std::string> encode_value(std::string_v
       }
       return out;
     }
-    default: break;
+    default:
+      break;
   }
   auto v = parse_int(text);
   if (!v) return std::unexpected(fmt::format("'{}' is not an integer (decimal or 0x hex)", text));
@@ -116,35 +122,42 @@ std::string format_value(std::string_view type, const std::vector<std::uint8_t>&
     return hex;
   }
   switch (t->kind) {
-    case 's': return std::string(bytes.begin(), bytes.end());
-    case 'o': return hex;
+    case 's':
+      return std::string(bytes.begin(), bytes.end());
+    case 'o':
+      return hex;
     case 'r':
       if (bytes.size() == 4) return fmt::format("{}", std::bit_cast<float>(static_cast<std::uint32_t>(u)));
       if (bytes.size() == 8) return fmt::format("{}", std::bit_cast<double>(static_cast<std::uint64_t>(u)));
       return hex;
-    case 'x': return fmt::format("0x{:0{}X}", u, t->size * 2);
+    case 'x':
+      return fmt::format("0x{:0{}X}", u, t->size * 2);
     case 'i': {
       const auto n = std::min(bytes.size(), t->size);
       long long s = static_cast<long long>(u);
       if (n > 0 && n < 8 && (bytes[n - 1] & 0x80)) s |= static_cast<long long>(~0ULL << (8 * n));
       return fmt::format("{}", s);
     }
-    default: return fmt::format("{}", u);
+    default:
+      return fmt::format("{}", u);
   }
 }
 
 std::expected<std::pair<std::uint16_t, std::uint8_t>, std::string> parse_object(std::string_view text) {
   const auto colon = text.find(':');
   auto idx_text = text.substr(0, colon);
-  if (idx_text.size() > 2 && idx_text[0] == '0' && (idx_text[1] == 'x' || idx_text[1] == 'X')) idx_text.remove_prefix(2);
+  if (idx_text.size() > 2 && idx_text[0] == '0' && (idx_text[1] == 'x' || idx_text[1] == 'X'))
+    idx_text.remove_prefix(2);
   unsigned idx = 0, sub = 0;
   auto [p, ec] = std::from_chars(idx_text.data(), idx_text.data() + idx_text.size(), idx, 16);
   if (idx_text.empty() || ec != std::errc{} || p != idx_text.data() + idx_text.size() || idx > 0xFFFF)
-    return std::unexpected(fmt::format("'{}' is not an object: expected INDEX:SUB in hex, e.g. 0x6041:0 or 1018:1", text));
+    return std::unexpected(
+        fmt::format("'{}' is not an object: expected INDEX:SUB in hex, e.g. 0x6041:0 or 1018:1", text));
   if (colon != std::string_view::npos) {
     auto sub_text = text.substr(colon + 1);
     int base = 16;
-    if (sub_text.size() > 2 && sub_text[0] == '0' && (sub_text[1] == 'x' || sub_text[1] == 'X')) sub_text.remove_prefix(2);
+    if (sub_text.size() > 2 && sub_text[0] == '0' && (sub_text[1] == 'x' || sub_text[1] == 'X'))
+      sub_text.remove_prefix(2);
     auto [q, ec2] = std::from_chars(sub_text.data(), sub_text.data() + sub_text.size(), sub, base);
     if (sub_text.empty() || ec2 != std::errc{} || q != sub_text.data() + sub_text.size() || sub > 0xFF)
       return std::unexpected(fmt::format("'{}': sub-index must be 0..FF (hex)", text));

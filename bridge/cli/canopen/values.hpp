@@ -14,7 +14,8 @@ namespace hil::cli::canopen_cli {
 [[nodiscard]] bool is_value_type(std::string_view type) noexcept;
 [[nodiscard]] std::string value_types_help();
 /// Encode `text` as `type`; the error names the type and the accepted range.
-[[nodiscard]] std::expected<std::vector<std::uint8_t>, std::string> encode_value(std::string_view type, std::string_view text);
+[[nodiscard]] std::expected<std::vector<std::uint8_t>, std::string> encode_value(std::string_view type,
+                                                                                 std::string_view text);
 /// Format `bytes` as `type` (empty type: hex bytes, plus the unsigned value when 1..8 bytes).
 [[nodiscard]] std::string format_value(std::string_view type, const std::vector<std::uint8_t>& bytes);
 /// "0x6041:0", "6041:0", "0x1018:1" -> index, sub.

@@ -33,8 +33,10 @@ struct EmulateOptions {
 int run_emulate(const EmulateOptions& o) {
   const auto colon = o.listen.rfind(':');
   if (colon == std::string::npos) {
-    std::fprintf(stderr, "hilbridge emulate modbus-drive: --listen '%s': expected HOST:PORT (e.g. 127.0.0.1:1502, port 0 = any)\n",
-                 o.listen.c_str());
+    std::fprintf(
+        stderr,
+        "hilbridge emulate modbus-drive: --listen '%s': expected HOST:PORT (e.g. 127.0.0.1:1502, port 0 = any)\n",
+        o.listen.c_str());
     return 2;
   }
   std::string host = o.listen.substr(0, colon);
@@ -76,7 +78,8 @@ int run_emulate(const EmulateOptions& o) {
 
   mocks::ModbusDriveServer server(mocks::DriveDevice(std::move(*profile)), config);
   if (auto ec = server.start()) {
-    std::fprintf(stderr, "hilbridge emulate modbus-drive: cannot listen on %s: %s\n", o.listen.c_str(), ec.message().c_str());
+    std::fprintf(stderr, "hilbridge emulate modbus-drive: cannot listen on %s: %s\n", o.listen.c_str(),
+                 ec.message().c_str());
     return 1;
   }
   // Scripts parse this line for the port (with --listen HOST:0).
@@ -114,16 +117,19 @@ void register_emulate_modbus_drive(Context& ctx) {
       "modbus-drive",
       "Simulated servo/stepper drive on Modbus/TCP: serves a register profile backed by the plant model");
   cmd->add_option("--listen", o->listen,
-                  "HOST:PORT to bind, HOST an address or a host name (default 127.0.0.1:1502, loopback only; 0.0.0.0:502 serves the network; port 0 "
+                  "HOST:PORT to bind, HOST an address or a host name (default 127.0.0.1:1502, loopback only; "
+                  "0.0.0.0:502 serves the network; port 0 "
                   "picks a free port, printed on stdout)");
-  cmd->add_option("--profile", o->profile,
-                  "Register profile: a name in profiles/modbus (cia402, vendor_simple) or a YAML path (default cia402)");
+  cmd->add_option(
+      "--profile", o->profile,
+      "Register profile: a name in profiles/modbus (cia402, vendor_simple) or a YAML path (default cia402)");
   cmd->add_option("--unit", o->unit, "Unit id to answer as (default: the profile's)")->check(CLI::Range(0, 255));
   cmd->add_flag("--strict-unit", o->strict_unit,
                 "Answer only our unit id (and 0/255); others get exception 0B. Default: any unit, like libmodbus");
   cmd->add_option("--step-period-ms", o->step_period_ms, "Plant step period in real time, ms (default 1)")
       ->check(CLI::Range(0.1, 1000.0));
-  cmd->add_option("--max-connections", o->max_connections, "Simultaneous clients (default 64)")->check(CLI::Range(1, 1024));
+  cmd->add_option("--max-connections", o->max_connections, "Simultaneous clients (default 64)")
+      ->check(CLI::Range(1, 1024));
   cmd->add_option("--duration", o->duration_s, "Stop after this many seconds (default: until SIGINT/SIGTERM)")
       ->check(CLI::Range(0.0, 1e7));
   cmd->add_option("--frame-timeout", o->frame_timeout_s,

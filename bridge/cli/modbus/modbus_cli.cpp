@@ -70,12 +70,18 @@ struct Common {
 
 std::optional<modbus::ValueFormat> parse_format(const Common& c, std::string& why) {
   modbus::ValueFormat f;
-  if (c.type == "u16" || c.type == "hex") f = {1, false};
-  else if (c.type == "s16") f = {1, true};
-  else if (c.type == "u32") f = {2, false};
-  else if (c.type == "s32") f = {2, true};
-  else return why = fmt::format("--type '{}': expected u16, s16, u32, s32 or hex", c.type), std::nullopt;
-  if (c.word_order == "low_first") f.order = modbus::WordOrder::low_first;
+  if (c.type == "u16" || c.type == "hex")
+    f = {1, false};
+  else if (c.type == "s16")
+    f = {1, true};
+  else if (c.type == "u32")
+    f = {2, false};
+  else if (c.type == "s32")
+    f = {2, true};
+  else
+    return why = fmt::format("--type '{}': expected u16, s16, u32, s32 or hex", c.type), std::nullopt;
+  if (c.word_order == "low_first")
+    f.order = modbus::WordOrder::low_first;
   else if (c.word_order != "high_first")
     return why = fmt::format("--word-order '{}': expected high_first or low_first", c.word_order), std::nullopt;
   return f;
@@ -96,8 +102,8 @@ CtxPtr connect(const Common& c, const Endpoint& ep, std::string& why) {
   modbus_set_response_timeout(ctx.get(), us / 1000000, us % 1000000);
   modbus_set_slave(ctx.get(), c.unit);
   if (modbus_connect(ctx.get()) != 0) {
-    why = fmt::format("cannot connect to {}:{}: {} (is the drive or `hilbridge emulate modbus-drive` running?)", ep.host,
-                      ep.port, modbus_strerror(errno));
+    why = fmt::format("cannot connect to {}:{}: {} (is the drive or `hilbridge emulate modbus-drive` running?)",
+                      ep.host, ep.port, modbus_strerror(errno));
     ctx.reset();
   }
   return ctx;
@@ -120,7 +126,8 @@ int run_read(const Common& c, int count, bool input) {
   auto fmt_ = parse_format(c, why);
   if (!fmt_) return fail(why);
   const int regs_needed = count * fmt_->words;
-  if (c.address + regs_needed > 65536) return fail(fmt::format("ADDR {} + {} registers runs past 65535", c.address, regs_needed));
+  if (c.address + regs_needed > 65536)
+    return fail(fmt::format("ADDR {} + {} registers runs past 65535", c.address, regs_needed));
   auto ctx = connect(c, *ep, why);
   if (!ctx) return fail(why);
   std::vector<std::uint16_t> regs(static_cast<std::size_t>(regs_needed));
@@ -136,18 +143,21 @@ int run_read(const Common& c, int count, bool input) {
     if (rc != n) {
       const int err = errno;
       if (bar) bar->finish("failed");
-      return fail(fmt::format("FC {} read of {} register(s) at {} from {}:{} unit {} failed: {}", input ? 4 : 3, n, addr,
-                              ep->host, ep->port, c.unit, describe_failure(err)));
+      return fail(fmt::format("FC {} read of {} register(s) at {} from {}:{} unit {} failed: {}", input ? 4 : 3, n,
+                              addr, ep->host, ep->port, c.unit, describe_failure(err)));
     }
     done += n;
     if (bar) bar->update(static_cast<std::uint64_t>(done));
   }
   if (bar) bar->finish("done");
   for (int i = 0; i < count; ++i) {
-    const auto v = modbus::unpack_value(std::span<const std::uint16_t>(regs.data() + i * fmt_->words, fmt_->words), *fmt_);
+    const auto v =
+        modbus::unpack_value(std::span<const std::uint16_t>(regs.data() + i * fmt_->words, fmt_->words), *fmt_);
     const int addr = c.address + i * fmt_->words;
-    if (c.type == "hex") fmt::print("{}: 0x{:04X}\n", addr, v);
-    else fmt::print("{}: {}\n", addr, v);
+    if (c.type == "hex")
+      fmt::print("{}: 0x{:04X}\n", addr, v);
+    else
+      fmt::print("{}: {}\n", addr, v);
   }
   return 0;
 }
@@ -164,7 +174,8 @@ int run_write(const Common& c, const std::vector<std::string>& values, int fc) {
     const bool hex = text.starts_with("0x") || text.starts_with("0X");
     const char* b = text.data() + (hex ? 2 : 0);
     auto [p, ec] = std::from_chars(b, text.data() + text.size(), v, hex ? 16 : 10);
-    if (ec != std::errc{} || p != text.data() + text.size()) return fail(fmt::format("value '{}' is not an integer", text));
+    if (ec != std::errc{} || p != text.data() + text.size())
+      return fail(fmt::format("value '{}' is not an integer", text));
     if (modbus::saturate(v, *f) != v) return fail(fmt::format("value {} does not fit --type {}", v, c.type));
     std::uint16_t r[2] = {};
     modbus::pack_value(v, *f, std::span<std::uint16_t>(r, f->words));
@@ -181,15 +192,16 @@ int run_write(const Common& c, const std::vector<std::string>& values, int fc) {
                          : modbus_write_registers(ctx.get(), c.address, static_cast<int>(regs.size()), regs.data());
   if (rc < 0) {
     const int err = errno;
-    return fail(fmt::format("FC {} write of {} register(s) at {} to {}:{} unit {} failed: {}", fc, regs.size(), c.address,
-                            ep->host, ep->port, c.unit, describe_failure(err)));
+    return fail(fmt::format("FC {} write of {} register(s) at {} to {}:{} unit {} failed: {}", fc, regs.size(),
+                            c.address, ep->host, ep->port, c.unit, describe_failure(err)));
   }
   fmt::print("wrote {} register{} at {} (FC {})\n", regs.size(), regs.size() == 1 ? "" : "s", c.address, fc);
   return 0;
 }
 
 void add_common(CLI::App* cmd, Common& c) {
-  cmd->add_option("endpoint", c.endpoint, "Drive address: HOST, HOST:PORT or [IPv6]:PORT (default port 502)")->required();
+  cmd->add_option("endpoint", c.endpoint, "Drive address: HOST, HOST:PORT or [IPv6]:PORT (default port 502)")
+      ->required();
   cmd->add_option("unit", c.unit, "Unit id (slave id) 0..255; most Modbus/TCP drives accept 1 or 255")
       ->required()
       ->check(CLI::Range(0, 255));

@@ -38,10 +38,13 @@ std::expected<hp::Settings, std::string> parse_settings(const hp::Profile& p, co
     if (!p.setting(name)) {
       std::string known;
       for (const auto& x : p.settings) known += (known.empty() ? "" : ", ") + x.name;
-      return std::unexpected(fmt::format("--set {}: {} has no such setting (settings: {})", name, p.device, known.empty() ? "none" : known));
+      return std::unexpected(fmt::format("--set {}: {} has no such setting (settings: {})", name, p.device,
+                                         known.empty() ? "none" : known));
     }
-    if (auto d = hp::parse_decimal(value)) s[name] = d->to_long_double();
-    else s[name] = value;
+    if (auto d = hp::parse_decimal(value))
+      s[name] = d->to_long_double();
+    else
+      s[name] = value;
   }
   return s;
 }
@@ -60,7 +63,8 @@ std::shared_ptr<const hp::Profile> load(const std::string& device, int& exit_cod
 }
 
 /// Resolves PARAM and its variant for the given settings; prints the reason on failure.
-const hp::ParamVariant* variant_for(const hp::Profile& p, const std::string& param, const hp::Settings& s, hp::ParamRef& ref, int& exit_code) {
+const hp::ParamVariant* variant_for(const hp::Profile& p, const std::string& param, const hp::Settings& s,
+                                    hp::ParamRef& ref, int& exit_code) {
   auto r = p.resolve(param);
   if (!r) {
     fmt::print(stderr, "error: {} has no parameter '{}' (see: hilbridge profile show {})\n", p.device, param, p.device);
@@ -74,15 +78,16 @@ const hp::ParamVariant* variant_for(const hp::Profile& p, const std::string& par
   if (!v) {
     std::string conds;
     for (const auto& x : ref.spec->variants) conds += (conds.empty() ? "" : " | ") + x.when.text();
-    fmt::print(stderr, "error: {} does not exist for this configuration; it applies when {} (choose with --set)\n", ref.id(), conds);
+    fmt::print(stderr, "error: {} does not exist for this configuration; it applies when {} (choose with --set)\n",
+               ref.id(), conds);
     exit_code = 2;
     return nullptr;
   }
   return v;
 }
 
-void print_field_problems(const hp::ParamRef& ref, const hp::ParamVariant& v, const hp::ParamValue& value, const hp::Profile& p,
-                          const hp::Settings& s, int& exit_code) {
+void print_field_problems(const hp::ParamRef& ref, const hp::ParamVariant& v, const hp::ParamValue& value,
+                          const hp::Profile& p, const hp::Settings& s, int& exit_code) {
   hp::ParameterSet empty;
   const hp::Scope scope(p, &empty, s);
   for (std::size_t i = 0; i < v.fields.size() && i < value.size(); ++i)
@@ -145,8 +150,9 @@ void run_show(Context& ctx, const Options& o) {
     for (const auto& c : p->catalogues)
       if (auto code = c->parse_code(o.param); code && c->find(*code)) {
         const auto* e = c->find(*code);
-        fmt::print("{} {} ({}): {}{}\n  cause: {}\n  remedy: {}\n  reaction: {}; acknowledge: {}\n", c->id(), e->code_text, c->category().name(),
-                   e->text, e->text_de.empty() ? "" : " [" + e->text_de + "]", e->cause, e->remedy, hp::to_string(e->reaction), e->acknowledge);
+        fmt::print("{} {} ({}): {}{}\n  cause: {}\n  remedy: {}\n  reaction: {}; acknowledge: {}\n", c->id(),
+                   e->code_text, c->category().name(), e->text, e->text_de.empty() ? "" : " [" + e->text_de + "]",
+                   e->cause, e->remedy, hp::to_string(e->reaction), e->acknowledge);
         found = true;
       }
     if (found) return;
@@ -194,7 +200,8 @@ void run_validate(Context& ctx, const Options& o) {
   if (problems.empty()) {
     fmt::print("{}: valid {} parameter set ({} parameters)\n", o.file, p->device, parsed.set.entries.size());
   } else {
-    fmt::print("{}: {} problem(s) in a {} parameter set of {} parameters\n", o.file, problems.size(), p->device, parsed.set.entries.size());
+    fmt::print("{}: {} problem(s) in a {} parameter set of {} parameters\n", o.file, problems.size(), p->device,
+               parsed.set.entries.size());
     ctx.exit_code = 1;
   }
 }
@@ -273,7 +280,8 @@ void run_decode(Context& ctx, const Options& o) {
     const auto& f = v->fields[i];
     if (f.type == hp::FieldType::bits)
       if (const auto* d = std::get_if<hp::Decimal>(&(*value)[i]))
-        if (auto b = hp::parse_bit_field(static_cast<std::uint64_t>(d->units), f.bits)) fmt::print("  {}: {}\n", f.name, hp::bit_field_text(*b, f.bits));
+        if (auto b = hp::parse_bit_field(static_cast<std::uint64_t>(d->units), f.bits))
+          fmt::print("  {}: {}\n", f.name, hp::bit_field_text(*b, f.bits));
     if (f.type == hp::FieldType::choice)
       if (const auto* d = std::get_if<hp::Decimal>(&(*value)[i]))
         for (const auto& c : f.choices)
@@ -286,41 +294,59 @@ void run_decode(Context& ctx, const Options& o) {
 
 void register_profile(Context& ctx) {
   auto opts = std::make_shared<Options>();
-  auto* cmd = ctx.app.add_subcommand("profile",
-                                     "Device profiles of the legacy controllers (CLM1.4, SINUMERIK ELG, IP247, WF 725/726, AMKASYN SF):\n"
-                                     "parameters, value codecs, validation of parameter sets and error catalogues.\n"
-                                     "Profiles are YAML files found in $HILBRIDGE_PROFILES, <exe>/../profiles/devices or the source tree.");
+  auto* cmd = ctx.app.add_subcommand(
+      "profile",
+      "Device profiles of the legacy controllers (CLM1.4, SINUMERIK ELG, IP247, WF 725/726, AMKASYN SF):\n"
+      "parameters, value codecs, validation of parameter sets and error catalogues.\n"
+      "Profiles are YAML files found in $HILBRIDGE_PROFILES, <exe>/../profiles/devices or the source tree.");
   cmd->require_subcommand(1);
 
   auto* list = cmd->add_subcommand("list", "List the device profiles found, with parameter and error-code counts");
   list->callback([&ctx] { run_list(ctx); });
 
-  auto* show = cmd->add_subcommand("show", "Show a profile, one parameter (every variant, field, range, default, rule) or an error catalogue");
-  show->add_option("device", opts->device, "Device name, e.g. clm14, wf725-726, ip247, sinumerik-elg, amkasyn-sf")->required();
-  show->add_option("param", opts->param, "Parameter id (A106, MD11, DW5, fmax, MD396*) or an error code of a catalogue");
+  auto* show = cmd->add_subcommand(
+      "show", "Show a profile, one parameter (every variant, field, range, default, rule) or an error catalogue");
+  show->add_option("device", opts->device, "Device name, e.g. clm14, wf725-726, ip247, sinumerik-elg, amkasyn-sf")
+      ->required();
+  show->add_option("param", opts->param,
+                   "Parameter id (A106, MD11, DW5, fmax, MD396*) or an error code of a catalogue");
   show->add_flag("--errors", opts->show_errors, "List the error catalogues (all, or the one named by --catalogue)");
-  show->add_option("--catalogue", opts->errors, "Error catalogue to list with --errors (e.g. diagnostic, serial, traversing)");
+  show->add_option("--catalogue", opts->errors,
+                   "Error catalogue to list with --errors (e.g. diagnostic, serial, traversing)");
   show->callback([&ctx, opts] { run_show(ctx, *opts); });
 
-  auto* validate = cmd->add_subcommand("validate",
-                                       "Validate a parameter set in the device's own text format; every problem is listed with its line.\n"
-                                       "Exit code 0 = valid, 1 = problems found, 2 = usage error.");
+  auto* validate = cmd->add_subcommand(
+      "validate",
+      "Validate a parameter set in the device's own text format; every problem is listed with its line.\n"
+      "Exit code 0 = valid, 1 = problems found, 2 = usage error.");
   validate->add_option("device", opts->device, "Device name")->required();
-  validate->add_option("file", opts->file, "Parameter set file (CLM K telegrams, WF 'MD n = v', IP247 S5 DB listing, ELG %TEA1/%SEA tape, AMK DB lines)")
+  validate
+      ->add_option(
+          "file", opts->file,
+          "Parameter set file (CLM K telegrams, WF 'MD n = v', IP247 S5 DB listing, ELG %TEA1/%SEA tape, AMK DB lines)")
       ->required();
-  validate->add_option("--set", opts->sets, "Setting name=value (e.g. module=WF726C, hardware_axes=2, id2_ms=2); repeatable");
+  validate->add_option("--set", opts->sets,
+                       "Setting name=value (e.g. module=WF726C, hardware_axes=2, id2_ms=2); repeatable");
   validate->add_flag("--partial", opts->partial, "Do not report parameters missing from the set");
   validate->callback([&ctx, opts] { run_validate(ctx, *opts); });
 
-  auto* encode = cmd->add_subcommand("encode", "Print a value's wire form (telegram field text, BCD and binary words, data words, tape block)");
+  auto* encode = cmd->add_subcommand(
+      "encode", "Print a value's wire form (telegram field text, BCD and binary words, data words, tape block)");
   encode->add_option("device", opts->device, "Device name")->required();
   encode->add_option("param", opts->param, "Parameter id")->required();
-  encode->add_option("value", opts->value, "Value in the parameter's unit; several fields space-separated in one argument (\"3000 10\"); after -- for negative values")
+  encode
+      ->add_option("value", opts->value,
+                   "Value in the parameter's unit; several fields space-separated in one argument (\"3000 10\"); after "
+                   "-- for negative values")
       ->required();
-  encode->add_option("--set", opts->sets, "Setting name=value selecting the variant (e.g. control=AK, resolution=10, sf_type=6); repeatable");
+  encode->add_option(
+      "--set", opts->sets,
+      "Setting name=value selecting the variant (e.g. control=AK, resolution=10, sf_type=6); repeatable");
   encode->callback([&ctx, opts] { run_encode(ctx, *opts); });
 
-  auto* decode = cmd->add_subcommand("decode", "Decode a wire form back to the value (\"03000 10.0\", \"8002 4537\", \"HEX FFFF A027\", \"0000 1388\")");
+  auto* decode = cmd->add_subcommand(
+      "decode",
+      "Decode a wire form back to the value (\"03000 10.0\", \"8002 4537\", \"HEX FFFF A027\", \"0000 1388\")");
   decode->add_option("device", opts->device, "Device name")->required();
   decode->add_option("param", opts->param, "Parameter id")->required();
   decode->add_option("wire", opts->value, "Wire form as printed by encode")->required();

@@ -12,7 +12,8 @@ std::string range_text(const hp::FieldSpec& f) {
   std::string s;
   for (const auto& r : f.ranges) {
     std::string one;
-    if (r.min.is_set() || r.max.is_set()) one = fmt::format("{}..{}", r.min.is_set() ? r.min.text() : "", r.max.is_set() ? r.max.text() : "");
+    if (r.min.is_set() || r.max.is_set())
+      one = fmt::format("{}..{}", r.min.is_set() ? r.min.text() : "", r.max.is_set() ? r.max.text() : "");
     if (!r.allowed.empty()) {
       std::string list;
       for (const auto& a : r.allowed) list += (list.empty() ? "" : ", ") + a.to_string();
@@ -31,10 +32,14 @@ std::string field_format(const hp::FieldSpec& f, hp::Encoding enc) {
       for (const auto& x : f.io_types) t += x;
       return fmt::format("I/O address ({}x.yy.z or 00.00.0)", t);
     }
-    case hp::FieldType::hex: return fmt::format("{} hex digits", f.hex_digits);
-    case hp::FieldType::reserved: return f.fixed_text.empty() ? "reserved (empty)" : "reserved \"" + f.fixed_text + "\"";
-    case hp::FieldType::bits: return fmt::format("{}-bit field{}", f.bits.bits, f.binary_text ? " (binary digits)" : "");
-    default: break;
+    case hp::FieldType::hex:
+      return fmt::format("{} hex digits", f.hex_digits);
+    case hp::FieldType::reserved:
+      return f.fixed_text.empty() ? "reserved (empty)" : "reserved \"" + f.fixed_text + "\"";
+    case hp::FieldType::bits:
+      return fmt::format("{}-bit field{}", f.bits.bits, f.binary_text ? " (binary digits)" : "");
+    default:
+      break;
   }
   if (enc == hp::Encoding::text) return "text " + f.text.to_string();
   std::string s(hp::to_string(enc));
@@ -75,14 +80,16 @@ void print_overview(const hp::Profile& p) {
   }
   if (!p.constraints.empty()) {
     fmt::print("\nrules:\n");
-    for (const auto& c : p.constraints) fmt::print("  {:<32} {}{}\n", c.id, c.rule.text(), c.when.empty() ? "" : "  when " + c.when.text());
+    for (const auto& c : p.constraints)
+      fmt::print("  {:<32} {}{}\n", c.id, c.rule.text(), c.when.empty() ? "" : "  when " + c.when.text());
   }
   fmt::print("\nerror catalogues (profile show {} --errors NAME):\n", p.device);
   for (const auto& c : p.catalogues) fmt::print("  {:<18} {} codes  {}\n", c->id(), c->entries().size(), c->title());
   if (!p.decisions.empty()) {
     fmt::print("\ndecisions where the manual is unclear:\n");
     for (const auto& d : p.decisions)
-      fmt::print("  - {}: {}{}\n", d.topic, d.choice, d.configurable.empty() ? "" : " (configurable: " + d.configurable + ")");
+      fmt::print("  - {}: {}{}\n", d.topic, d.choice,
+                 d.configurable.empty() ? "" : " (configurable: " + d.configurable + ")");
   }
   if (!p.tables.empty()) {
     fmt::print("\ndata tables:");
@@ -93,7 +100,8 @@ void print_overview(const hp::Profile& p) {
 
 void print_parameter(const hp::Profile& p, const hp::ParamRef& ref) {
   const auto& spec = *ref.spec;
-  fmt::print("{} ({}{}, group {})\n", ref.id(), spec.id, ref.instance ? fmt::format(", {} {}", spec.instance_key, *ref.instance) : "",
+  fmt::print("{} ({}{}, group {})\n", ref.id(), spec.id,
+             ref.instance ? fmt::format(", {} {}", spec.instance_key, *ref.instance) : "",
              spec.group.empty() ? "-" : spec.group);
   if (!spec.aliases.empty()) {
     std::string a;
@@ -101,7 +109,8 @@ void print_parameter(const hp::Profile& p, const hp::ParamRef& ref) {
     fmt::print("aliases: {}\n", a);
   }
   if (!spec.source.empty()) fmt::print("source: {}\n", spec.source);
-  if (!spec.required.empty()) fmt::print("required: {}\n", spec.required.text() == "1" ? "yes" : "when " + spec.required.text());
+  if (!spec.required.empty())
+    fmt::print("required: {}\n", spec.required.text() == "1" ? "yes" : "when " + spec.required.text());
   for (std::size_t i = 0; i < spec.variants.size(); ++i) {
     const auto& v = spec.variants[i];
     fmt::print("\n{}{}\n", spec.variants.size() > 1 ? fmt::format("variant {}: ", i + 1) : "",
@@ -116,11 +125,12 @@ void print_parameter(const hp::Profile& p, const hp::ParamRef& ref) {
       if (!f.meaning.empty()) fmt::print("    meaning: {}\n", f.meaning);
       if (!f.unit.empty()) fmt::print("    unit:    {}\n", f.unit);
       if (const auto r = range_text(f); !r.empty()) fmt::print("    range:   {}\n", r);
-      for (const auto& s : f.steps) fmt::print("    step:    {}{}\n", s.step.text(), s.when.empty() ? "" : " when " + s.when.text());
+      for (const auto& s : f.steps)
+        fmt::print("    step:    {}{}\n", s.step.text(), s.when.empty() ? "" : " when " + s.when.text());
       for (const auto& c : f.choices) fmt::print("    {:>6} = {}\n", c.value, c.meaning);
       for (const auto& b : f.bits.fields)
-        fmt::print("    bit {}{}: {}{}\n", b.first, b.width > 1 ? fmt::format("..{}", b.first + b.width - 1) : "", b.name,
-                   b.meaning.empty() ? "" : " — " + b.meaning);
+        fmt::print("    bit {}{}: {}{}\n", b.first, b.width > 1 ? fmt::format("..{}", b.first + b.width - 1) : "",
+                   b.name, b.meaning.empty() ? "" : " — " + b.meaning);
       if (f.default_value) fmt::print("    default: {}\n", hp::to_string(*f.default_value));
       if (!f.note.empty()) fmt::print("    note:    {}\n", f.note);
     }

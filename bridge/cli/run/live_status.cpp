@@ -43,9 +43,9 @@ void LiveStatus::draw(Duration t, const runtime::Machine& machine) {
     const std::string& u = a.spec->units;
     std::string fault = st.fault ? "  " + st.fault.describe() : "";
     if (fault.size() > 70) fault = fault.substr(0, 67) + "...";
-    block += fmt::format("  {:<8} pos {:>11.3f} {:<3} vel {:>10.3f} {}/s  fe {:>8.4f} {:<3} {:<10}{}{}",
-                         a.spec->name, st.position, u, st.velocity, u, st.following_error, u,
-                         motion::to_string(st.state), fault, eol);
+    block +=
+        fmt::format("  {:<8} pos {:>11.3f} {:<3} vel {:>10.3f} {}/s  fe {:>8.4f} {:<3} {:<10}{}{}", a.spec->name,
+                    st.position, u, st.velocity, u, st.following_error, u, motion::to_string(st.state), fault, eol);
   }
   std::fputs(block.c_str(), out_);
   std::fflush(out_);

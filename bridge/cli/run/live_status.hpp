@@ -12,13 +12,13 @@
 namespace hil::cli {
 
 class LiveStatus final : public runtime::RunObserver {
-public:
+ public:
   explicit LiveStatus(std::FILE* out = stdout);
   void on_start(const runtime::Scenario& scenario, const runtime::Machine& machine) override;
   void on_cycle(Duration t, const runtime::Machine& machine) noexcept override;
   void on_finish(const runtime::RunResult& result) override;
 
-private:
+ private:
   void draw(Duration t, const runtime::Machine& machine);
   std::FILE* out_;
   bool tty_;

@@ -7,18 +7,19 @@ namespace hil::cli {
 
 std::string describe_scheduler(const runtime::SchedulerStats& s) {
   const auto us = [](Duration d) { return std::chrono::duration<double, std::micro>(d).count(); };
-  std::string out = fmt::format("{} cycles at {:.3f} ms, {:.3f} s {} in {:.3f} s wall", s.cycles,
-                                to_seconds(s.period) * 1e3, to_seconds(s.simulated),
-                                s.virtual_time ? "virtual time" : "real time", to_seconds(s.wall));
+  std::string out =
+      fmt::format("{} cycles at {:.3f} ms, {:.3f} s {} in {:.3f} s wall", s.cycles, to_seconds(s.period) * 1e3,
+                  to_seconds(s.simulated), s.virtual_time ? "virtual time" : "real time", to_seconds(s.wall));
   if (s.virtual_time) {
     if (s.wall > Duration::zero())
       out += fmt::format(" ({:.0f}x real time)", to_seconds(s.simulated) / to_seconds(s.wall));
     return out;
   }
-  out += fmt::format("; wake-up latency min/mean/p99/max {:.0f}/{:.0f}/{:.0f}/{:.0f} us; longest cycle {:.0f} us; "
-                     "{} overruns, {} skipped cycles",
-                     us(s.wake_latency.min()), us(s.wake_latency.mean()), us(s.wake_latency.percentile(0.99)),
-                     us(s.wake_latency.max()), us(s.max_cycle_work), s.overruns, s.skipped_cycles);
+  out += fmt::format(
+      "; wake-up latency min/mean/p99/max {:.0f}/{:.0f}/{:.0f}/{:.0f} us; longest cycle {:.0f} us; "
+      "{} overruns, {} skipped cycles",
+      us(s.wake_latency.min()), us(s.wake_latency.mean()), us(s.wake_latency.percentile(0.99)),
+      us(s.wake_latency.max()), us(s.max_cycle_work), s.overruns, s.skipped_cycles);
   return out;
 }
 
@@ -29,8 +30,8 @@ void print_summary(std::FILE* out, const runtime::RunResult& r) {
   for (const auto& a : r.axes) {
     std::string faults = a.faults.empty() ? "none" : "";
     for (const auto& f : a.faults)
-      faults += fmt::format("{}t={:.3f} s {} {}", faults.empty() ? "" : "; ", to_seconds(f.t), f.source,
-                            f.fault.describe());
+      faults +=
+          fmt::format("{}t={:.3f} s {} {}", faults.empty() ? "" : "; ", to_seconds(f.t), f.source, f.fault.describe());
     fmt::print(out, "  {:<8} {:>12.4f} {:<3} {:>14} {:>10.4f} {:<3} at {:>7.3f} s  {}\n", a.name, a.final_position,
                a.units, a.final_state, a.max_following_error, a.units, to_seconds(a.max_following_error_t), faults);
   }

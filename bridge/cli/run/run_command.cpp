@@ -77,7 +77,8 @@ int run_command(Context& ctx, const RunArgs& args) {
 void register_run(Context& ctx) {
   auto args = std::make_shared<RunArgs>();
   // One line for `hilbridge --help`; the details go to the footer of `hilbridge run --help`.
-  auto* run = ctx.app.add_subcommand("run", "Run a motion scenario on real time or --virtual (no file: the bundled demo)");
+  auto* run =
+      ctx.app.add_subcommand("run", "Run a motion scenario on real time or --virtual (no file: the bundled demo)");
   run->footer(
       "Run a motion scenario (YAML: machine + program + expectations) on real time, or as fast as\n"
       "possible with --virtual. With no file, runs the bundled demo examples/demo.yaml (three axes on\n"

@@ -32,15 +32,19 @@ std::vector<runtime::RunObserver*> RunOutputs::observers() {
 std::optional<std::string> RunOutputs::close(const runtime::RunResult&) {
   std::optional<std::string> err;
   if (trace_) {
-    if (auto ec = trace_->close()) err = fmt::format("writing the trace file {} failed: {}", trace_path_, ec.message());
-    else written_.push_back(fmt::format("{} ({} rows)", trace_path_, trace_->rows()));
+    if (auto ec = trace_->close())
+      err = fmt::format("writing the trace file {} failed: {}", trace_path_, ec.message());
+    else
+      written_.push_back(fmt::format("{} ({} rows)", trace_path_, trace_->rows()));
   }
   if (plot_) {
     std::ofstream out(plot_path_, std::ios::trunc);
     out << runtime::render_svg(plot_->data());
     out.close();
-    if (!out) err = fmt::format("writing the plot file {} failed", plot_path_);
-    else written_.push_back(plot_path_);
+    if (!out)
+      err = fmt::format("writing the plot file {} failed", plot_path_);
+    else
+      written_.push_back(plot_path_);
   }
   return err;
 }

@@ -12,7 +12,7 @@
 namespace hil::cli {
 
 class RunOutputs {
-public:
+ public:
   /// Opens the trace file now (so a bad path fails before the run); empty paths are skipped.
   [[nodiscard]] std::optional<std::string> open(const std::string& trace, const std::string& plot);
   [[nodiscard]] std::vector<runtime::RunObserver*> observers();
@@ -20,7 +20,7 @@ public:
   [[nodiscard]] std::optional<std::string> close(const runtime::RunResult& result);
   [[nodiscard]] const std::vector<std::string>& written() const noexcept { return written_; }
 
-private:
+ private:
   std::string trace_path_, plot_path_;
   std::optional<runtime::TraceCsvWriter> trace_;
   std::optional<runtime::PlotRecorder> plot_;

@@ -81,8 +81,10 @@ int test_command(Context& ctx, const TestArgs& args) {
       runtime::RunOptions options;
       options.virtual_time = true;
       auto r = runtime::run_scenario(*scenario, ctx.transports, options);
-      if (r) o.result = std::move(*r);
-      else o.error = r.error().describe();
+      if (r)
+        o.result = std::move(*r);
+      else
+        o.error = r.error().describe();
     } else {
       o.error = scenario.error().describe();
     }
@@ -96,8 +98,9 @@ int test_command(Context& ctx, const TestArgs& args) {
       for (const auto& e : r.expectations)
         if (!e.passed || args.verbose)
           fmt::print("  {} axis {}: {}{}\n", e.passed ? "pass" : "FAIL", e.axis, e.description,
-                     e.passed ? "" : fmt::format("\n       expected {}, {} ({}:{} {})", e.description, e.detail,
-                                                 o.file, e.line, e.path));
+                     e.passed ? ""
+                              : fmt::format("\n       expected {}, {} ({}:{} {})", e.description, e.detail, o.file,
+                                            e.line, e.path));
       for (const auto& f : r.failures)
         if (!f.starts_with("axis ") || f.find(": expected ") == std::string::npos) fmt::print("  FAIL {}\n", f);
       if (r.ok) ++passed;
@@ -124,7 +127,8 @@ int test_command(Context& ctx, const TestArgs& args) {
 void register_test_command(Context& ctx) {
   auto args = std::make_shared<TestArgs>();
   // One line for `hilbridge --help`; the details go to the footer of `hilbridge test --help`.
-  auto* test = ctx.app.add_subcommand("test", "Run scenario files as tests on virtual time; JUnit XML; exit 1 on a failure");
+  auto* test =
+      ctx.app.add_subcommand("test", "Run scenario files as tests on virtual time; JUnit XML; exit 1 on a failure");
   test->footer(
       "Run scenario files as tests: each on virtual time as fast as the CPU allows, checking its\n"
       "'expect:' entries (position within tolerance at/by a time, a fault code by a time, a state,\n"

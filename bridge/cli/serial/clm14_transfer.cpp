@@ -24,7 +24,9 @@ std::string header_for(clm::FileKind k, int axes) {
   return k == clm::FileKind::program
              ? "hilbridge clm14 program\nCLM1.4 NC program: one instruction per line, \"NNNN MNEMONIC operands\" "
                "(fixed field widths as the device lists them)"
-             : fmt::format("hilbridge clm14 parameters ({} axes)\nCLM1.4 parameters: \"NUMBER data\" as in the K telegram", axes);
+             : fmt::format(
+                   "hilbridge clm14 parameters ({} axes)\nCLM1.4 parameters: \"NUMBER data\" as in the K telegram",
+                   axes);
 }
 
 std::expected<clm::FileKind, std::string> kind_of(const TransferOptions& o, std::string_view text) {
@@ -70,7 +72,8 @@ int clm14_download(const TransferOptions& o) {
   install_interrupt_handler();
   ProgressBar bar(fmt::format("download {}", *kind == clm::FileKind::program ? "program" : "parameters"), keys.size(),
                   *kind == clm::FileKind::program ? "lines" : "params", clock);
-  auto items = hil::serial::download_items(dev, keys, [&](std::size_t d, std::size_t) { bar.update(d); }, &interrupted());
+  auto items = hil::serial::download_items(
+      dev, keys, [&](std::size_t d, std::size_t) { bar.update(d); }, &interrupted());
   if (!items) {
     bar.finish("failed");
     fmt::print(stderr, "error: {}\n{} was not written.\n", items.error().message, o.file);
@@ -89,7 +92,8 @@ int clm14_download(const TransferOptions& o) {
     fmt::print(stderr, "error: writing {}: {}\n", o.file, w.error().message());
     return 1;
   }
-  fmt::print("{}: {} {} written{}\n", o.file, file.items.size(), *kind == clm::FileKind::program ? "program lines" : "parameters",
+  fmt::print("{}: {} {} written{}\n", o.file, file.items.size(),
+             *kind == clm::FileKind::program ? "program lines" : "parameters",
              w->empty() ? std::string{} : fmt::format(" (previous content kept as {})", w->string()));
   return 0;
 }
@@ -121,14 +125,17 @@ int clm14_upload(const TransferOptions& o) {
     return 2;
   }
   const auto items = clm::to_items(*file);
-  hil::serial::ResumeJournal journal{fmt::format("clm14 {} on {} station {}", *kind == clm::FileKind::program ? "program" : "parameters",
-                                                 o.link.port, o.link.station),
-                                     hil::serial::content_hash(text), 0};
+  hil::serial::ResumeJournal journal{
+      fmt::format("clm14 {} on {} station {}", *kind == clm::FileKind::program ? "program" : "parameters", o.link.port,
+                  o.link.station),
+      hil::serial::content_hash(text), 0};
   if (o.resume) {
     if (auto j = hil::serial::ResumeJournal::load(o.file)) {
       if (j->hash != journal.hash && !o.force) {
-        fmt::print(stderr, "error: {} changed since the interrupted upload; resume would mix two versions. Upload from the "
-                           "start (without --resume) or give --force.\n", o.file);
+        fmt::print(stderr,
+                   "error: {} changed since the interrupted upload; resume would mix two versions. Upload from the "
+                   "start (without --resume) or give --force.\n",
+                   o.file);
         return 2;
       }
       journal.next = std::min(j->next, items.size());
@@ -152,7 +159,8 @@ int clm14_upload(const TransferOptions& o) {
   bar.update(journal.next);
   std::size_t since_save = 0;
   auto report = hil::serial::upload_items(
-      dev, items, journal.next, [&](std::size_t d, std::size_t) { bar.update(d); }, &interrupted(), [&](std::size_t idx) {
+      dev, items, journal.next, [&](std::size_t d, std::size_t) { bar.update(d); }, &interrupted(),
+      [&](std::size_t idx) {
         journal.next = idx + 1;
         if (++since_save >= 25) {  // a crash loses at most 25 confirmed items of progress
           since_save = 0;
@@ -164,8 +172,9 @@ int clm14_upload(const TransferOptions& o) {
     (void)journal.save(o.file);
     fmt::print(stderr, "upload of {} incomplete: {}\n", o.file, report.describe());
     if (report.error && report.error->code == clm::SerialError::invalid_mode)
-      fmt::print(stderr, "The CLM accepts parameters only in Parameter mode: set input X3/1 (Parameter) and clear X3/2 (Auto), "
-                         "or I2.00.0 over the fieldbus, then resume.\n");
+      fmt::print(stderr,
+                 "The CLM accepts parameters only in Parameter mode: set input X3/1 (Parameter) and clear X3/2 (Auto), "
+                 "or I2.00.0 over the fieldbus, then resume.\n");
     fmt::print(stderr, "Resume with the same command plus --resume.\n");
     return 1;
   }

@@ -22,7 +22,8 @@ namespace {
 std::expected<std::vector<tp::ElgSection>, std::string> read_section(hil::serial::ByteStream& s, const Clock& clock,
                                                                      Duration char_timeout, ProgressBar& bar) {
   const std::uint8_t dc2 = 0x12;
-  if (auto ec = s.write(std::span(&dc2, 1), std::chrono::seconds(5))) return std::unexpected("sending Data Start: " + ec.message());
+  if (auto ec = s.write(std::span(&dc2, 1), std::chrono::seconds(5)))
+    return std::unexpected("sending Data Start: " + ec.message());
   tp::TapeReader reader(tp::TapeReaderOptions{.accept_eia = false});
   std::vector<std::string> blocks;
   std::vector<tp::TapeEvent> ev;
@@ -50,7 +51,8 @@ std::expected<std::vector<tp::ElgSection>, std::string> read_section(hil::serial
       return std::unexpected(fmt::format("line error while reading the tape: {}", r.error.message()));
   }
   auto sections = tp::parse_elg_blocks(blocks);
-  if (!sections) return std::unexpected(fmt::format("tape content: {}: {}", sections.error().block, sections.error().message));
+  if (!sections)
+    return std::unexpected(fmt::format("tape content: {}: {}", sections.error().block, sections.error().message));
   return *sections;
 }
 
@@ -154,8 +156,10 @@ int elg_upload(const TransferOptions& o) {
     // The ELG's time monitoring allows 60 s of XOFF.
     if (auto ec = (*link)->write(std::span(tape->data() + pos, n), std::chrono::seconds(60))) {
       bar.finish("failed");
-      fmt::print(stderr, "upload of {} stopped after {} of {} tape bytes: {}\nThe ELG takes over a tape only when it was read "
-                         "completely: its data are unchanged. Send the tape again.\n", o.file, pos, tape->size(), ec.message());
+      fmt::print(stderr,
+                 "upload of {} stopped after {} of {} tape bytes: {}\nThe ELG takes over a tape only when it was read "
+                 "completely: its data are unchanged. Send the tape again.\n",
+                 o.file, pos, tape->size(), ec.message());
       return 1;
     }
     pos += n;
@@ -163,7 +167,8 @@ int elg_upload(const TransferOptions& o) {
   }
   if (pos < tape->size()) {
     bar.finish("interrupted");
-    fmt::print(stderr, "upload interrupted after {} of {} tape bytes; the ELG discards an incomplete tape.\n", pos, tape->size());
+    fmt::print(stderr, "upload interrupted after {} of {} tape bytes; the ELG discards an incomplete tape.\n", pos,
+               tape->size());
     return 1;
   }
   bar.finish("done");
@@ -189,7 +194,8 @@ int elg_upload(const TransferOptions& o) {
     }
   }
   if (diffs > 0) {
-    fmt::print(stderr, "error: {} datum/data differ after upload (the ELG rejected the tape? check its alarm)\n", diffs);
+    fmt::print(stderr, "error: {} datum/data differ after upload (the ELG rejected the tape? check its alarm)\n",
+               diffs);
     return 1;
   }
   fmt::print("verified: the ELG holds every datum of {}\n", o.file);

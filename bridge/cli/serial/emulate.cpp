@@ -8,9 +8,9 @@
 
 #include <cstdio>
 #include <cstdlib>
+#include <iostream>
 #include <mutex>
 #include <optional>
-#include <iostream>
 #include <thread>
 
 #include "hil/serial/linux/ports.hpp"
@@ -35,9 +35,12 @@ void add_emulate_options(CLI::App& cmd, EmulateOptions& o) {
 
 std::filesystem::path default_state_path(const std::string& device) {
   std::filesystem::path base;
-  if (const char* x = std::getenv("XDG_STATE_HOME"); x != nullptr && *x != '\0') base = x;
-  else if (const char* h = std::getenv("HOME"); h != nullptr) base = std::filesystem::path(h) / ".local" / "state";
-  else base = std::filesystem::temp_directory_path();
+  if (const char* x = std::getenv("XDG_STATE_HOME"); x != nullptr && *x != '\0')
+    base = x;
+  else if (const char* h = std::getenv("HOME"); h != nullptr)
+    base = std::filesystem::path(h) / ".local" / "state";
+  else
+    base = std::filesystem::temp_directory_path();
   return base / "hilbridge" / (device + ".json");
 }
 
@@ -137,8 +140,10 @@ int serve(mocks::legacy::Endpoint& endpoint, const EmulateOptions& o, const std:
     }
     {
       std::lock_guard lock(endpoint_mutex);
-      if (host) host->with_endpoint([&](mocks::legacy::Endpoint& e) { reply = on_command(e, cmd); });
-      else reply = on_command(endpoint, cmd);
+      if (host)
+        host->with_endpoint([&](mocks::legacy::Endpoint& e) { reply = on_command(e, cmd); });
+      else
+        reply = on_command(endpoint, cmd);
     }
     fmt::print("{}\n", reply);
     std::fflush(stdout);

@@ -14,10 +14,10 @@ namespace hil::cli::serial_cli {
 
 struct EmulateOptions {
   bool pty = false;
-  int tcp_port = -1;           ///< >= 0: listen on this TCP port (0 = any free port)
+  int tcp_port = -1;  ///< >= 0: listen on this TCP port (0 = any free port)
   std::string bind = "127.0.0.1";
-  LinkOptions link;            ///< baud/format/flow for the emulator's side of the line
-  std::string state_file;      ///< "" = default path per device; "none" = no persistence
+  LinkOptions link;        ///< baud/format/flow for the emulator's side of the line
+  std::string state_file;  ///< "" = default path per device; "none" = no persistence
 };
 
 void add_emulate_options(CLI::App& cmd, EmulateOptions& o);

@@ -21,7 +21,8 @@ namespace {
 
 std::filesystem::path resolve_state(const EmulateOptions& o, const std::string& device) {
   if (o.state_file == "none") return {};
-  const std::filesystem::path p = o.state_file.empty() ? default_state_path(device) : std::filesystem::path(o.state_file);
+  const std::filesystem::path p =
+      o.state_file.empty() ? default_state_path(device) : std::filesystem::path(o.state_file);
   std::error_code ec;
   if (p.has_parent_path()) std::filesystem::create_directories(p.parent_path(), ec);
   return p;
@@ -56,16 +57,20 @@ void register_emulators(Context& ctx) {
   auto co = std::make_shared<ClmOpts>();
   auto* clm = ctx.emulate.add_subcommand(
       "clm14",
-      "Emulated Rexroth CLM1.4 on its serial interface: 3000 program lines, parameters (writable in Parameter mode only, "
+      "Emulated Rexroth CLM1.4 on its serial interface: 3000 program lines, parameters (writable in Parameter mode "
+      "only, "
       "validated when leaving it), variables, logic task, status queries, interface commands, RS-485 stations.");
   add_emulate_options(*clm, co->e);
   clm->add_option("--mode", co->mode, "Mode inputs at start: parameter, manual or auto")->capture_default_str();
   clm->add_option("--stations", co->stations, "0 = one RS-232 unit; 1..32 = that many RS-485 stations on the line")
       ->check(CLI::Range(0, 32))
       ->capture_default_str();
-  clm->add_option("--axes", co->axes, "Axes (A1xx..A4xx parameter blocks)")->check(CLI::Range(1, 4))->capture_default_str();
+  clm->add_option("--axes", co->axes, "Axes (A1xx..A4xx parameter blocks)")
+      ->check(CLI::Range(1, 4))
+      ->capture_default_str();
   clm->footer(
-      "Console commands (stdin): 'mode parameter|manual|auto' changes the mode inputs of every station, 'status' prints "
+      "Console commands (stdin): 'mode parameter|manual|auto' changes the mode inputs of every station, 'status' "
+      "prints "
       "mode and fault per station, 'quit' stops (state is saved).\n"
       "Example: hilbridge emulate clm14 --pty --format 7E2 --mode parameter --stations 32");
   clm->callback([&ctx, co] {
@@ -84,7 +89,8 @@ void register_emulators(Context& ctx) {
     lg::Clm14Line line(*data, co->stations, co->axes);
     const auto state = resolve_state(co->e, "clm14");
     if (auto text = read_file(state)) {
-      if (auto r = line.load_state(*text); !r) fmt::print(stderr, "warning: {}: {}; starting from defaults\n", state.string(), r.error());
+      if (auto r = line.load_state(*text); !r)
+        fmt::print(stderr, "warning: {}: {}; starting from defaults\n", state.string(), r.error());
     }
     line.set_mode(*mode);
     ctx.exit_code = serve(line, co->e, state, [](lg::Endpoint& ep, const std::string& cmd) -> std::string {
@@ -100,7 +106,9 @@ void register_emulators(Context& ctx) {
         for (std::size_t i = 0; i < l.size(); ++i) {
           const auto& st = l.station(i);
           s += fmt::format("{}station {} mode {} fault {:02X}", i ? "\n" : "", st.station(),
-                           st.mode() == lg::ClmMode::parameter ? "parameter" : st.mode() == lg::ClmMode::manual ? "manual" : "auto",
+                           st.mode() == lg::ClmMode::parameter ? "parameter"
+                           : st.mode() == lg::ClmMode::manual  ? "manual"
+                                                               : "auto",
                            st.fault());
         }
         return s;
@@ -113,12 +121,13 @@ void register_emulators(Context& ctx) {
   auto eo = std::make_shared<EmulateOptions>();
   eo->link.format = "8N2";
   eo->link.baud = 4800;
-  auto* elg = ctx.emulate.add_subcommand(
-      "elg-tape",
-      "Emulated SINUMERIK ELG universal interface: reads %TEA1 / %SEA tapes (ISO, even parity in bit 7) and punches them on "
-      "Data Start (a DC2 byte from the peer).");
+  auto* elg = ctx.emulate.add_subcommand("elg-tape",
+                                         "Emulated SINUMERIK ELG universal interface: reads %TEA1 / %SEA tapes (ISO, "
+                                         "even parity in bit 7) and punches them on "
+                                         "Data Start (a DC2 byte from the peer).");
   add_emulate_options(*elg, *eo);
-  elg->footer("Console commands: 'alarm', 'clear', 'quit'. Data Start (MD tape, then SD tape) is a DC2 byte from the peer.");
+  elg->footer(
+      "Console commands: 'alarm', 'clear', 'quit'. Data Start (MD tape, then SD tape) is a DC2 byte from the peer.");
   elg->callback([&ctx, eo] {
     auto check = hil::serial::load_elg_check();
     if (!check) {
@@ -132,7 +141,8 @@ void register_emulators(Context& ctx) {
       if (auto r = ep.load_state(*text); !r) fmt::print(stderr, "warning: {}\n", r.error());
     ctx.exit_code = serve(ep, *eo, state, [](lg::Endpoint& e, const std::string& cmd) -> std::string {
       auto& t = static_cast<lg::ElgTapeEndpoint&>(e);
-      if (cmd == "alarm") return t.alarm() == 0 ? std::string("no alarm") : fmt::format("alarm {}: {}", t.alarm(), t.alarm_text());
+      if (cmd == "alarm")
+        return t.alarm() == 0 ? std::string("no alarm") : fmt::format("alarm {}: {}", t.alarm(), t.alarm_text());
       if (cmd == "clear") {
         t.clear_alarm();
         return "ok";
@@ -147,9 +157,10 @@ void register_emulators(Context& ctx) {
     so->link.format = "8E1";
     so->link.baud = 9600;
     auto* cmd = ctx.emulate.add_subcommand(
-        dev, dev == "ip247" ? "Emulated SIMATIC S5 IP247: MD and traversing-program DBs behind 3964R/RK512 (SEND writes, FETCH "
-                              "reads; no overwrite, delete = SEND of one word 0000 to DW0)"
-                            : "Emulated WF 725/726 data codes behind 3964R/RK512 (DB number = data code; code 1 = MD1..MD50)");
+        dev, dev == "ip247"
+                 ? "Emulated SIMATIC S5 IP247: MD and traversing-program DBs behind 3964R/RK512 (SEND writes, FETCH "
+                   "reads; no overwrite, delete = SEND of one word 0000 to DW0)"
+                 : "Emulated WF 725/726 data codes behind 3964R/RK512 (DB number = data code; code 1 = MD1..MD50)");
     add_emulate_options(*cmd, *so);
     cmd->callback([&ctx, so, dev] {
       std::unique_ptr<lg::DbPolicy> policy;
@@ -160,7 +171,8 @@ void register_emulators(Context& ctx) {
           ctx.exit_code = 2;
           return;
         }
-        policy = lg::make_ip247_policy([c = *check](std::uint8_t, const std::vector<std::uint16_t>& w) { return c(w).empty() ? 0 : 1; });
+        policy = lg::make_ip247_policy(
+            [c = *check](std::uint8_t, const std::vector<std::uint16_t>& w) { return c(w).empty() ? 0 : 1; });
       } else {
         auto check = hil::serial::load_wf725_check();
         if (!check) {

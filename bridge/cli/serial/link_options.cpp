@@ -11,13 +11,16 @@
 namespace hil::cli::serial_cli {
 
 void add_link_options(CLI::App& cmd, LinkOptions& o, bool with_station) {
-  cmd.add_option("--port,-p", o.port, "Serial port (/dev/ttyUSB0, a /dev/pts/N printed by `hilbridge emulate`), or tcp:HOST:PORT for a serial-over-IP adapter")
+  cmd.add_option("--port,-p", o.port,
+                 "Serial port (/dev/ttyUSB0, a /dev/pts/N printed by `hilbridge emulate`), or tcp:HOST:PORT for a "
+                 "serial-over-IP adapter")
       ->required();
   cmd.add_option("--baud,-b", o.baud, "Baud rate, any value 110..115200")->capture_default_str();
   cmd.add_option("--format,-f", o.format, "Character format <data bits 7|8><parity N|E|O><stop bits 1|1.5|2>, e.g. 7E2")
       ->capture_default_str();
   cmd.add_option("--flow", o.flow, "Flow control: none, rtscts or xonxoff")->capture_default_str();
-  cmd.add_option("--xon", o.xon, "XON byte as it appears on the wire (e.g. 0x11; 8-bit allowed)")->capture_default_str();
+  cmd.add_option("--xon", o.xon, "XON byte as it appears on the wire (e.g. 0x11; 8-bit allowed)")
+      ->capture_default_str();
   cmd.add_option("--xoff", o.xoff, "XOFF byte as it appears on the wire (e.g. 0x13, or 0x93 for DC3 with even parity)")
       ->capture_default_str();
   cmd.add_flag("--dtr-dsr", o.dtr_dsr, "Raise DTR and require DSR before sending (devices that use the lines)");
@@ -25,8 +28,11 @@ void add_link_options(CLI::App& cmd, LinkOptions& o, bool with_station) {
     cmd.add_option("--station,-s", o.station, "RS-485 station 1..32 (0 = RS-232 point to point)")
         ->check(CLI::Range(0, 32))
         ->capture_default_str();
-  cmd.add_option("--timeout-ms", o.timeout_ms, "Response timeout per telegram in ms")->check(CLI::Range(10, 600000))->capture_default_str();
-  cmd.add_option("--retries", o.retries, "Repeats of a telegram after a checksum error or timeout")->check(CLI::Range(0, 20))
+  cmd.add_option("--timeout-ms", o.timeout_ms, "Response timeout per telegram in ms")
+      ->check(CLI::Range(10, 600000))
+      ->capture_default_str();
+  cmd.add_option("--retries", o.retries, "Repeats of a telegram after a checksum error or timeout")
+      ->check(CLI::Range(0, 20))
       ->capture_default_str();
 }
 
@@ -61,7 +67,8 @@ std::expected<hil::serial::LineFormat, std::string> line_format(const LinkOption
   return *f;
 }
 
-std::expected<std::unique_ptr<hil::serial::ByteStream>, std::string> open_link(const LinkOptions& o, const Clock& clock) {
+std::expected<std::unique_ptr<hil::serial::ByteStream>, std::string> open_link(const LinkOptions& o,
+                                                                               const Clock& clock) {
   auto f = line_format(o);
   if (!f) return std::unexpected(f.error());
   if (o.port.starts_with("tcp:")) {
@@ -74,7 +81,8 @@ std::expected<std::unique_ptr<hil::serial::ByteStream>, std::string> open_link(c
     } catch (const std::exception&) {
       return std::unexpected(fmt::format("--port {}: '{}' is not a TCP port number", o.port, rest.substr(colon + 1)));
     }
-    auto raw = hil::serial::linux_io::connect_tcp(rest.substr(0, colon), static_cast<std::uint16_t>(port), std::chrono::seconds(5));
+    auto raw = hil::serial::linux_io::connect_tcp(rest.substr(0, colon), static_cast<std::uint16_t>(port),
+                                                  std::chrono::seconds(5));
     if (!raw) return std::unexpected(raw.error().message);
     hil::serial::Discipline d;
     d.software_parity = true;  // the adapter forwards the bytes; parity travels in bit 7 for 7-bit formats
@@ -91,7 +99,9 @@ std::atomic<bool>& interrupted() {
 }
 
 namespace {
-extern "C" void on_signal(int) { interrupted().store(true); }
+extern "C" void on_signal(int) {
+  interrupted().store(true);
+}
 }  // namespace
 
 void install_interrupt_handler() {

@@ -17,7 +17,7 @@
 namespace hil::cli::serial_cli {
 
 struct LinkOptions {
-  std::string port;           ///< /dev/ttyUSB0, /dev/pts/N, or tcp:HOST:PORT
+  std::string port;  ///< /dev/ttyUSB0, /dev/pts/N, or tcp:HOST:PORT
   std::uint32_t baud = 9600;
   std::string format = "8N1";
   std::string flow = "none";
@@ -35,7 +35,7 @@ void add_link_options(CLI::App& cmd, LinkOptions& o, bool with_station);
 [[nodiscard]] std::expected<hil::serial::LineFormat, std::string> line_format(const LinkOptions& o);
 /// Open the line (tty/pty via termios, or TCP for tcp:HOST:PORT).
 [[nodiscard]] std::expected<std::unique_ptr<hil::serial::ByteStream>, std::string> open_link(const LinkOptions& o,
-                                                                                           const Clock& clock);
+                                                                                             const Clock& clock);
 /// Set by SIGINT/SIGTERM while a transfer runs (so it can stop cleanly and report).
 std::atomic<bool>& interrupted();
 void install_interrupt_handler();

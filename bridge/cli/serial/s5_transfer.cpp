@@ -33,7 +33,8 @@ std::expected<s5::DbImage, std::string> fetch_image(s5::Rk512Client& c, const st
     auto head = c.fetch_db(db, 0, 1);
     if (!head) return std::unexpected(fmt::format("DB{}: {}", db, head.error().message));
     length = (*head)[0];
-    if (length == 0 || length > 512) return std::unexpected(fmt::format("DB{}: length word {} is not a valid image length", db, length));
+    if (length == 0 || length > 512)
+      return std::unexpected(fmt::format("DB{}: length word {} is not a valid image length", db, length));
   }
   std::vector<std::uint16_t> words;
   // FETCH in chunks the data word byte can address (DW 0..255).
@@ -53,7 +54,8 @@ std::expected<s5::DbImage, std::string> fetch_image(s5::Rk512Client& c, const st
 int s5_download(const TransferOptions& o) {
   std::vector<int> dbs = o.blocks;
   if (dbs.empty()) {
-    if (o.device == "wf725") dbs = {1};
+    if (o.device == "wf725")
+      dbs = {1};
     else {
       fmt::print(stderr, "error: give the DB numbers to read with --db (e.g. --db 10,11)\n");
       return 2;
@@ -84,7 +86,8 @@ int s5_download(const TransferOptions& o) {
     bar.update(i + 1);
   }
   bar.finish("done");
-  const std::string text = s5::make_db_listing(images, fmt::format("hilbridge {} data blocks (S5 DB images, one data word per line)", o.device));
+  const std::string text = s5::make_db_listing(
+      images, fmt::format("hilbridge {} data blocks (S5 DB images, one data word per line)", o.device));
   auto w = hil::serial::write_with_backup(o.file, text);
   if (!w) {
     fmt::print(stderr, "error: writing {}: {}\n", o.file, w.error().message());
@@ -107,7 +110,9 @@ int s5_upload(const TransferOptions& o) {
     return 2;
   }
   if (!o.blocks.empty()) {
-    std::erase_if(*images, [&](const s5::DbImage& d) { return std::find(o.blocks.begin(), o.blocks.end(), d.db) == o.blocks.end(); });
+    std::erase_if(*images, [&](const s5::DbImage& d) {
+      return std::find(o.blocks.begin(), o.blocks.end(), d.db) == o.blocks.end();
+    });
   }
   // Validate every image against the profile before anything is sent.
   std::vector<std::string> problems;
@@ -118,9 +123,10 @@ int s5_upload(const TransferOptions& o) {
       return 2;
     }
     for (const auto& img : *images) {
-      if (img.words.size() < 5 || img.words[0] != img.words.size() || img.words[1] != 0x0044 || (img.words[2] >> 8) != 'B' ||
-          (img.words[2] & 0xFF) != img.db) {
-        problems.push_back(fmt::format("{}: DB{}: header words must be <length in words>, 0044, 42<db number>", o.file, img.db));
+      if (img.words.size() < 5 || img.words[0] != img.words.size() || img.words[1] != 0x0044 ||
+          (img.words[2] >> 8) != 'B' || (img.words[2] & 0xFF) != img.db) {
+        problems.push_back(
+            fmt::format("{}: DB{}: header words must be <length in words>, 0044, 42<db number>", o.file, img.db));
         continue;
       }
       if (img.words[0] == 70)
@@ -134,7 +140,8 @@ int s5_upload(const TransferOptions& o) {
     }
     for (const auto& img : *images) {
       if (img.db != 1 || img.words.size() != 100) {
-        problems.push_back(fmt::format("{}: DB{}: the WF machine data are data code 1 with 100 words (MD1..MD50)", o.file, img.db));
+        problems.push_back(
+            fmt::format("{}: DB{}: the WF machine data are data code 1 with 100 words (MD1..MD50)", o.file, img.db));
         continue;
       }
       for (const auto& why : (*check)(img.words)) problems.push_back(fmt::format("{}: {}", o.file, why));
@@ -145,9 +152,11 @@ int s5_upload(const TransferOptions& o) {
     fmt::print(stderr, "error: {} problem(s); nothing was sent.\n", problems.size());
     return 2;
   }
-  hil::serial::ResumeJournal journal{fmt::format("{} on {}", o.device, o.link.port), hil::serial::content_hash(text), 0};
+  hil::serial::ResumeJournal journal{fmt::format("{} on {}", o.device, o.link.port), hil::serial::content_hash(text),
+                                     0};
   if (o.resume) {
-    if (auto j = hil::serial::ResumeJournal::load(o.file); j && (j->hash == journal.hash || o.force)) journal.next = j->next;
+    if (auto j = hil::serial::ResumeJournal::load(o.file); j && (j->hash == journal.hash || o.force))
+      journal.next = j->next;
   }
   SteadyClock clock;
   auto link = open_link(o.link, clock);
@@ -165,17 +174,21 @@ int s5_upload(const TransferOptions& o) {
     auto r = client.send_db(img.db, 0, img.words);
     if (!r && r.error().code == s5::Rk512Error::db_exists && o.replace) {
       auto del = client.send_db(img.db, 0, {0x0000});
-      if (del) r = client.send_db(img.db, 0, img.words);
-      else r = std::unexpected(del.error());
+      if (del)
+        r = client.send_db(img.db, 0, img.words);
+      else
+        r = std::unexpected(del.error());
     }
     if (!r) {
       bar.finish("failed");
       (void)journal.save(o.file);
       fmt::print(stderr, "upload of {} stopped at DB{}: {}\n", o.file, img.db, r.error().message);
-      if (r.error().code == s5::Rk512Error::db_exists) fmt::print(stderr, "The IP247 has no overwrite: add --replace to delete DB{} first.\n", img.db);
+      if (r.error().code == s5::Rk512Error::db_exists)
+        fmt::print(stderr, "The IP247 has no overwrite: add --replace to delete DB{} first.\n", img.db);
       fmt::print(stderr, "Confirmed by the module: {}. DB{} {}. Resume with --resume.\n",
                  done.empty() ? std::string("nothing") : fmt::format("{}", fmt::join(done, ", ")), img.db,
-                 r.error().code.category() == s5::rk512_category() ? "was refused and is not stored" : "may or may not be stored");
+                 r.error().code.category() == s5::rk512_category() ? "was refused and is not stored"
+                                                                   : "may or may not be stored");
       return 1;
     }
     done.push_back(fmt::format("DB{}", img.db));
@@ -185,7 +198,8 @@ int s5_upload(const TransferOptions& o) {
   }
   if (journal.next < images->size()) {
     bar.finish("interrupted");
-    fmt::print(stderr, "interrupted: {} of {} DBs confirmed ({}); resume with --resume\n", journal.next, images->size(), fmt::join(done, ", "));
+    fmt::print(stderr, "interrupted: {} of {} DBs confirmed ({}); resume with --resume\n", journal.next, images->size(),
+               fmt::join(done, ", "));
     return 1;
   }
   bar.finish("done");

@@ -8,7 +8,7 @@ namespace hil::cli {
 namespace {
 
 class SimTransport final : public TransportFactory {
-public:
+ public:
   std::expected<DrivePtr, ConfigError> make_drive(const std::string& axis_name, const YAML::Node& drive_node,
                                                   RunEnvironment& env) override {
     auto config = mocks::parse_sim_drive_config(drive_node, yaml::Where{env.source_file, env.drive_path(axis_name)});

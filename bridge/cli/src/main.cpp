@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
 // hilbridge: hardware-in-the-loop bridge to fieldbus drives.
-#include <CLI/CLI.hpp>
 #include <fmt/format.h>
+#include <CLI/CLI.hpp>
 
 #include "hil/cli/context.hpp"
 

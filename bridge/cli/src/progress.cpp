@@ -10,8 +10,13 @@
 namespace hil::cli {
 
 ProgressBar::ProgressBar(std::string label, std::uint64_t total, std::string unit, const Clock& clock, std::FILE* out)
-    : label_(std::move(label)), total_(total), unit_(std::move(unit)), clock_(clock), out_(out),
-      tty_(::isatty(::fileno(out)) != 0), start_(clock.now()) {}
+    : label_(std::move(label)),
+      total_(total),
+      unit_(std::move(unit)),
+      clock_(clock),
+      out_(out),
+      tty_(::isatty(::fileno(out)) != 0),
+      start_(clock.now()) {}
 
 void ProgressBar::update(std::uint64_t done) {
   done_ = std::min(std::max(done_, done), total_);
@@ -52,8 +57,10 @@ void ProgressBar::draw(bool final) {
   bar.resize(width, '.');
   const auto line = fmt::format("{} [{}] {:3.0f}% {}/{} {} {:.0f} {}/s ETA {}", label_, bar, frac * 100.0, done_,
                                 total_, unit_, rate, unit_, eta);
-  if (tty_) fmt::print(out_, "\r{}\x1b[K", line);
-  else fmt::print(out_, "{}{}", line, final ? "" : "\n");
+  if (tty_)
+    fmt::print(out_, "\r{}\x1b[K", line);
+  else
+    fmt::print(out_, "{}{}", line, final ? "" : "\n");
   std::fflush(out_);
 }
 

@@ -29,10 +29,12 @@ struct TimingOptions {
   std::int64_t dir_setup_ns = 5'000, dir_hold_ns = 5'000;
 
   void add(CLI::App& app) {
-    app.add_option("--fmax", fmax, "Maximum step frequency f_max in Hz (12..100000; IP247 MD n+5)")->capture_default_str();
+    app.add_option("--fmax", fmax, "Maximum step frequency f_max in Hz (12..100000; IP247 MD n+5)")
+        ->capture_default_str();
     app.add_option("--fss", fss, "Start-stop frequency f_ss in Hz (1..10000; MD n+7)")->capture_default_str();
     app.add_option("--accel", accel, "Frequency increase a in Hz/s (= mHz/ms; MD n+9)")->capture_default_str();
-    app.add_option("--pulse-us", pulse_us, "Step pulse duration in us (1..31, output in 2 us steps)")->capture_default_str();
+    app.add_option("--pulse-us", pulse_us, "Step pulse duration in us (1..31, output in 2 us steps)")
+        ->capture_default_str();
     app.add_option("--rounding", rounding, "Pulse quantisation: up or down")
         ->check(CLI::IsMember({"up", "down"}))
         ->capture_default_str();
@@ -52,13 +54,13 @@ struct TimingOptions {
                                polarity == "positive" ? Polarity::positive_edge : Polarity::negative_edge, dir_setup_ns,
                                dir_hold_ns);
     if (!t) {
-      return std::unexpected(fmt::format("IP247 MD error {}: {}", static_cast<int>(t.error()),
-                                         make_error_code(t.error()).message()));
+      return std::unexpected(
+          fmt::format("IP247 MD error {}: {}", static_cast<int>(t.error()), make_error_code(t.error()).message()));
     }
     auto r = Ip247Ramp::make({fmax, fss, accel}, t->min_period_ns());
     if (!r) {
-      return std::unexpected(fmt::format("IP247 MD error {}: {}", static_cast<int>(r.error()),
-                                         make_error_code(r.error()).message()));
+      return std::unexpected(
+          fmt::format("IP247 MD error {}: {}", static_cast<int>(r.error()), make_error_code(r.error()).message()));
     }
     return std::pair{*t, std::move(*r)};
   }
@@ -142,7 +144,8 @@ void register_stepdir(Context& ctx) {
       }
     }
     std::FILE* info = *summary ? stdout : stderr;
-    fmt::print(info, "move: {} steps + {} backlash at up to {:.1f} Hz; F = {:.3f} Hz, tau = {:.3f} ms; duration {:.3f} ms\n",
+    fmt::print(info,
+               "move: {} steps + {} backlash at up to {:.1f} Hz; F = {:.3f} Hz, tau = {:.3f} ms; duration {:.3f} ms\n",
                *distance, p.backlash_steps_total(), f_v, shared->big_f_hz(), shared->tau_s() * 1e3,
                edges.empty() ? 0.0 : static_cast<double>(edges.back().t_ns) * 1e-6);
     print_stats(st, info);

@@ -10,34 +10,48 @@ namespace hil {
 namespace {
 
 class MotionCategory final : public std::error_category {
-public:
+ public:
   const char* name() const noexcept override { return "motion"; }
   std::string message(int v) const override {
     switch (static_cast<MotionFault>(v)) {
-      case MotionFault::none: return "no fault";
-      case MotionFault::following_error: return "following error outside the static window";
-      case MotionFault::following_error_dynamic: return "following error outside the speed-dependent window";
-      case MotionFault::standstill: return "axis left the standstill window";
-      case MotionFault::in_position_timeout: return "target not reached inside the in-position window in time";
-      case MotionFault::software_limit: return "software limit";
-      case MotionFault::drive_fault: return "drive fault";
-      case MotionFault::drive_lost: return "drive communication lost";
-      case MotionFault::not_enabled: return "drive not enabled";
-      case MotionFault::invalid_command: return "invalid command";
+      case MotionFault::none:
+        return "no fault";
+      case MotionFault::following_error:
+        return "following error outside the static window";
+      case MotionFault::following_error_dynamic:
+        return "following error outside the speed-dependent window";
+      case MotionFault::standstill:
+        return "axis left the standstill window";
+      case MotionFault::in_position_timeout:
+        return "target not reached inside the in-position window in time";
+      case MotionFault::software_limit:
+        return "software limit";
+      case MotionFault::drive_fault:
+        return "drive fault";
+      case MotionFault::drive_lost:
+        return "drive communication lost";
+      case MotionFault::not_enabled:
+        return "drive not enabled";
+      case MotionFault::invalid_command:
+        return "invalid command";
     }
     return fmt::format("unknown motion fault {}", v);
   }
 };
 
 class PlantCategory final : public std::error_category {
-public:
+ public:
   const char* name() const noexcept override { return "plant"; }
   std::string message(int v) const override {
     switch (static_cast<PlantFault>(v)) {
-      case PlantFault::none: return "no fault";
-      case PlantFault::encoder: return "encoder fault";
-      case PlantFault::not_ready: return "drive not ready";
-      case PlantFault::following_blowup: return "plant does not follow its command";
+      case PlantFault::none:
+        return "no fault";
+      case PlantFault::encoder:
+        return "encoder fault";
+      case PlantFault::not_ready:
+        return "drive not ready";
+      case PlantFault::following_blowup:
+        return "plant does not follow its command";
     }
     return fmt::format("unknown plant fault {}", v);
   }
@@ -76,25 +90,38 @@ std::string ConfigError::describe() const {
 
 std::string_view to_string(DriveState s) noexcept {
   switch (s) {
-    case DriveState::not_ready: return "not_ready";
-    case DriveState::switch_on_disabled: return "switch_on_disabled";
-    case DriveState::ready_to_switch_on: return "ready_to_switch_on";
-    case DriveState::switched_on: return "switched_on";
-    case DriveState::operation_enabled: return "operation_enabled";
-    case DriveState::quick_stop_active: return "quick_stop_active";
-    case DriveState::fault_reaction_active: return "fault_reaction_active";
-    case DriveState::fault: return "fault";
+    case DriveState::not_ready:
+      return "not_ready";
+    case DriveState::switch_on_disabled:
+      return "switch_on_disabled";
+    case DriveState::ready_to_switch_on:
+      return "ready_to_switch_on";
+    case DriveState::switched_on:
+      return "switched_on";
+    case DriveState::operation_enabled:
+      return "operation_enabled";
+    case DriveState::quick_stop_active:
+      return "quick_stop_active";
+    case DriveState::fault_reaction_active:
+      return "fault_reaction_active";
+    case DriveState::fault:
+      return "fault";
   }
   return "?";
 }
 
 std::string_view to_string(DriveRequest r) noexcept {
   switch (r) {
-    case DriveRequest::enable: return "enable";
-    case DriveRequest::disable: return "disable";
-    case DriveRequest::quick_stop: return "quick_stop";
-    case DriveRequest::fault_reset: return "fault_reset";
-    case DriveRequest::home: return "home";
+    case DriveRequest::enable:
+      return "enable";
+    case DriveRequest::disable:
+      return "disable";
+    case DriveRequest::quick_stop:
+      return "quick_stop";
+    case DriveRequest::fault_reset:
+      return "fault_reset";
+    case DriveRequest::home:
+      return "home";
   }
   return "?";
 }

@@ -183,7 +183,8 @@ std::error_code Axis::start_position(std::int64_t target_inc, const Limits& limi
   plan_position(from, scaling_.to_units(target_inc), limits, entry, profile_);
   if (drive_profile_) {
     const double approach = target_inc > cmd_inc_ ? 0.0 : target_inc < cmd_inc_ ? -config_.backlash : backlash_goal_;
-    set_drive_move(hil::DriveMove::Kind::position, target_inc + scaling_.to_inc_fast(approach), limits.velocity, limits);
+    set_drive_move(hil::DriveMove::Kind::position, target_inc + scaling_.to_inc_fast(approach), limits.velocity,
+                   limits);
   }
   target_inc_ = target_inc;
   active_limits_ = limits;
@@ -376,7 +377,8 @@ void Axis::hold_at_actual() {
   entry_limits_ = config_.limits;
   last_drive_cmd_inc_ = fb.position_inc;  // the set-point is the actual: no following error
   status_.busy = false;
-  if (drive_move_.kind != hil::DriveMove::Kind::hold) set_drive_move(hil::DriveMove::Kind::hold, 0, 0.0, quick_stop_limits());
+  if (drive_move_.kind != hil::DriveMove::Kind::hold)
+    set_drive_move(hil::DriveMove::Kind::hold, 0, 0.0, quick_stop_limits());
 }
 
 void Axis::finish_profile() {

@@ -17,29 +17,30 @@ std::string make_junit_xml(const std::vector<ScenarioOutcome>& outcomes) {
     if (!o.result) {
       ++tests;
       ++errors;
-      body += fmt::format("  <testsuite name=\"{}\" file=\"{}\" tests=\"1\" failures=\"0\" errors=\"1\" "
-                          "time=\"{:.3f}\">\n"
-                          "    <testcase classname=\"{}\" name=\"load\" time=\"{:.3f}\">\n"
-                          "      <error message=\"{}\" type=\"ConfigError\">{}</error>\n"
-                          "    </testcase>\n  </testsuite>\n",
-                          suite, xml_escape(o.file), o.wall_s, suite, o.wall_s, xml_escape(o.error),
-                          xml_escape(o.error));
+      body += fmt::format(
+          "  <testsuite name=\"{}\" file=\"{}\" tests=\"1\" failures=\"0\" errors=\"1\" "
+          "time=\"{:.3f}\">\n"
+          "    <testcase classname=\"{}\" name=\"load\" time=\"{:.3f}\">\n"
+          "      <error message=\"{}\" type=\"ConfigError\">{}</error>\n"
+          "    </testcase>\n  </testsuite>\n",
+          suite, xml_escape(o.file), o.wall_s, suite, o.wall_s, xml_escape(o.error), xml_escape(o.error));
       continue;
     }
     const RunResult& r = *o.result;
     std::size_t suite_failures = 0;
     std::string cases;
     for (const auto& e : r.expectations) {
-      cases += fmt::format("    <testcase classname=\"{}\" name=\"{}\" time=\"0\"",
-                           suite, xml_escape(fmt::format("axis {}: {}", e.axis, e.description)));
+      cases += fmt::format("    <testcase classname=\"{}\" name=\"{}\" time=\"0\"", suite,
+                           xml_escape(fmt::format("axis {}: {}", e.axis, e.description)));
       if (e.passed) {
         cases += "/>\n";
       } else {
         ++suite_failures;
         const std::string msg = fmt::format("axis {}: expected {}, {}", e.axis, e.description, e.detail);
-        cases += fmt::format(">\n      <failure message=\"{}\" type=\"expectation\">{} ({}:{} {})</failure>\n"
-                             "    </testcase>\n",
-                             xml_escape(msg), xml_escape(msg), xml_escape(r.file), e.line, xml_escape(e.path));
+        cases += fmt::format(
+            ">\n      <failure message=\"{}\" type=\"expectation\">{} ({}:{} {})</failure>\n"
+            "    </testcase>\n",
+            xml_escape(msg), xml_escape(msg), xml_escape(r.file), e.line, xml_escape(e.path));
       }
     }
     // The run itself: program, timeout, unexpected faults, transport reports (expectation
@@ -60,17 +61,19 @@ std::string make_junit_xml(const std::vector<ScenarioOutcome>& outcomes) {
     const std::size_t suite_tests = r.expectations.size() + 1;
     tests += suite_tests;
     failures += suite_failures;
-    body += fmt::format("  <testsuite name=\"{}\" file=\"{}\" tests=\"{}\" failures=\"{}\" errors=\"0\" "
-                        "time=\"{:.3f}\">\n{}",
-                        suite, xml_escape(o.file), suite_tests, suite_failures, o.wall_s, cases);
-    body += fmt::format("    <system-out>{}</system-out>\n  </testsuite>\n",
-                        xml_escape(fmt::format("{:.3f} s simulated, {} cycles", to_seconds(r.simulated),
-                                               r.scheduler.cycles)));
+    body += fmt::format(
+        "  <testsuite name=\"{}\" file=\"{}\" tests=\"{}\" failures=\"{}\" errors=\"0\" "
+        "time=\"{:.3f}\">\n{}",
+        suite, xml_escape(o.file), suite_tests, suite_failures, o.wall_s, cases);
+    body += fmt::format(
+        "    <system-out>{}</system-out>\n  </testsuite>\n",
+        xml_escape(fmt::format("{:.3f} s simulated, {} cycles", to_seconds(r.simulated), r.scheduler.cycles)));
   }
-  return fmt::format("<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n"
-                     "<testsuites name=\"hilbridge test\" tests=\"{}\" failures=\"{}\" errors=\"{}\" time=\"{:.3f}\">\n"
-                     "{}</testsuites>\n",
-                     tests, failures, errors, total, body);
+  return fmt::format(
+      "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n"
+      "<testsuites name=\"hilbridge test\" tests=\"{}\" failures=\"{}\" errors=\"{}\" time=\"{:.3f}\">\n"
+      "{}</testsuites>\n",
+      tests, failures, errors, total, body);
 }
 
 }  // namespace hil::runtime

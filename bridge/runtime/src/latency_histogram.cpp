@@ -16,7 +16,9 @@ void LatencyHistogram::add(Duration d) noexcept {
   sum_ += d;
 }
 
-void LatencyHistogram::clear() noexcept { *this = LatencyHistogram{}; }
+void LatencyHistogram::clear() noexcept {
+  *this = LatencyHistogram{};
+}
 
 Duration LatencyHistogram::mean() const noexcept {
   return count_ ? Duration{sum_.count() / static_cast<Duration::rep>(count_)} : Duration{};
@@ -25,8 +27,8 @@ Duration LatencyHistogram::mean() const noexcept {
 Duration LatencyHistogram::percentile(double fraction) const noexcept {
   if (count_ == 0) return Duration{};
   fraction = std::clamp(fraction, 0.0, 1.0);
-  const auto wanted = std::max<std::uint64_t>(
-      1, static_cast<std::uint64_t>(std::ceil(fraction * static_cast<double>(count_))));
+  const auto wanted =
+      std::max<std::uint64_t>(1, static_cast<std::uint64_t>(std::ceil(fraction * static_cast<double>(count_))));
   std::uint64_t seen = 0;
   for (std::size_t i = 0; i <= bucket_count; ++i) {
     seen += buckets_[i];

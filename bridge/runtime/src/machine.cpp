@@ -36,9 +36,15 @@ std::expected<motion::AxisConfig, ConfigError> make_axis_config(const AxisSpec& 
   if (s.enable_timeout) c.enable_timeout = *s.enable_timeout;
   if (s.feedback_timeout) c.feedback_timeout = *s.feedback_timeout;
   switch (s.fault_reaction) {
-    case FaultReaction::quick_stop: c.reaction = motion::FaultReaction::quick_stop; break;
-    case FaultReaction::stop: c.reaction = motion::FaultReaction::stop; break;
-    case FaultReaction::disable: c.reaction = motion::FaultReaction::disable; break;
+    case FaultReaction::quick_stop:
+      c.reaction = motion::FaultReaction::quick_stop;
+      break;
+    case FaultReaction::stop:
+      c.reaction = motion::FaultReaction::stop;
+      break;
+    case FaultReaction::disable:
+      c.reaction = motion::FaultReaction::disable;
+      break;
   }
   auto v = motion::validate(c);
   if (!v) return std::unexpected(ConfigError{file, s.source.line, 0, s.source.path, v.error()});

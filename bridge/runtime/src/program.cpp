@@ -17,9 +17,12 @@ struct Overloaded : F... {
 
 motion::Direction to_motion(MoveDirection d) {
   switch (d) {
-    case MoveDirection::positive: return motion::Direction::positive;
-    case MoveDirection::negative: return motion::Direction::negative;
-    case MoveDirection::shortest: break;
+    case MoveDirection::positive:
+      return motion::Direction::positive;
+    case MoveDirection::negative:
+      return motion::Direction::negative;
+    case MoveDirection::shortest:
+      break;
   }
   return motion::Direction::shortest;
 }
@@ -49,7 +52,9 @@ bool at_rest(const motion::AxisStatus& s) {
 
 Program::Program(const Scenario& scenario, Machine& machine) : scenario_(scenario), machine_(machine) {}
 
-motion::Axis& Program::axis(const std::string& name) { return *machine_.find(name)->axis; }
+motion::Axis& Program::axis(const std::string& name) {
+  return *machine_.find(name)->axis;
+}
 
 std::optional<ConfigError> Program::check() const {
   std::optional<ConfigError> err;
@@ -65,7 +70,8 @@ std::optional<ConfigError> Program::check() const {
     if (!a->injectable) {
       err = ConfigError{scenario_.file, s.source.line, 0, s.source.path + ".inject_fault",
                         fmt::format("axis '{}' runs on transport '{}', whose drive does not support fault injection "
-                                    "(only mock-backed drives do)", i->axis, a->transport)};
+                                    "(only mock-backed drives do)",
+                                    i->axis, a->transport)};
       return;
     }
     const auto names = a->injectable->injectable_faults();
@@ -94,8 +100,9 @@ bool Program::launch(Running& r, Duration t) {
   auto check = [&](const std::string& name, std::error_code ec) {
     if (!ec) return true;
     const auto& st = axis(name).status();
-    fail(s, t, fmt::format("axis {} rejected the command: {} (axis state {}{})", name, ec.message(),
-                           motion::to_string(st.state), st.fault ? ", " + st.fault.describe() : ""));
+    fail(s, t,
+         fmt::format("axis {} rejected the command: {} (axis state {}{})", name, ec.message(),
+                     motion::to_string(st.state), st.fault ? ", " + st.fault.describe() : ""));
     return false;
   };
   auto each = [&](const std::vector<std::string>& axes, auto&& fn) {
@@ -172,8 +179,8 @@ Program::Check Program::poll(Running& r, Duration t) {
     }
     return ok ? Check::done : Check::pending;
   };
-  using motion::AxisState;
   using hil::DriveState;
+  using motion::AxisState;
   Check c = std::visit(
       Overloaded{
           [&](const EnableStep& e) {
@@ -242,13 +249,19 @@ Program::Check Program::poll(Running& r, Duration t) {
                 met = cond.comparison == Comparison::above ? v > cond.value : v < cond.value;
                 break;
               }
-              case Condition::Kind::state: met = cond.state == motion::to_string(st.state); break;
+              case Condition::Kind::state:
+                met = cond.state == motion::to_string(st.state);
+                break;
               case Condition::Kind::fault:
                 met = fault_matches(st.fault, cond.fault_code) ||
                       fault_matches(axis(cond.axis).drive().feedback().fault, cond.fault_code);
                 break;
-              case Condition::Kind::no_motion: met = at_rest(st); break;
-              case Condition::Kind::in_position: met = at_rest(st) && st.in_position; break;
+              case Condition::Kind::no_motion:
+                met = at_rest(st);
+                break;
+              case Condition::Kind::in_position:
+                met = at_rest(st) && st.in_position;
+                break;
             }
             if (!met && cond.kind != Condition::Kind::fault && cond.kind != Condition::Kind::state &&
                 faulted(cond.axis))
@@ -262,8 +275,10 @@ Program::Check Program::poll(Running& r, Duration t) {
               if (child.step == nullptr) continue;  // finished
               const Check cc = poll(child, t);
               if (cc == Check::failed) return Check::failed;
-              if (cc == Check::done) child.step = nullptr;
-              else done = false;
+              if (cc == Check::done)
+                child.step = nullptr;
+              else
+                done = false;
             }
             return done ? Check::done : Check::pending;
           },

@@ -189,61 +189,60 @@ void RunMonitor::finish(Duration t_end, RunResult& r) const {
     const AxisSpec& spec = *machine_.axes()[s.axis].spec;
     const auto& st = machine_.axes()[s.axis].axis->status();
     const std::string& name = spec.name;
-    std::visit(
-        Overloaded{
-            [&](const PositionExpectation& p) {
-              if (s.decided) return;
-              if (p.at || p.by) {
-                s.decided = true;
-                s.detail = fmt::format("the run ended at t={:.3f} s, before that time", to_seconds(t_end));
-                return;
-              }
-              decide(s, t_end, st);
-            },
-            [&](const StateExpectation& e) {
-              if (s.decided) return;
-              if (e.at) {
-                s.decided = true;
-                s.detail = fmt::format("the run ended at t={:.3f} s, before that time", to_seconds(t_end));
-                return;
-              }
-              decide(s, t_end, st);
-            },
-            [&](const FaultExpectation& f) {
-              s.decided = true;
-              std::string seen;
-              for (const auto& ev : faults_) {
-                if (ev.axis != name) continue;
-                if (code_matches(ev.fault, f.code) && (!f.by || ev.t <= *f.by)) {
-                  s.passed = true;
-                  return;
-                }
-                seen += fmt::format("{}{} at t={:.3f} s", seen.empty() ? "" : "; ", fault_text(ev.fault),
-                                    to_seconds(ev.t));
-              }
-              s.detail = seen.empty() ? std::string("no fault occurred") : "saw " + seen;
-            },
-            [&](const NoFaultExpectation&) {
-              s.decided = true;
-              s.passed = true;
-              for (const auto& ev : faults_) {
-                if (ev.axis != name) continue;
-                s.passed = false;
-                s.detail = fmt::format("faulted at t={:.3f} s: {}", to_seconds(ev.t), fault_text(ev.fault));
-                break;
-              }
-            },
-            [&](const MaxFollowingErrorExpectation& m) {
-              s.decided = true;
-              const AxisTrack& tr = tracks_[s.axis];
-              s.passed = tr.max_fe <= m.value;
-              if (!s.passed)
-                s.detail = fmt::format("reached {:.{}f} {} at t={:.3f} s (over by {:.{}f} {})", tr.max_fe,
-                                       decimals(m.value), spec.units, to_seconds(tr.max_fe_t), tr.max_fe - m.value,
-                                       decimals(m.value), spec.units);
-            },
-        },
-        s.e->kind);
+    std::visit(Overloaded{
+                   [&](const PositionExpectation& p) {
+                     if (s.decided) return;
+                     if (p.at || p.by) {
+                       s.decided = true;
+                       s.detail = fmt::format("the run ended at t={:.3f} s, before that time", to_seconds(t_end));
+                       return;
+                     }
+                     decide(s, t_end, st);
+                   },
+                   [&](const StateExpectation& e) {
+                     if (s.decided) return;
+                     if (e.at) {
+                       s.decided = true;
+                       s.detail = fmt::format("the run ended at t={:.3f} s, before that time", to_seconds(t_end));
+                       return;
+                     }
+                     decide(s, t_end, st);
+                   },
+                   [&](const FaultExpectation& f) {
+                     s.decided = true;
+                     std::string seen;
+                     for (const auto& ev : faults_) {
+                       if (ev.axis != name) continue;
+                       if (code_matches(ev.fault, f.code) && (!f.by || ev.t <= *f.by)) {
+                         s.passed = true;
+                         return;
+                       }
+                       seen += fmt::format("{}{} at t={:.3f} s", seen.empty() ? "" : "; ", fault_text(ev.fault),
+                                           to_seconds(ev.t));
+                     }
+                     s.detail = seen.empty() ? std::string("no fault occurred") : "saw " + seen;
+                   },
+                   [&](const NoFaultExpectation&) {
+                     s.decided = true;
+                     s.passed = true;
+                     for (const auto& ev : faults_) {
+                       if (ev.axis != name) continue;
+                       s.passed = false;
+                       s.detail = fmt::format("faulted at t={:.3f} s: {}", to_seconds(ev.t), fault_text(ev.fault));
+                       break;
+                     }
+                   },
+                   [&](const MaxFollowingErrorExpectation& m) {
+                     s.decided = true;
+                     const AxisTrack& tr = tracks_[s.axis];
+                     s.passed = tr.max_fe <= m.value;
+                     if (!s.passed)
+                       s.detail = fmt::format("reached {:.{}f} {} at t={:.3f} s (over by {:.{}f} {})", tr.max_fe,
+                                              decimals(m.value), spec.units, to_seconds(tr.max_fe_t),
+                                              tr.max_fe - m.value, decimals(m.value), spec.units);
+                   },
+               },
+               s.e->kind);
     ExpectationResult er{name, describe(*s.e, spec), s.passed, s.detail, s.e->source.line, s.e->source.path};
     if (!er.passed) {
       r.ok = false;

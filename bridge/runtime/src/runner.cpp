@@ -4,9 +4,9 @@
 #include <csignal>
 #include <optional>
 
+#include <fmt/format.h>
 #include <asio/io_context.hpp>
 #include <asio/signal_set.hpp>
-#include <fmt/format.h>
 
 #include "hil/runtime/program.hpp"
 #include "hil/runtime/run_monitor.hpp"
@@ -29,7 +29,7 @@ bool at_rest(const Machine& m) {
 
 /// The per-cycle logic shared by both schedulers.
 class Session {
-public:
+ public:
   Session(const Scenario& s, Machine& m, const RunOptions& o)
       : scenario_(s), machine_(m), options_(o), program_(s, m), monitor_(s, m) {}
 
@@ -51,8 +51,8 @@ public:
       interrupted_at_ = t;
       for (auto& a : machine_.axes()) (void)a.axis->quick_stop();
     }
-    if (interrupted_) return at_rest(machine_) || t - interrupted_at_ > interrupt_grace ? CycleControl::stop
-                                                                                       : CycleControl::proceed;
+    if (interrupted_)
+      return at_rest(machine_) || t - interrupted_at_ > interrupt_grace ? CycleControl::stop : CycleControl::proceed;
     const auto status = program_.step(t);
     if (status == Program::Status::failed) return CycleControl::stop;
     if (t >= scenario_.timeout) {
@@ -100,9 +100,10 @@ public:
     }
     if (timed_out_) {
       r.ok = false;
-      r.failures.push_back(fmt::format("timeout: the scenario ran {:.3f} s (timeout {:.3f} s) and was still at step {} "
-                                       "of {}", to_seconds(t_), to_seconds(scenario_.timeout),
-                                       program_.current_step() + 1, scenario_.program.size()));
+      r.failures.push_back(fmt::format(
+          "timeout: the scenario ran {:.3f} s (timeout {:.3f} s) and was still at step {} "
+          "of {}",
+          to_seconds(t_), to_seconds(scenario_.timeout), program_.current_step() + 1, scenario_.program.size()));
     }
     if (interrupted_) {
       r.ok = false;
@@ -120,7 +121,7 @@ public:
     return r;
   }
 
-private:
+ private:
   const Scenario& scenario_;
   Machine& machine_;
   const RunOptions& options_;

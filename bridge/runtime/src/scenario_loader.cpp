@@ -20,13 +20,12 @@ constexpr int max_parallel_depth = 4;
 
 bool valid_axis_name(const std::string& n) {
   if (n.empty() || n.size() > 32 || n == "all") return false;
-  return std::all_of(n.begin(), n.end(), [](char c) {
-    return std::isalnum(static_cast<unsigned char>(c)) != 0 || c == '_' || c == '-';
-  });
+  return std::all_of(n.begin(), n.end(),
+                     [](char c) { return std::isalnum(static_cast<unsigned char>(c)) != 0 || c == '_' || c == '-'; });
 }
 
 class Loader {
-public:
+ public:
   Loader(std::string file) : file_(std::move(file)) {}
 
   Scenario load(const YAML::Node& root) {
@@ -34,7 +33,8 @@ public:
     s.file = file_;
     s.document = root;
     const Field top(file_, root, "", YAML::Mark{});
-    if (!root.IsMap()) top.fail(fmt::format("a scenario is a map with 'machine:' and 'program:', got {}", top.describe()));
+    if (!root.IsMap())
+      top.fail(fmt::format("a scenario is a map with 'machine:' and 'program:', got {}", top.describe()));
     top.expect_map({"name", "description", "period", "duration", "timeout", "machine", "program", "expect"});
     if (auto f = top.child("name"); f.present()) s.name = f.as_string("a scenario name");
     if (auto f = top.child("description"); f.present()) s.description = f.as_string("a text");
@@ -67,7 +67,7 @@ public:
     return s;
   }
 
-private:
+ private:
   AxisSpec load_axis(const Field& f, const Scenario& s) {
     f.expect_map({"name", "units", "inc_per_unit", "rotary", "modulo", "limits", "soft_limits", "backlash",
                   "supervision", "fault_reaction", "drive"});
@@ -84,8 +84,9 @@ private:
     if (auto u = f.child("units"); u.present()) a.units = u.as_string("a unit name such as mm or deg");
     const Field ratio = f.required("inc_per_unit", "drive increments per unit: 1000, 4096/5 or 12.5");
     const auto r = parse_ratio(ratio.as_string("a ratio"));
-    if (!r) ratio.fail(fmt::format("expected increments per unit as an integer, 'num/den' or a decimal (> 0), got {}",
-                                   ratio.describe()));
+    if (!r)
+      ratio.fail(fmt::format("expected increments per unit as an integer, 'num/den' or a decimal (> 0), got {}",
+                             ratio.describe()));
     a.inc_per_unit_num = r->first;
     a.inc_per_unit_den = r->second;
     if (auto m = f.child("modulo"); m.present()) {
@@ -97,14 +98,16 @@ private:
     limits.expect_map({"velocity", "acceleration", "jerk", "quick_stop_deceleration", "jog_velocity"});
     a.max_velocity = limits.required("velocity", "units/s").as_positive("a velocity in units/s");
     a.max_acceleration = limits.required("acceleration", "units/s^2").as_positive("an acceleration in units/s^2");
-    if (auto j = limits.child("jerk"); j.present()) a.max_jerk = j.as_non_negative("a jerk in units/s^3 (0 = trapezoidal)");
+    if (auto j = limits.child("jerk"); j.present())
+      a.max_jerk = j.as_non_negative("a jerk in units/s^3 (0 = trapezoidal)");
     a.quick_stop_deceleration = limits.optional_positive("quick_stop_deceleration", "a deceleration in units/s^2")
                                     .value_or(4.0 * a.max_acceleration);
     if (a.quick_stop_deceleration < a.max_acceleration)
       limits.child("quick_stop_deceleration")
           .fail(fmt::format("expected at least limits.acceleration ({}), a quick stop brakes harder than a stop",
                             a.max_acceleration));
-    a.jog_velocity = limits.optional_positive("jog_velocity", "a jog velocity in units/s").value_or(a.max_velocity / 10.0);
+    a.jog_velocity =
+        limits.optional_positive("jog_velocity", "a jog velocity in units/s").value_or(a.max_velocity / 10.0);
     if (a.jog_velocity > a.max_velocity)
       limits.child("jog_velocity").fail(fmt::format("expected at most limits.velocity ({})", a.max_velocity));
 
@@ -142,7 +145,8 @@ private:
     if (a.in_position_window <= 0.0) a.in_position_window = 0.01;
     if (a.standstill_window <= 0.0) a.standstill_window = std::max(2.0 * a.in_position_window, 1.0 / ratio_value(a));
     if (a.standstill_window < a.in_position_window)
-      f.child("supervision").child("standstill")
+      f.child("supervision")
+          .child("standstill")
           .fail(fmt::format("expected a standstill window >= the in_position window ({})", a.in_position_window));
     if (!a.following_error_dynamic && a.following_error_window <= 0.0)
       a.following_error_window = std::max(10.0 * a.in_position_window, 1.0);
@@ -182,7 +186,8 @@ private:
       if (out.empty()) f.fail("expected at least one axis name");
       return out;
     }
-    if (!f.node().IsScalar()) f.fail(fmt::format("expected an axis name, a list of names or 'all', got {}", f.describe()));
+    if (!f.node().IsScalar())
+      f.fail(fmt::format("expected an axis name, a list of names or 'all', got {}", f.describe()));
     out.push_back(axis_name(f));
     return out;
   }
@@ -196,8 +201,9 @@ private:
   }
 
   static constexpr std::string_view step_keys[] = {
-      "enable", "disable", "reset", "home", "move_absolute", "move_relative", "move_velocity", "jog", "stop",
-      "quick_stop", "wait", "wait_in_position", "wait_until", "inject_fault", "parallel"};
+      "enable",        "disable",          "reset",      "home",         "move_absolute",
+      "move_relative", "move_velocity",    "jog",        "stop",         "quick_stop",
+      "wait",          "wait_in_position", "wait_until", "inject_fault", "parallel"};
 
   Step load_step(const Field& f, int depth) {
     if (!f.node().IsMap())
@@ -210,8 +216,10 @@ private:
     for (const auto& k : keys) {
       if (k == "at" || k == "timeout" || k == "blocking") continue;
       if (!action.empty())
-        f.child(k).fail(fmt::format("a step has exactly one action; this one has '{}' and '{}' (use 'parallel:' to "
-                                    "start several at once)", action, k));
+        f.child(k).fail(
+            fmt::format("a step has exactly one action; this one has '{}' and '{}' (use 'parallel:' to "
+                        "start several at once)",
+                        action, k));
       action = k;
     }
     if (action.empty()) {
@@ -226,12 +234,18 @@ private:
     if (auto w = f.child("blocking"); w.present()) st.wait = w.as_bool();
     const Field v = f.child(action);
     st.name = action;
-    if (action == "enable") st.action = EnableStep{axis_list(v)};
-    else if (action == "disable") st.action = DisableStep{axis_list(v)};
-    else if (action == "reset") st.action = ResetStep{axis_list(v)};
-    else if (action == "home") st.action = HomeStep{axis_list(v)};
-    else if (action == "quick_stop") st.action = QuickStopStep{axis_list(v)};
-    else if (action == "wait_in_position") st.action = WaitInPositionStep{axis_list(v)};
+    if (action == "enable")
+      st.action = EnableStep{axis_list(v)};
+    else if (action == "disable")
+      st.action = DisableStep{axis_list(v)};
+    else if (action == "reset")
+      st.action = ResetStep{axis_list(v)};
+    else if (action == "home")
+      st.action = HomeStep{axis_list(v)};
+    else if (action == "quick_stop")
+      st.action = QuickStopStep{axis_list(v)};
+    else if (action == "wait_in_position")
+      st.action = WaitInPositionStep{axis_list(v)};
     else if (action == "stop") {
       st.action = StopStep{axis_list(v)};
     } else if (action == "wait") {
@@ -285,7 +299,8 @@ private:
       st.name += " " + i.axis + " " + i.fault;
       st.action = i;
     } else if (action == "parallel") {
-      if (depth >= max_parallel_depth) v.fail(fmt::format("'parallel' nested deeper than {} levels", max_parallel_depth));
+      if (depth >= max_parallel_depth)
+        v.fail(fmt::format("'parallel' nested deeper than {} levels", max_parallel_depth));
       ParallelStep p;
       for (const Field& i : v.items()) p.steps.push_back(load_step(i, depth + 1));
       if (p.steps.empty()) v.fail("expected at least one step in 'parallel'");
@@ -295,9 +310,9 @@ private:
   }
 
   Condition load_condition(const Field& v) {
-    const auto keys = v.expect_map({"axis", "position_above", "position_below", "velocity_above", "velocity_below",
-                                    "following_error_above", "following_error_below", "state", "fault", "standstill",
-                                    "in_position"});
+    const auto keys =
+        v.expect_map({"axis", "position_above", "position_below", "velocity_above", "velocity_below",
+                      "following_error_above", "following_error_below", "state", "fault", "standstill", "in_position"});
     Condition c;
     c.axis = axis_name(v.required("axis", "the axis to watch"));
     std::string kind;
@@ -307,8 +322,9 @@ private:
       kind = k;
     }
     if (kind.empty())
-      v.fail("a condition needs one of: position_above, position_below, velocity_above, velocity_below, "
-             "following_error_above, following_error_below, state, fault, standstill, in_position");
+      v.fail(
+          "a condition needs one of: position_above, position_below, velocity_above, velocity_below, "
+          "following_error_above, following_error_below, state, fault, standstill, in_position");
     const Field x = v.child(kind);
     auto compare = [&](Quantity q, Comparison cmp) {
       c.kind = Condition::Kind::compare;
@@ -316,12 +332,18 @@ private:
       c.comparison = cmp;
       c.value = x.as_number("a number in units (or units/s)");
     };
-    if (kind == "position_above") compare(Quantity::position, Comparison::above);
-    else if (kind == "position_below") compare(Quantity::position, Comparison::below);
-    else if (kind == "velocity_above") compare(Quantity::velocity, Comparison::above);
-    else if (kind == "velocity_below") compare(Quantity::velocity, Comparison::below);
-    else if (kind == "following_error_above") compare(Quantity::following_error, Comparison::above);
-    else if (kind == "following_error_below") compare(Quantity::following_error, Comparison::below);
+    if (kind == "position_above")
+      compare(Quantity::position, Comparison::above);
+    else if (kind == "position_below")
+      compare(Quantity::position, Comparison::below);
+    else if (kind == "velocity_above")
+      compare(Quantity::velocity, Comparison::above);
+    else if (kind == "velocity_below")
+      compare(Quantity::velocity, Comparison::below);
+    else if (kind == "following_error_above")
+      compare(Quantity::following_error, Comparison::above);
+    else if (kind == "following_error_below")
+      compare(Quantity::following_error, Comparison::below);
     else if (kind == "state") {
       c.kind = Condition::Kind::state;
       c.state = state_name(x);
@@ -336,16 +358,19 @@ private:
   }
 
   static std::string state_name(const Field& x) {
-    constexpr std::string_view names[] = {"disabled", "enabling", "standstill", "moving", "stopping", "homing", "error"};
+    constexpr std::string_view names[] = {"disabled", "enabling", "standstill", "moving",
+                                          "stopping", "homing",   "error"};
     const std::string n = x.as_string("an axis state name");
     for (auto k : names)
       if (k == n) return n;
-    x.fail(fmt::format("expected an axis state: disabled, enabling, standstill, moving, stopping, homing, error; got {}",
-                       x.describe()));
+    x.fail(
+        fmt::format("expected an axis state: disabled, enabling, standstill, moving, stopping, homing, error; got {}",
+                    x.describe()));
   }
 
   static std::string fault_code_or_any(const Field& x) {
-    if (!x.node().IsScalar()) x.fail(fmt::format("expected a fault code such as motion:1 or cia402:0x7305, or 'any'; got {}", x.describe()));
+    if (!x.node().IsScalar())
+      x.fail(fmt::format("expected a fault code such as motion:1 or cia402:0x7305, or 'any'; got {}", x.describe()));
     const std::string s = x.node().Scalar();
     if (s == "any" || s == "true") return "";
     if (!parse_fault_code(s))
@@ -355,8 +380,8 @@ private:
   }
 
   void load_expectation(const Field& f, std::vector<Expectation>& out) {
-    const auto keys = f.expect_map({"axis", "position", "tolerance", "at", "by", "fault", "state", "no_fault",
-                                    "max_following_error"});
+    const auto keys = f.expect_map(
+        {"axis", "position", "tolerance", "at", "by", "fault", "state", "no_fault", "max_following_error"});
     const auto axes = axis_list(f.required("axis", "an axis name, a list or 'all'"));
     std::string kind;
     for (const auto& k : keys) {
@@ -426,18 +451,24 @@ const AxisSpec* Scenario::find_axis(const std::string& n) const noexcept {
 
 std::string_view to_string(FaultReaction r) noexcept {
   switch (r) {
-    case FaultReaction::quick_stop: return "quick_stop";
-    case FaultReaction::stop: return "stop";
-    case FaultReaction::disable: return "disable";
+    case FaultReaction::quick_stop:
+      return "quick_stop";
+    case FaultReaction::stop:
+      return "stop";
+    case FaultReaction::disable:
+      return "disable";
   }
   return "?";
 }
 
 std::string_view to_string(MoveDirection d) noexcept {
   switch (d) {
-    case MoveDirection::positive: return "positive";
-    case MoveDirection::negative: return "negative";
-    case MoveDirection::shortest: return "shortest";
+    case MoveDirection::positive:
+      return "positive";
+    case MoveDirection::negative:
+      return "negative";
+    case MoveDirection::shortest:
+      return "shortest";
   }
   return "?";
 }
@@ -485,11 +516,16 @@ std::optional<Duration> parse_duration(std::string_view text) {
   if (ec != std::errc{} || end == text.data()) return std::nullopt;
   const std::string_view unit = trim(std::string_view(end, static_cast<std::size_t>(text.data() + text.size() - end)));
   double scale = 1.0;
-  if (unit.empty() || unit == "s") scale = 1.0;
-  else if (unit == "ms") scale = 1e-3;
-  else if (unit == "us") scale = 1e-6;
-  else if (unit == "min") scale = 60.0;
-  else return std::nullopt;
+  if (unit.empty() || unit == "s")
+    scale = 1.0;
+  else if (unit == "ms")
+    scale = 1e-3;
+  else if (unit == "us")
+    scale = 1e-6;
+  else if (unit == "min")
+    scale = 60.0;
+  else
+    return std::nullopt;
   const double seconds = value * scale;
   if (!std::isfinite(seconds) || seconds < 0.0 || seconds > 10.0 * 86400.0) return std::nullopt;
   return Duration{std::llround(seconds * 1e9)};  // round: 100us must not become 99999ns

@@ -112,7 +112,8 @@ void AsioScheduler::stop() noexcept {
 
 SchedulerStats AsioScheduler::run(CycleFunction fn, std::uint64_t max_cycles) {
   SchedulerStats out;
-  async_run(std::move(fn), [&out](const SchedulerStats& s) { out = s; }, max_cycles);
+  async_run(
+      std::move(fn), [&out](const SchedulerStats& s) { out = s; }, max_cycles);
   auto& io = static_cast<asio::io_context&>(impl_->timer.get_executor().context());
   io.restart();
   while (!impl_->finished && io.run_one() > 0) {
@@ -120,6 +121,8 @@ SchedulerStats AsioScheduler::run(CycleFunction fn, std::uint64_t max_cycles) {
   return out;
 }
 
-const SchedulerStats& AsioScheduler::stats() const noexcept { return impl_->stats; }
+const SchedulerStats& AsioScheduler::stats() const noexcept {
+  return impl_->stats;
+}
 
 }  // namespace hil::runtime

@@ -76,7 +76,7 @@ std::vector<double> nice_ticks(double lo, double hi, int target) {
 
 namespace {
 
-constexpr double chart_w = 380, chart_h = 210;    // one chart, including its margins
+constexpr double chart_w = 380, chart_h = 210;        // one chart, including its margins
 constexpr double ml = 64, mr = 14, mt = 26, mb = 38;  // margins inside a chart
 constexpr double title_h = 44;
 
@@ -119,14 +119,16 @@ void chart(std::string& svg, double x0, double y0, const std::string& title, con
   const double pw = chart_w - ml - mr, ph = chart_h - mt - mb;
   const double px = x0 + ml, py = y0 + mt;
   Range yr{0, 1};
-  if (lines.size() == 1) yr = range_of({lines[0].values});
-  else yr = range_of({lines[0].values, lines[1].values});
+  if (lines.size() == 1)
+    yr = range_of({lines[0].values});
+  else
+    yr = range_of({lines[0].values, lines[1].values});
   const Range tr{0.0, std::max(t_end, 1e-3)};
   auto X = [&](double v) { return px + (v - tr.lo) / (tr.hi - tr.lo) * pw; };
   auto Y = [&](double v) { return py + ph - (v - yr.lo) / (yr.hi - yr.lo) * ph; };
 
-  svg += fmt::format("<g class=\"chart\">\n<text x=\"{:.1f}\" y=\"{:.1f}\" class=\"ctitle\">{}</text>\n", px,
-                     y0 + 16, xml_escape(title));
+  svg += fmt::format("<g class=\"chart\">\n<text x=\"{:.1f}\" y=\"{:.1f}\" class=\"ctitle\">{}</text>\n", px, y0 + 16,
+                     xml_escape(title));
   svg += fmt::format("<rect x=\"{:.1f}\" y=\"{:.1f}\" width=\"{:.1f}\" height=\"{:.1f}\" class=\"frame\"/>\n", px, py,
                      pw, ph);
   const auto yt = nice_ticks(yr.lo, yr.hi, 5);
@@ -160,8 +162,8 @@ void chart(std::string& svg, double x0, double y0, const std::string& title, con
     double prev = NAN;
     auto flush = [&] {
       if (!pts.empty())
-        svg += fmt::format("<polyline fill=\"none\" stroke=\"{}\" stroke-width=\"1.5\"{} points=\"{}\"/>\n",
-                           l.color, l.dashed ? " stroke-dasharray=\"5,3\"" : "", pts);
+        svg += fmt::format("<polyline fill=\"none\" stroke=\"{}\" stroke-width=\"1.5\"{} points=\"{}\"/>\n", l.color,
+                           l.dashed ? " stroke-dasharray=\"5,3\"" : "", pts);
       pts.clear();
     };
     for (std::size_t i = 0; i < t.size() && i < l.values->size(); ++i) {
@@ -180,12 +182,13 @@ void chart(std::string& svg, double x0, double y0, const std::string& title, con
   const double legend_w = 34.0 + 7.0 * static_cast<double>(longest);
   double ly = py + 14;
   const double lx = px + pw - legend_w - 6;
-  svg += fmt::format("<rect x=\"{:.1f}\" y=\"{:.1f}\" width=\"{:.1f}\" height=\"{:.1f}\" class=\"legend\"/>\n",
-                     lx - 4, py + 4, legend_w, 16.0 * static_cast<double>(lines.size()) + 4);
+  svg += fmt::format("<rect x=\"{:.1f}\" y=\"{:.1f}\" width=\"{:.1f}\" height=\"{:.1f}\" class=\"legend\"/>\n", lx - 4,
+                     py + 4, legend_w, 16.0 * static_cast<double>(lines.size()) + 4);
   for (const auto& l : lines) {
-    svg += fmt::format("<line x1=\"{:.1f}\" y1=\"{:.1f}\" x2=\"{:.1f}\" y2=\"{:.1f}\" stroke=\"{}\" "
-                       "stroke-width=\"2\"{}/>\n",
-                       lx, ly - 4, lx + 20, ly - 4, l.color, l.dashed ? " stroke-dasharray=\"5,3\"" : "");
+    svg += fmt::format(
+        "<line x1=\"{:.1f}\" y1=\"{:.1f}\" x2=\"{:.1f}\" y2=\"{:.1f}\" stroke=\"{}\" "
+        "stroke-width=\"2\"{}/>\n",
+        lx, ly - 4, lx + 20, ly - 4, l.color, l.dashed ? " stroke-dasharray=\"5,3\"" : "");
     svg += fmt::format("<text x=\"{:.1f}\" y=\"{:.1f}\" class=\"ltext\">{}</text>\n", lx + 26, ly, l.label);
     ly += 16;
   }

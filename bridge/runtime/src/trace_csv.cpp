@@ -36,8 +36,9 @@ void TraceCsvWriter::on_start(const Scenario&, const Machine& machine) {
     const std::string& n = a.spec->name;
     const std::string& u = a.spec->units;
     for (const std::string& column :
-         {fmt::format("{}_position_{}", n, u), fmt::format("{}_command_{}", n, u), fmt::format("{}_velocity_{}_per_s", n, u),
-          fmt::format("{}_following_error_{}", n, u), fmt::format("{}_state", n), fmt::format("{}_fault", n)}) {
+         {fmt::format("{}_position_{}", n, u), fmt::format("{}_command_{}", n, u),
+          fmt::format("{}_velocity_{}_per_s", n, u), fmt::format("{}_following_error_{}", n, u),
+          fmt::format("{}_state", n), fmt::format("{}_fault", n)}) {
       h += ',';
       h += csv_field(column);
     }
@@ -55,10 +56,12 @@ void TraceCsvWriter::on_cycle(Duration t, const Machine& machine) noexcept {
       const auto& st = a.axis->status();
       fmt::format_to(std::back_inserter(line_), ",{:.6f},{:.6f},{:.6f},{:.6f},{},", st.position, st.command_position,
                      st.velocity, st.following_error, motion::to_string(st.state));
-      if (st.fault) fmt::format_to(std::back_inserter(line_), "{}:{}", st.fault.code.category().name(), st.fault.code.value());
+      if (st.fault)
+        fmt::format_to(std::back_inserter(line_), "{}:{}", st.fault.code.category().name(), st.fault.code.value());
     }
     line_ += '\n';
-    if (std::fwrite(line_.data(), 1, line_.size(), file_.get()) != line_.size()) error_ = {errno, std::generic_category()};
+    if (std::fwrite(line_.data(), 1, line_.size(), file_.get()) != line_.size())
+      error_ = {errno, std::generic_category()};
     ++rows_;
   } catch (...) {
     error_ = std::make_error_code(std::errc::not_enough_memory);

@@ -25,7 +25,7 @@ struct LoadFailure {
 
 /// A node plus its key path and the mark to blame when it is missing.
 class Field {
-public:
+ public:
   Field(const std::string& file, YAML::Node node, std::string path, YAML::Mark mark)
       : file_(&file), node_(normalise(node)), path_(std::move(path)), mark_(mark) {}
 
@@ -43,8 +43,8 @@ public:
 
   [[noreturn]] void fail(std::string message) const {
     const YAML::Mark m = mark();
-    throw LoadFailure{ConfigError{*file_, m.line >= 0 ? m.line + 1 : 0, m.column >= 0 ? m.column + 1 : 0, path_,
-                                  std::move(message)}};
+    throw LoadFailure{
+        ConfigError{*file_, m.line >= 0 ? m.line + 1 : 0, m.column >= 0 ? m.column + 1 : 0, path_, std::move(message)}};
   }
 
   /// What the node is, for "got ..." in messages.
@@ -101,8 +101,7 @@ public:
   }
 
   [[nodiscard]] std::string as_string(std::string_view what) const {
-    if (!node_.IsScalar() || node_.Scalar().empty())
-      fail(fmt::format("expected {}, got {}", what, describe()));
+    if (!node_.IsScalar() || node_.Scalar().empty()) fail(fmt::format("expected {}, got {}", what, describe()));
     return node_.Scalar();
   }
   [[nodiscard]] double as_number(std::string_view what) const {
@@ -163,12 +162,10 @@ public:
     return f.as_duration();
   }
 
-private:
+ private:
   /// A missing key yields an invalid ("zombie") node on which most calls throw; replace it by
   /// an undefined node. (Never assign to a yaml-cpp Node: assignment writes through.)
-  static YAML::Node normalise(const YAML::Node& n) {
-    return n.IsDefined() ? n : YAML::Node(YAML::NodeType::Undefined);
-  }
+  static YAML::Node normalise(const YAML::Node& n) { return n.IsDefined() ? n : YAML::Node(YAML::NodeType::Undefined); }
 
   const std::string* file_;
   YAML::Node node_;

@@ -31,9 +31,12 @@ std::uint32_t profile_value(double v) {
 
 std::string_view to_string(OperatingSetup s) noexcept {
   switch (s) {
-    case OperatingSetup::csp: return "csp";
-    case OperatingSetup::csv: return "csv";
-    case OperatingSetup::pp: return "pp";
+    case OperatingSetup::csp:
+      return "csp";
+    case OperatingSetup::csv:
+      return "csv";
+    case OperatingSetup::pp:
+      return "pp";
   }
   return "?";
 }
@@ -44,7 +47,9 @@ Cia402Drive::Cia402Drive(Network& network, canopen::NodeId node, DriveOptions op
   network_.attach(node, this);
 }
 
-Cia402Drive::~Cia402Drive() { network_.detach(node_); }
+Cia402Drive::~Cia402Drive() {
+  network_.detach(node_);
+}
 
 DriveCapabilities Cia402Drive::capabilities() const noexcept {
   DriveCapabilities c;
@@ -66,7 +71,9 @@ void Cia402Drive::on_boot(std::error_code ec) {
   }
 }
 
-void Cia402Drive::on_emcy(std::uint16_t code, std::uint8_t) { emcy_code_ = code; }
+void Cia402Drive::on_emcy(std::uint16_t code, std::uint8_t) {
+  emcy_code_ = code;
+}
 
 void Cia402Drive::on_heartbeat_lost(Duration) {
   heartbeat_lost_ = true;
@@ -75,7 +82,8 @@ void Cia402Drive::on_heartbeat_lost(Duration) {
                         describe(0x8130), node_));
 }
 
-void Cia402Drive::on_heartbeat_resumed() { /* stays latched until fault_reset */ }
+void Cia402Drive::on_heartbeat_resumed() { /* stays latched until fault_reset */
+}
 
 void Cia402Drive::set_fault(std::error_code code, std::string text) {
   feedback_.fault.code = code;
@@ -120,7 +128,8 @@ void Cia402Drive::read(const CycleTime& cycle) {
     } else {
       reset_pending_ = false;
       const auto code = static_cast<std::uint16_t>(img.get_int(k_error, 0));
-      set_fault(make_cia402_error(code), fmt::format("{} (node {}): fault reset refused, the cause persists", describe(code), node_));
+      set_fault(make_cia402_error(code),
+                fmt::format("{} (node {}): fault reset refused, the cause persists", describe(code), node_));
       return;
     }
   }
@@ -128,7 +137,8 @@ void Cia402Drive::read(const CycleTime& cycle) {
     auto code = static_cast<std::uint16_t>(img.get_int(k_error, 0));
     if (code == 0) code = emcy_code_;
     if (!feedback_.fault || feedback_.fault.code.value() != code)
-      set_fault(make_cia402_error(code), fmt::format("{} (node {}): see the drive's error history 0x1003", describe(code), node_));
+      set_fault(make_cia402_error(code),
+                fmt::format("{} (node {}): see the drive's error history 0x1003", describe(code), node_));
   } else if (feedback_.age > options_.stale_after && feedback_.state != DriveState::not_ready) {
     feedback_.state = DriveState::fault;
     set_fault(make_error_code(MotionFault::drive_lost),
@@ -150,7 +160,8 @@ void Cia402Drive::read(const CycleTime& cycle) {
       feedback_.homing_active = false;
       homing_started_ = homing_requested_ = false;
       set_fault(make_error_code(MotionFault::invalid_command),
-                fmt::format("node {}: homing {} (method 0x6098)", node_, error ? "error reported by the drive" : "timed out"));
+                fmt::format("node {}: homing {} (method 0x6098)", node_,
+                            error ? "error reported by the drive" : "timed out"));
     }
   }
 }
@@ -186,8 +197,8 @@ void Cia402Drive::write(const CycleTime& cycle, const DriveCommand& command) {
       if (!homing_started_ && (controlword_ & cw::new_set_point) == 0) {
         homing_started_ = true;
         homing_deadline_ = cycle.now + options_.homing_timeout;
-      }
-      else if (homing_started_) cwv |= cw::new_set_point;  // bit 4 rising one cycle later: start homing
+      } else if (homing_started_)
+        cwv |= cw::new_set_point;  // bit 4 rising one cycle later: start homing
     }
   }
   if (state != DriveState::operation_enabled) {
@@ -228,7 +239,8 @@ Mode Cia402Drive::write_profile(const DriveMove& move, std::uint16_t& cwv, canop
           cwv |= cw::new_set_point;  // held until the drive acknowledges (bit 12)
           if (acknowledged) set_point_ = SetPoint::acknowledged;
           break;
-        case SetPoint::acknowledged: break;  // bit 4 low again: the drive drops bit 12
+        case SetPoint::acknowledged:
+          break;  // bit 4 low again: the drive drops bit 12
       }
       break;
     case DriveMove::Kind::velocity:
@@ -243,9 +255,15 @@ Mode Cia402Drive::write_profile(const DriveMove& move, std::uint16_t& cwv, canop
 
 bool Cia402Drive::request(DriveRequest r) {
   switch (r) {
-    case DriveRequest::enable: goal_ = DriveState::operation_enabled; return true;
-    case DriveRequest::disable: goal_ = DriveState::switch_on_disabled; return true;
-    case DriveRequest::quick_stop: goal_ = DriveState::quick_stop_active; return true;
+    case DriveRequest::enable:
+      goal_ = DriveState::operation_enabled;
+      return true;
+    case DriveRequest::disable:
+      goal_ = DriveState::switch_on_disabled;
+      return true;
+    case DriveRequest::quick_stop:
+      goal_ = DriveState::quick_stop_active;
+      return true;
     case DriveRequest::fault_reset:
       reset_pending_ = true;
       reset_deadline_.reset();

@@ -69,7 +69,7 @@ constexpr std::array<std::pair<std::uint16_t, std::string_view>, 12> k_groups{{
 }};
 
 class Cia402Category final : public std::error_category {
-public:
+ public:
   const char* name() const noexcept override { return "cia402"; }
   std::string message(int v) const override {
     const auto code = static_cast<std::uint16_t>(v);
@@ -92,11 +92,20 @@ std::uint8_t error_register_for(std::uint16_t code) noexcept {
   if (code == 0) return 0;
   std::uint8_t r = 0x01;
   switch (code & 0xF000) {
-    case 0x2000: r |= 0x02; break;
-    case 0x3000: r |= 0x04; break;
-    case 0x4000: r |= 0x08; break;
-    case 0x8000: r |= (code & 0xFF00) == 0x8100 || (code & 0xFF00) == 0x8200 ? 0x10 : 0x20; break;
-    default: break;
+    case 0x2000:
+      r |= 0x02;
+      break;
+    case 0x3000:
+      r |= 0x04;
+      break;
+    case 0x4000:
+      r |= 0x08;
+      break;
+    case 0x8000:
+      r |= (code & 0xFF00) == 0x8100 || (code & 0xFF00) == 0x8200 ? 0x10 : 0x20;
+      break;
+    default:
+      break;
   }
   return r;
 }

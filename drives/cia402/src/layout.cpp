@@ -18,12 +18,12 @@ void remap(std::vector<ParameterValue>& out, std::uint16_t comm, std::uint16_t m
            const std::vector<PdoMappingEntry>& entries, std::uint8_t tt) {
   out.push_back({comm, 1, le(cob | canopen::pdo_cob_invalid, 4)});  // 1. disable
   if (entries.empty()) return;
-  out.push_back({map, 0, le(0, 1)});                                 // 2. sub 0 = 0
-  for (std::size_t i = 0; i < entries.size(); ++i)                   // 3. entries
+  out.push_back({map, 0, le(0, 1)});                // 2. sub 0 = 0
+  for (std::size_t i = 0; i < entries.size(); ++i)  // 3. entries
     out.push_back({map, static_cast<std::uint8_t>(i + 1), le(canopen::make_mapping_entry(entries[i]), 4)});
-  out.push_back({map, 0, le(entries.size(), 1)});                    // 4. count
+  out.push_back({map, 0, le(entries.size(), 1)});  // 4. count
   out.push_back({comm, 2, le(tt, 1)});
-  out.push_back({comm, 1, le(cob, 4)});                              // 5. enable
+  out.push_back({comm, 1, le(cob, 4)});  // 5. enable
 }
 
 }  // namespace
@@ -43,7 +43,8 @@ canopen::NodeConfig make_axis_node_config(const canopen::DeviceDescription& eds,
   c.configuration.push_back({0x1017, 0, le(static_cast<std::uint64_t>(hb_ms), 2)});
   if (o.master_node != 0) {
     const auto ms = std::chrono::duration_cast<std::chrono::milliseconds>(o.master_heartbeat_timeout).count();
-    c.configuration.push_back({0x1016, 1, le((std::uint64_t{o.master_node} << 16) | (static_cast<std::uint64_t>(ms) & 0xFFFF), 4)});
+    c.configuration.push_back(
+        {0x1016, 1, le((std::uint64_t{o.master_node} << 16) | (static_cast<std::uint64_t>(ms) & 0xFFFF), 4)});
   }
   const std::vector<PdoMappingEntry> rpdo1{{0x6040, 0, 16}, {0x6060, 0, 8}};
   const std::vector<PdoMappingEntry> rpdo2{{0x607A, 0, 32}, {0x60FF, 0, 32}};
@@ -51,8 +52,9 @@ canopen::NodeConfig make_axis_node_config(const canopen::DeviceDescription& eds,
   const std::vector<PdoMappingEntry> tpdo2{{0x6064, 0, 32}, {0x606C, 0, 32}};
   remap(c.configuration, 0x1400, 0x1600, 0x200u + id, rpdo1, 1);
   remap(c.configuration, 0x1401, 0x1601, 0x300u + id, rpdo2, 1);
-  const std::vector<PdoMappingEntry> rpdo3 =
-      o.profile_objects ? std::vector<PdoMappingEntry>{{0x6081, 0, 32}, {0x6083, 0, 32}} : std::vector<PdoMappingEntry>{};
+  const std::vector<PdoMappingEntry> rpdo3 = o.profile_objects
+                                                 ? std::vector<PdoMappingEntry>{{0x6081, 0, 32}, {0x6083, 0, 32}}
+                                                 : std::vector<PdoMappingEntry>{};
   const std::vector<PdoMappingEntry> rpdo4 =
       o.profile_objects ? std::vector<PdoMappingEntry>{{0x6084, 0, 32}} : std::vector<PdoMappingEntry>{};
   remap(c.configuration, 0x1402, 0x1602, 0x400u + id, rpdo3, 1);

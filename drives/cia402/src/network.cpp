@@ -6,12 +6,15 @@
 namespace hil::cia402 {
 
 Network::Network(can::Channel& channel, canopen::MasterOptions options)
-    : channel_(channel), master_([this](const can::Frame& f) {
-        if (auto ec = channel_.send(f)) {
-          ++stats_.tx_errors;
-          stats_.last_tx_error = ec;
-        }
-      }, options) {
+    : channel_(channel),
+      master_(
+          [this](const can::Frame& f) {
+            if (auto ec = channel_.send(f)) {
+              ++stats_.tx_errors;
+              stats_.last_tx_error = ec;
+            }
+          },
+          options) {
   channel_.set_receive_handler([this](const can::Frame& f, TimePoint t) { master_.on_frame(f, t); });
   master_.on_boot = [this](canopen::NodeId id, std::error_code ec) {
     if (auto it = drives_.find(id); it != drives_.end()) it->second->on_boot(ec);
@@ -27,7 +30,9 @@ Network::Network(can::Channel& channel, canopen::MasterOptions options)
   };
 }
 
-Network::~Network() { channel_.set_receive_handler({}); }
+Network::~Network() {
+  channel_.set_receive_handler({});
+}
 
 void Network::start(TimePoint now) {
   master_.start(now);

@@ -32,7 +32,9 @@ void set_timeouts(modbus_t* ctx, Duration timeout) {
   modbus_set_byte_timeout(ctx, sec, usec);
 }
 
-bool is_link_error(modbus::ModbusError e) noexcept { return static_cast<int>(e) >= 0x100; }
+bool is_link_error(modbus::ModbusError e) noexcept {
+  return static_cast<int>(e) >= 0x100;
+}
 
 }  // namespace
 
@@ -70,7 +72,8 @@ ModbusDrive::~ModbusDrive() {
 }
 
 DriveCapabilities ModbusDrive::capabilities() const noexcept {
-  const bool vel = config_.profile.field(FieldRole::target_velocity).present && config_.profile.field(FieldRole::mode).present;
+  const bool vel =
+      config_.profile.field(FieldRole::target_velocity).present && config_.profile.field(FieldRole::mode).present;
   const auto& p = config_.profile;
   const bool homing = p.mode_homing.has_value() && p.state_machine == modbus::StateMachineKind::cia402 &&
                       p.field(FieldRole::mode).present;
@@ -126,8 +129,8 @@ void ModbusDrive::read(const CycleTime& cycle) {
     feedback_.referenced = info.referenced;
     feedback_.position_inc = std::llround(static_cast<double>(field_value(FieldRole::actual_position)) *
                                           p.field(FieldRole::actual_position).scale);
-    feedback_.velocity_inc_per_s = static_cast<double>(field_value(FieldRole::actual_velocity)) *
-                                   p.field(FieldRole::actual_velocity).scale;
+    feedback_.velocity_inc_per_s =
+        static_cast<double>(field_value(FieldRole::actual_velocity)) * p.field(FieldRole::actual_velocity).scale;
     feedback_.age = cycle.now - local_image_.stamp;
     track_homing(sw, cycle.now);
   }
@@ -193,7 +196,8 @@ void ModbusDrive::write(const CycleTime& /*cycle*/, const DriveCommand& command)
   } else {
     put_field(FieldRole::mode, velocity ? p.mode_velocity : p.mode_position);
   }
-  const double pos = following ? static_cast<double>(command.position_inc) : static_cast<double>(feedback_.position_inc);
+  const double pos =
+      following ? static_cast<double>(command.position_inc) : static_cast<double>(feedback_.position_inc);
   put_field(FieldRole::target_position, std::llround(pos / p.field(FieldRole::target_position).scale));
   const double vel = following && velocity ? command.velocity_inc_per_s : 0.0;
   if (p.field(FieldRole::target_velocity).present)
@@ -205,9 +209,15 @@ void ModbusDrive::write(const CycleTime& /*cycle*/, const DriveCommand& command)
 
 bool ModbusDrive::request(DriveRequest r) {
   switch (r) {
-    case DriveRequest::enable: target_ = modbus::PowerTarget::enabled; return true;
-    case DriveRequest::disable: target_ = modbus::PowerTarget::disabled; return true;
-    case DriveRequest::quick_stop: target_ = modbus::PowerTarget::quick_stop; return true;
+    case DriveRequest::enable:
+      target_ = modbus::PowerTarget::enabled;
+      return true;
+    case DriveRequest::disable:
+      target_ = modbus::PowerTarget::disabled;
+      return true;
+    case DriveRequest::quick_stop:
+      target_ = modbus::PowerTarget::quick_stop;
+      return true;
     case DriveRequest::fault_reset:
       // A link fault clears when the link delivers an image after the error. Only a reset given
       // while connected counts: a reset during an outage must not clear a later reconnect's fault.

@@ -21,7 +21,7 @@ namespace fs = std::filesystem;
 // An axis whose far end is our in-process server: the Modbus drive plus fault injection into
 // the server (plant faults and link faults). Motion thread only.
 class InProcessModbusDrive final : public Drive, public FaultInjectable {
-public:
+ public:
   InProcessModbusDrive(std::unique_ptr<ModbusDrive> drive, mocks::ModbusDriveServer& server)
       : drive_(std::move(drive)), server_(server) {}
   [[nodiscard]] std::string_view name() const noexcept override { return drive_->name(); }
@@ -35,12 +35,17 @@ public:
     return {"encoder", "not_ready", "following_blowup", "server_down", "slow_response", "busy"};
   }
   bool inject_fault(std::string_view fault, bool active) override {
-    if (fault == "encoder") server_.inject(PlantFault::encoder, active);
-    else if (fault == "not_ready") server_.inject(PlantFault::not_ready, active);
-    else if (fault == "following_blowup") server_.inject(PlantFault::following_blowup, active);
+    if (fault == "encoder")
+      server_.inject(PlantFault::encoder, active);
+    else if (fault == "not_ready")
+      server_.inject(PlantFault::not_ready, active);
+    else if (fault == "following_blowup")
+      server_.inject(PlantFault::following_blowup, active);
     else if (fault == "server_down") {
-      if (active) server_.stop();
-      else if (auto ec = server_.start()) return false;
+      if (active)
+        server_.stop();
+      else if (auto ec = server_.start())
+        return false;
     } else if (fault == "slow_response") {
       server_.set_response_delay(active ? 3 * timeout_ : Duration{});
     } else if (fault == "busy") {
@@ -53,14 +58,14 @@ public:
   void set_timeout(Duration t) { timeout_ = t; }
   ModbusDrive& drive() { return *drive_; }
 
-private:
+ private:
   std::unique_ptr<ModbusDrive> drive_;
   mocks::ModbusDriveServer& server_;
   Duration timeout_{std::chrono::milliseconds(100)};
 };
 
 class ModbusTransport final : public TransportFactory {
-public:
+ public:
   ~ModbusTransport() override {
     drives_.clear();  // drives (workers) go before the servers they talk to
     for (auto& s : servers_) s->stop();
@@ -96,8 +101,8 @@ public:
       if (!v) return std::unexpected(v.error());
       if (!v->has_value()) return {};
       if (!(**v > 0.0) || **v > 3600.0)
-        return std::unexpected(yaml::error_at(node[std::string(key)], where.key(key),
-                                              fmt::format("expected seconds > 0, got {}", **v)));
+        return std::unexpected(
+            yaml::error_at(node[std::string(key)], where.key(key), fmt::format("expected seconds > 0, got {}", **v)));
       out = from_seconds(**v);
       return {};
     };
@@ -119,8 +124,9 @@ public:
 
     if (host->has_value()) {
       if (node["plant"])
-        return std::unexpected(yaml::error_at(node["plant"], where.key("plant"),
-                                              "plant: configures the in-process simulated drive; remove it or remove host:"));
+        return std::unexpected(
+            yaml::error_at(node["plant"], where.key("plant"),
+                           "plant: configures the in-process simulated drive; remove it or remove host:"));
       std::string h = **host;
       long long p = port->value_or(modbus::kDefaultPort);
       if (auto colon = h.rfind(':'); colon != std::string::npos && h.find(':') == colon) {
@@ -148,15 +154,16 @@ public:
     device_config.quick_stop_deceleration_inc_per_s2 = plant->quick_stop_deceleration_inc_per_s2;
     mocks::ModbusServerConfig server_config;
     server_config.handler.unit_id = config.profile.unit_id;
-    auto server = std::make_unique<mocks::ModbusDriveServer>(mocks::DriveDevice(config.profile, device_config),
-                                                             server_config);
+    auto server =
+        std::make_unique<mocks::ModbusDriveServer>(mocks::DriveDevice(config.profile, device_config), server_config);
     if (auto ec = server->start())
-      return std::unexpected(yaml::error_at(node, where, fmt::format("cannot start the in-process Modbus drive server: {}",
-                                                                     ec.message())));
+      return std::unexpected(yaml::error_at(
+          node, where, fmt::format("cannot start the in-process Modbus drive server: {}", ec.message())));
     config.host = "127.0.0.1";
     config.port = server->port();
     const Duration timeout = config.response_timeout;
-    auto drive = std::make_unique<InProcessModbusDrive>(std::make_unique<ModbusDrive>(std::move(config), env.clock), *server);
+    auto drive =
+        std::make_unique<InProcessModbusDrive>(std::make_unique<ModbusDrive>(std::move(config), env.clock), *server);
     drive->set_timeout(timeout);
     drives_.push_back(&drive->drive());
     servers_.push_back(std::move(server));
@@ -187,7 +194,7 @@ public:
     return report;
   }
 
-private:
+ private:
   std::vector<std::unique_ptr<mocks::ModbusDriveServer>> servers_;
   std::vector<ModbusDrive*> drives_;  // owned by the run's axes
   bool started_ = false;
@@ -196,7 +203,9 @@ private:
 
 }  // namespace
 
-std::string default_modbus_profile_dir() { return HIL_MODBUS_PROFILE_DIR; }
+std::string default_modbus_profile_dir() {
+  return HIL_MODBUS_PROFILE_DIR;
+}
 
 std::string resolve_modbus_profile(const std::string& name_or_path, const std::string& scenario_dir) {
   std::error_code ec;
@@ -209,6 +218,8 @@ std::string resolve_modbus_profile(const std::string& name_or_path, const std::s
   return (fs::path(scenario_dir) / given).string();  // load_profile reports "cannot open"
 }
 
-std::unique_ptr<TransportFactory> make_modbus_transport() { return std::make_unique<ModbusTransport>(); }
+std::unique_ptr<TransportFactory> make_modbus_transport() {
+  return std::make_unique<ModbusTransport>();
+}
 
 }  // namespace hil::drives

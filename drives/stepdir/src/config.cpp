@@ -32,8 +32,9 @@ Ex<gpio::LineSpec> parse_line(const YAML::Node& node, const Where& w, std::strin
     if (*bias) {
       auto b = gpio::parse_bias(**bias);
       if (!b) {
-        return std::unexpected(error_at(node["bias"], w.key("bias"),
-                                        fmt::format("unknown bias '{}': use as-is, disabled, pull-up or pull-down", **bias)));
+        return std::unexpected(
+            error_at(node["bias"], w.key("bias"),
+                     fmt::format("unknown bias '{}': use as-is, disabled, pull-up or pull-down", **bias)));
       }
       s.bias = *b;
     }
@@ -59,11 +60,17 @@ ConfigError md_error(const YAML::Node& node, const Where& w, Ip247MdError e) {
 }  // namespace
 
 Ex<StepDirConfig> parse_stepdir_config(const YAML::Node& drive, const Where& where) {
-  if (auto r = hil::yaml::check_keys(
-          drive, where,
-          {"transport", "chip", "lines", "profile", "fmax_hz", "fss_hz", "accel_hz_per_s", "pulse_us", "pulse_rounding",
-           "step_space_ns", "dir_setup_ns", "dir_hold_ns", "polarity", "dir_forward_level", "backlash", "limit_switches",
-           "reset_pulse_ms", "ready_timeout_ms", "homing", "mock", "writer"});
+  if (auto r = hil::yaml::check_keys(drive, where, {"transport",      "chip",
+                                                    "lines",          "profile",
+                                                    "fmax_hz",        "fss_hz",
+                                                    "accel_hz_per_s", "pulse_us",
+                                                    "pulse_rounding", "step_space_ns",
+                                                    "dir_setup_ns",   "dir_hold_ns",
+                                                    "polarity",       "dir_forward_level",
+                                                    "backlash",       "limit_switches",
+                                                    "reset_pulse_ms", "ready_timeout_ms",
+                                                    "homing",         "mock",
+                                                    "writer"});
       !r) {
     return std::unexpected(r.error());
   }
@@ -121,10 +128,10 @@ Ex<StepDirConfig> parse_stepdir_config(const YAML::Node& drive, const Where& whe
   auto setup = integer(drive, where, "dir_setup_ns", 5'000), hold = integer(drive, where, "dir_hold_ns", 5'000);
   if (!setup) return std::unexpected(setup.error());
   if (!hold) return std::unexpected(hold.error());
-  auto timing = make_ip247_timing(static_cast<int>(std::clamp<long long>(*pulse, -1, 1000)),
-                                  *rounding == "up" ? PulseRounding::up : PulseRounding::down, *fmax,
-                                  *polarity == "positive" ? Polarity::positive_edge : Polarity::negative_edge, *setup,
-                                  *hold);
+  auto timing =
+      make_ip247_timing(static_cast<int>(std::clamp<long long>(*pulse, -1, 1000)),
+                        *rounding == "up" ? PulseRounding::up : PulseRounding::down, *fmax,
+                        *polarity == "positive" ? Polarity::positive_edge : Polarity::negative_edge, *setup, *hold);
   if (!timing) {
     const char* key = timing.error() == Ip247MdError::max_frequency ? "fmax_hz" : "pulse_us";
     return std::unexpected(md_error(drive[key] ? drive[key] : drive, where.key(key), timing.error()));
@@ -148,7 +155,7 @@ Ex<StepDirConfig> parse_stepdir_config(const YAML::Node& drive, const Where& whe
   if (auto r = Ip247Ramp::make(c.ramp, c.timing.min_period_ns()); !r) {
     const char* key = r.error() == Ip247MdError::start_stop_frequency ? "fss_hz"
                       : r.error() == Ip247MdError::frequency_increase ? "accel_hz_per_s"
-                                                                       : "fmax_hz";
+                                                                      : "fmax_hz";
     return std::unexpected(md_error(drive[key] ? drive[key] : drive, where.key(key), r.error()));
   }
   auto backlash = integer(drive, where, "backlash", 0);
@@ -167,14 +174,17 @@ Ex<StepDirConfig> parse_stepdir_config(const YAML::Node& drive, const Where& whe
   auto rp = integer(drive, where, "reset_pulse_ms", 100), rt = integer(drive, where, "ready_timeout_ms", 1000);
   if (!rp) return std::unexpected(rp.error());
   if (!rt) return std::unexpected(rt.error());
-  if (*rp < 0 || *rt <= 0) return std::unexpected(error_at(drive, where, "reset_pulse_ms must be >= 0 and ready_timeout_ms > 0"));
+  if (*rp < 0 || *rt <= 0)
+    return std::unexpected(error_at(drive, where, "reset_pulse_ms must be >= 0 and ready_timeout_ms > 0"));
   c.reset_pulse = std::chrono::milliseconds(*rp);
   c.ready_timeout = std::chrono::milliseconds(*rt);
 
   if (const YAML::Node wr = drive["writer"]) {
     const Where ww = where.key("writer");
-    if (auto r = hil::yaml::check_keys(wr, ww, {"spin_us", "late_us", "rt_priority"}); !r) return std::unexpected(r.error());
-    auto spin = integer(wr, ww, "spin_us", 200), late = integer(wr, ww, "late_us", 50), prio = integer(wr, ww, "rt_priority", 0);
+    if (auto r = hil::yaml::check_keys(wr, ww, {"spin_us", "late_us", "rt_priority"}); !r)
+      return std::unexpected(r.error());
+    auto spin = integer(wr, ww, "spin_us", 200), late = integer(wr, ww, "late_us", 50),
+         prio = integer(wr, ww, "rt_priority", 0);
     if (!spin) return std::unexpected(spin.error());
     if (!late) return std::unexpected(late.error());
     if (!prio) return std::unexpected(prio.error());
@@ -191,14 +201,16 @@ Ex<StepDirConfig> parse_stepdir_config(const YAML::Node& drive, const Where& whe
   const Where lw = where.key("lines");
   if (lines) {
     if (!lines.IsMap()) return std::unexpected(error_at(lines, lw, "expected a map of role: offset or name"));
-    if (auto r = hil::yaml::check_keys(lines, lw, {"step", "dir", "enable", "ready", "limit_start", "limit_end", "reference"});
+    if (auto r = hil::yaml::check_keys(lines, lw,
+                                       {"step", "dir", "enable", "ready", "limit_start", "limit_end", "reference"});
         !r) {
       return std::unexpected(r.error());
     }
   } else if (c.chip) {
     return std::unexpected(error_at(drive, where, "'chip' needs 'lines' with at least step and dir"));
   }
-  auto line = [&](const char* role, gpio::LineDirection d, unsigned mock_offset, bool required) -> Ex<std::optional<gpio::LineSpec>> {
+  auto line = [&](const char* role, gpio::LineDirection d, unsigned mock_offset,
+                  bool required) -> Ex<std::optional<gpio::LineSpec>> {
     if (!lines || !lines[role]) {
       if (required && c.chip) return std::unexpected(error_at(lines, lw, fmt::format("missing line '{}'", role)));
       if (c.chip) return std::optional<gpio::LineSpec>{};
@@ -213,7 +225,8 @@ Ex<StepDirConfig> parse_stepdir_config(const YAML::Node& drive, const Where& whe
     return std::optional<gpio::LineSpec>{*s};
   };
   using D = gpio::LineDirection;
-  auto step = line("step", D::output, 0, true), dir = line("dir", D::output, 1, true), en = line("enable", D::output, 2, false);
+  auto step = line("step", D::output, 0, true), dir = line("dir", D::output, 1, true),
+       en = line("enable", D::output, 2, false);
   auto ready = line("ready", D::input, 3, false), l0 = line("limit_start", D::input, 4, false);
   auto l1 = line("limit_end", D::input, 5, false), ref = line("reference", D::input, 6, false);
   for (auto* r : {&step, &dir, &en, &ready, &l0, &l1, &ref}) {
@@ -233,7 +246,9 @@ Ex<StepDirConfig> parse_stepdir_config(const YAML::Node& drive, const Where& whe
   // Homing.
   if (const YAML::Node h = drive["homing"]) {
     const Where hw = where.key("homing");
-    if (auto r = hil::yaml::check_keys(h, hw, {"direction", "speed_hz", "coordinate", "sync", "patterns", "cam_watchdog_steps"}); !r) {
+    if (auto r = hil::yaml::check_keys(
+            h, hw, {"direction", "speed_hz", "coordinate", "sync", "patterns", "cam_watchdog_steps"});
+        !r) {
       return std::unexpected(r.error());
     }
     auto d = str(h, hw, "direction", "backward");
@@ -246,14 +261,18 @@ Ex<StepDirConfig> parse_stepdir_config(const YAML::Node& drive, const Where& whe
     if (!sp) return std::unexpected(sp.error());
     c.homing.speed_hz = sp->value_or(std::min(c.ramp.f_max_hz, c.ramp.f_ss_hz * 2));
     if (!(c.homing.speed_hz > c.ramp.f_ss_hz && c.homing.speed_hz <= c.ramp.f_max_hz)) {
-      return std::unexpected(md_error(h["speed_hz"] ? h["speed_hz"] : h, hw.key("speed_hz"), Ip247MdError::reference_speed));
+      return std::unexpected(
+          md_error(h["speed_hz"] ? h["speed_hz"] : h, hw.key("speed_hz"), Ip247MdError::reference_speed));
     }
-    auto co = integer(h, hw, "coordinate", 0), pa = integer(h, hw, "patterns", 4), wd = integer(h, hw, "cam_watchdog_steps", 2500);
+    auto co = integer(h, hw, "coordinate", 0), pa = integer(h, hw, "patterns", 4),
+         wd = integer(h, hw, "cam_watchdog_steps", 2500);
     if (!co) return std::unexpected(co.error());
     if (!pa) return std::unexpected(pa.error());
     if (!wd) return std::unexpected(wd.error());
-    if (*pa < 4 || *pa > 40) return std::unexpected(md_error(h["patterns"], hw.key("patterns"), Ip247MdError::patterns));
-    if (*wd < 1) return std::unexpected(error_at(h["cam_watchdog_steps"], hw.key("cam_watchdog_steps"), "expected >= 1"));
+    if (*pa < 4 || *pa > 40)
+      return std::unexpected(md_error(h["patterns"], hw.key("patterns"), Ip247MdError::patterns));
+    if (*wd < 1)
+      return std::unexpected(error_at(h["cam_watchdog_steps"], hw.key("cam_watchdog_steps"), "expected >= 1"));
     auto sy = hil::yaml::get_bool(h, hw, "sync");
     if (!sy) return std::unexpected(sy.error());
     c.homing.coordinate = *co;
@@ -268,7 +287,8 @@ Ex<StepDirConfig> parse_stepdir_config(const YAML::Node& drive, const Where& whe
   if (const YAML::Node m = drive["mock"]) {
     const Where mw = where.key("mock");
     if (c.chip) return std::unexpected(error_at(m, mw, "'mock' is only for runs without 'chip'"));
-    if (auto r = hil::yaml::check_keys(m, mw, {"limit_start_at", "limit_end_at", "cam", "initial_position", "ready"}); !r) {
+    if (auto r = hil::yaml::check_keys(m, mw, {"limit_start_at", "limit_end_at", "cam", "initial_position", "ready"});
+        !r) {
       return std::unexpected(r.error());
     }
     auto a = hil::yaml::get_int(m, mw, "limit_start_at"), b = hil::yaml::get_int(m, mw, "limit_end_at");

@@ -117,8 +117,8 @@ void StepDirDrive::read(const CycleTime& cycle) {
 
   const std::int64_t pos = planner_.position();
   fb_.position_inc = pos;
-  fb_.velocity_inc_per_s =
-      cycle.period.count() > 0 ? static_cast<double>(pos - last_pos_) * 1e9 / static_cast<double>(cycle.period.count())
+  fb_.velocity_inc_per_s = cycle.period.count() > 0
+                               ? static_cast<double>(pos - last_pos_) * 1e9 / static_cast<double>(cycle.period.count())
                                : 0.0;
   last_pos_ = pos;
   // A finished run still shows as active in the first image with the new position, so the motion
@@ -129,10 +129,18 @@ void StepDirDrive::read(const CycleTime& cycle) {
     fb_.state = DriveState::fault;
   } else {
     switch (power_) {
-      case Power::disabled: fb_.state = DriveState::switch_on_disabled; break;
-      case Power::resetting: fb_.state = DriveState::ready_to_switch_on; break;
-      case Power::wait_ready: fb_.state = DriveState::switched_on; break;
-      case Power::enabled: fb_.state = DriveState::operation_enabled; break;
+      case Power::disabled:
+        fb_.state = DriveState::switch_on_disabled;
+        break;
+      case Power::resetting:
+        fb_.state = DriveState::ready_to_switch_on;
+        break;
+      case Power::wait_ready:
+        fb_.state = DriveState::switched_on;
+        break;
+      case Power::enabled:
+        fb_.state = DriveState::operation_enabled;
+        break;
     }
   }
 }
@@ -335,7 +343,8 @@ void StepDirDrive::write(const CycleTime& cycle, const DriveCommand& command) {
   const std::size_t fixed = batch_.size();
   if (planner_.plan(now, horizon, batch_) == hil::stepdir::PlanStatus::lagging) ++lag_cycles_;
   if (fixed != 0 && batch_.size() != fixed) {
-    std::stable_sort(batch_.begin(), batch_.end(), [](const gpio::Edge& a, const gpio::Edge& b) { return a.t_ns < b.t_ns; });
+    std::stable_sort(batch_.begin(), batch_.end(),
+                     [](const gpio::Edge& a, const gpio::Edge& b) { return a.t_ns < b.t_ns; });
   }
   sink_.output(batch_);
 }

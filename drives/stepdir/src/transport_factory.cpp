@@ -41,20 +41,24 @@ std::expected<DrivePtr, ConfigError> StepDirTransportFactory::make_drive(const s
     axis->mock_out = std::make_unique<gpio::mock::MockLines>(outs, env.clock);
     axis->mock_out->set_record_limit(1u << 20);
     axis->mock_in = std::make_unique<gpio::mock::MockLines>(ins, env.clock);
-    axis->decoder = std::make_unique<gpio::mock::StepDirDecoder>(*axis->mock_out, out_step, out_dir,
-                                                                 !cfg->timing.step_idle_level(),
-                                                                 cfg->timing.dir_forward_level, cfg->mock.initial_position);
+    axis->decoder =
+        std::make_unique<gpio::mock::StepDirDecoder>(*axis->mock_out, out_step, out_dir, !cfg->timing.step_idle_level(),
+                                                     cfg->timing.dir_forward_level, cfg->mock.initial_position);
     axis->wire_mock_switches(*cfg);
     axis->sink.next = axis->mock_out.get();
     out_bank = axis->mock_out.get();
     in_bank = axis->mock_in.get();
   } else {
     auto o = gpio::linux_gpiod::GpiodLines::open(*cfg->chip, outs, "hilbridge-" + axis_name);
-    if (!o) return std::unexpected(ConfigError{env.source_file, 0, 0, env.drive_path(axis_name) + ".lines", o.error().message});
+    if (!o)
+      return std::unexpected(
+          ConfigError{env.source_file, 0, 0, env.drive_path(axis_name) + ".lines", o.error().message});
     axis->real_out = std::move(*o);
     if (!ins.empty()) {
       auto i = gpio::linux_gpiod::GpiodLines::open(*cfg->chip, ins, "hilbridge-" + axis_name);
-      if (!i) return std::unexpected(ConfigError{env.source_file, 0, 0, env.drive_path(axis_name) + ".lines", i.error().message});
+      if (!i)
+        return std::unexpected(
+            ConfigError{env.source_file, 0, 0, env.drive_path(axis_name) + ".lines", i.error().message});
       axis->real_in = std::move(*i);
       in_bank = axis->real_in.get();
     }
@@ -65,7 +69,8 @@ std::expected<DrivePtr, ConfigError> StepDirTransportFactory::make_drive(const s
     axis->writer = std::make_unique<gpio::AsyncEdgeWriter>(*axis->real_out, axis->steady, wo);
     axis->late_us = static_cast<double>(cfg->writer_late.count()) / 1000.0;
     // Map the run's timeline onto the writer's steady clock.
-    axis->writer->set_time_offset(axis->steady.now().time_since_epoch().count() - env.clock.now().time_since_epoch().count());
+    axis->writer->set_time_offset(axis->steady.now().time_since_epoch().count() -
+                                  env.clock.now().time_since_epoch().count());
     axis->sink.next = axis->writer.get();
     out_bank = axis->real_out.get();
   }
@@ -109,12 +114,15 @@ TransportReport StepDirTransportFactory::finish(const CycleTime&) {
     if (a->writer) {
       const auto ws = a->writer->stats();
       rep.lines.push_back(fmt::format(
-          "{}: writer: {} edges, {} late (> {} us), error mean {:.1f} us, p99 <= {:.1f} us, max {:.1f} us, max slip {:.1f} us, {} I/O errors",
-          a->name, ws.edges, ws.late, a->late_us, ws.mean_error_ns() / 1000.0, static_cast<double>(ws.quantile_bound_ns(0.99)) / 1000.0,
-          static_cast<double>(ws.max_error_ns) / 1000.0, static_cast<double>(ws.max_slip_ns) / 1000.0, ws.io_errors));
+          "{}: writer: {} edges, {} late (> {} us), error mean {:.1f} us, p99 <= {:.1f} us, max {:.1f} us, max slip "
+          "{:.1f} us, {} I/O errors",
+          a->name, ws.edges, ws.late, a->late_us, ws.mean_error_ns() / 1000.0,
+          static_cast<double>(ws.quantile_bound_ns(0.99)) / 1000.0, static_cast<double>(ws.max_error_ns) / 1000.0,
+          static_cast<double>(ws.max_slip_ns) / 1000.0, ws.io_errors));
       if (ws.io_errors) rep.ok = false;
       if (auto ec = a->writer->realtime_error()) {
-        rep.lines.push_back(fmt::format("{}: writer: SCHED_FIFO refused ({}); ran with normal scheduling", a->name, ec.message()));
+        rep.lines.push_back(
+            fmt::format("{}: writer: SCHED_FIFO refused ({}); ran with normal scheduling", a->name, ec.message()));
       }
     }
   }

@@ -23,7 +23,9 @@ canopen::ObjectDictionary load_od(canopen::NodeId node) {
   return std::move(d->od);
 }
 
-double sign(double v) { return v > 0 ? 1.0 : (v < 0 ? -1.0 : 0.0); }
+double sign(double v) {
+  return v > 0 ? 1.0 : (v < 0 ? -1.0 : 0.0);
+}
 
 /// One step of a trapezoidal velocity profile toward `target` (positions in increments).
 /// Returns true when the target is reached.
@@ -59,16 +61,19 @@ can::FilterSet predefined_filters(canopen::NodeId node) {
 }
 
 Cia402Node::Cia402Node(can::Channel& channel, Cia402NodeOptions options)
-    : channel_(channel), options_(options),
-      slave_(load_od(options.node), options.node, [this](const can::Frame& f) { (void)channel_.send(f); }, options.sdo),
+    : channel_(channel),
+      options_(options),
+      slave_(
+          load_od(options.node), options.node, [this](const can::Frame& f) { (void)channel_.send(f); }, options.sdo),
       plant_(options.plant) {
   channel_.set_receive_handler([this](const can::Frame& f, TimePoint t) { on_frame(f, t); });
   slave_.on_sync = [this](std::optional<std::uint8_t>, TimePoint now) { on_sync(now); };
   slave_.on_heartbeat = [this](canopen::NodeId, canopen::HeartbeatEvent e, TimePoint now) {
     // Lost master: a drive that is powered stops (CiA 402 fault reaction, error 0x8130, with its
     // EMCY "heartbeat error").
-    if (e == canopen::HeartbeatEvent::timeout && state_ != DriveState::fault && state_ != DriveState::fault_reaction_active &&
-        state_ != DriveState::switch_on_disabled && state_ != DriveState::not_ready)
+    if (e == canopen::HeartbeatEvent::timeout && state_ != DriveState::fault &&
+        state_ != DriveState::fault_reaction_active && state_ != DriveState::switch_on_disabled &&
+        state_ != DriveState::not_ready)
       enter_fault(0x8130, now);
   };
   slave_.on_reset = [this](bool application) {
@@ -79,45 +84,66 @@ Cia402Node::Cia402Node(can::Channel& channel, Cia402NodeOptions options)
     }
   };
   auto& od = slave_.od();
-  od.add_observer(0x2100, [this](const canopen::Variable& v) { inject_error_code(static_cast<std::uint16_t>(v.as_uint()), last_); });
+  od.add_observer(0x2100, [this](const canopen::Variable& v) {
+    inject_error_code(static_cast<std::uint16_t>(v.as_uint()), last_);
+  });
   od.add_observer(0x2101, [this](const canopen::Variable& v) { set_heartbeat_lost(v.as_uint() != 0); });
   od.add_observer(0x2102, [this](const canopen::Variable& v) {
     const auto ms = v.as_uint();
     pending_sdo_delay_ = ms == 0xFFFF ? Duration::max() : std::chrono::milliseconds(ms);
     sdo_delay_pending_ = true;  // applied after this write's own answer went out
   });
-  od.add_observer(0x2103, [this](const canopen::Variable& v) { following_offset_ = static_cast<std::int32_t>(v.as_int()); });
+  od.add_observer(0x2103,
+                  [this](const canopen::Variable& v) { following_offset_ = static_cast<std::int32_t>(v.as_int()); });
 }
 
-Cia402Node::~Cia402Node() { channel_.set_receive_handler({}); }
+Cia402Node::~Cia402Node() {
+  channel_.set_receive_handler({});
+}
 
 std::vector<std::string> Cia402Node::fault_names() {
-  return {"encoder",       "not_ready",     "following_blowup", "following_error", "heartbeat_loss", "sdo_timeout",
-          "sdo_slow",      "overcurrent",   "undervoltage",     "overtemperature", "motor_blocked"};
+  return {"encoder",  "not_ready",   "following_blowup", "following_error", "heartbeat_loss", "sdo_timeout",
+          "sdo_slow", "overcurrent", "undervoltage",     "overtemperature", "motor_blocked"};
 }
 
 bool Cia402Node::inject_fault(std::string_view name, bool active, TimePoint now) {
-  if (name == "encoder") plant_.inject(PlantFault::encoder, active);
-  else if (name == "not_ready") plant_.inject(PlantFault::not_ready, active);
-  else if (name == "following_blowup") plant_.inject(PlantFault::following_blowup, active);
-  else if (name == "following_error") following_offset_ = active ? static_cast<std::int32_t>(std::min<std::int64_t>(slave_.od().get_int(0x6065, 0) * 2 + 1, 1 << 30)) : 0;
-  else if (name == "heartbeat_loss") set_heartbeat_lost(active);
-  else if (name == "sdo_timeout") set_sdo_delay(active ? Duration::max() : Duration{});
-  else if (name == "sdo_slow") set_sdo_delay(active ? Duration(std::chrono::milliseconds(300)) : Duration{});
-  else if (name == "overcurrent") inject_error_code(active ? 0x2310 : 0, now);
-  else if (name == "undervoltage") inject_error_code(active ? 0x3220 : 0, now);
-  else if (name == "overtemperature") inject_error_code(active ? 0x4310 : 0, now);
-  else if (name == "motor_blocked") inject_error_code(active ? 0x7121 : 0, now);
-  else return false;
+  if (name == "encoder")
+    plant_.inject(PlantFault::encoder, active);
+  else if (name == "not_ready")
+    plant_.inject(PlantFault::not_ready, active);
+  else if (name == "following_blowup")
+    plant_.inject(PlantFault::following_blowup, active);
+  else if (name == "following_error")
+    following_offset_ =
+        active ? static_cast<std::int32_t>(std::min<std::int64_t>(slave_.od().get_int(0x6065, 0) * 2 + 1, 1 << 30)) : 0;
+  else if (name == "heartbeat_loss")
+    set_heartbeat_lost(active);
+  else if (name == "sdo_timeout")
+    set_sdo_delay(active ? Duration::max() : Duration{});
+  else if (name == "sdo_slow")
+    set_sdo_delay(active ? Duration(std::chrono::milliseconds(300)) : Duration{});
+  else if (name == "overcurrent")
+    inject_error_code(active ? 0x2310 : 0, now);
+  else if (name == "undervoltage")
+    inject_error_code(active ? 0x3220 : 0, now);
+  else if (name == "overtemperature")
+    inject_error_code(active ? 0x4310 : 0, now);
+  else if (name == "motor_blocked")
+    inject_error_code(active ? 0x7121 : 0, now);
+  else
+    return false;
   return true;
 }
 
 void Cia402Node::inject_error_code(std::uint16_t code, TimePoint now) {
   injected_code_ = code;
-  if (code != 0 && started_ && state_ != DriveState::fault && state_ != DriveState::fault_reaction_active) enter_fault(code, now);
+  if (code != 0 && started_ && state_ != DriveState::fault && state_ != DriveState::fault_reaction_active)
+    enter_fault(code, now);
 }
 
-void Cia402Node::set_heartbeat_lost(bool lost) { slave_.set_heartbeat_muted(lost); }
+void Cia402Node::set_heartbeat_lost(bool lost) {
+  slave_.set_heartbeat_muted(lost);
+}
 
 void Cia402Node::set_sdo_delay(Duration delay) {
   if (delay == Duration::max()) {
@@ -202,14 +228,17 @@ void Cia402Node::run_device(double dt, TimePoint now) {
   od.set_int(0x6061, 0, static_cast<std::int8_t>(mode_));
 
   const double actual = static_cast<double>(plant_.encoder_position_inc()) + following_offset_;
-  if (const auto code = active_fault_code(); code != 0 && state_ != DriveState::fault && state_ != DriveState::fault_reaction_active)
+  if (const auto code = active_fault_code();
+      code != 0 && state_ != DriveState::fault && state_ != DriveState::fault_reaction_active)
     enter_fault(code, now);
 
   const auto prev = state_;
   const auto qs_option = od.get_int(0x605A, 0);
   const bool qs_stays = qs_option >= 5 && qs_option <= 8;
   switch (state_) {
-    case DriveState::not_ready: state_ = DriveState::switch_on_disabled; break;  // transition 1
+    case DriveState::not_ready:
+      state_ = DriveState::switch_on_disabled;
+      break;  // transition 1
     case DriveState::fault_reaction_active:
       if (now - fault_since_ >= options_.fault_reaction_time) state_ = DriveState::fault;  // 14
       break;
@@ -222,14 +251,17 @@ void Cia402Node::run_device(double dt, TimePoint now) {
         slave_.raise_emcy(0x0000, 0, {}, now);
       }
       break;
-    default: state_ = cia402::next_state(state_, cwv, edge_reset, qs_stays); break;
+    default:
+      state_ = cia402::next_state(state_, cwv, edge_reset, qs_stays);
+      break;
   }
   if (state_ == DriveState::operation_enabled && prev != DriveState::operation_enabled) {
     demand_ = actual;  // take over the actual position: no jump on enable
     demand_velocity_ = 0.0;
     pp_active_ = false;
   }
-  if (state_ == DriveState::quick_stop_active && prev != DriveState::quick_stop_active) demand_velocity_ = plant_.velocity_inc_per_s();
+  if (state_ == DriveState::quick_stop_active && prev != DriveState::quick_stop_active)
+    demand_velocity_ = plant_.velocity_inc_per_s();
 
   PlantInput in;
   in.powered = false;

@@ -23,7 +23,8 @@ MockLines::MockLines(std::vector<LineSpec> specs, const Clock& clock)
 
 void MockLines::record(const Edge& e) noexcept {
   if (e.line >= specs_.size() || specs_[e.line].direction != LineDirection::output) {
-    if (errors_.size() < 100) errors_.push_back(fmt::format("edge at {} ns on line {} which is not an output", e.t_ns, e.line));
+    if (errors_.size() < 100)
+      errors_.push_back(fmt::format("edge at {} ns on line {} which is not an output", e.t_ns, e.line));
     return;
   }
   if (e.t_ns < last_t_ && errors_.size() < 100) {
@@ -50,7 +51,8 @@ std::error_code MockLines::set_value(std::size_t index, bool level) noexcept {
   if (index >= specs_.size() || specs_[index].direction != LineDirection::output) {
     return std::make_error_code(std::errc::invalid_argument);
   }
-  if (levels_[index] != level) record(Edge{clock_.now().time_since_epoch().count(), static_cast<std::uint16_t>(index), level});
+  if (levels_[index] != level)
+    record(Edge{clock_.now().time_since_epoch().count(), static_cast<std::uint16_t>(index), level});
   return {};
 }
 
@@ -71,9 +73,13 @@ void MockLines::set_input(std::size_t index, bool level) {
   levels_.at(index) = level;
 }
 
-void MockLines::set_input_source(std::size_t index, InputSource source) { sources_.at(index) = std::move(source); }
+void MockLines::set_input_source(std::size_t index, InputSource source) {
+  sources_.at(index) = std::move(source);
+}
 
-void MockLines::force_input(std::size_t index, std::optional<bool> level) { forced_.at(index) = level; }
+void MockLines::force_input(std::size_t index, std::optional<bool> level) {
+  forced_.at(index) = level;
+}
 
 StepDirDecoder::StepDirDecoder(MockLines& outputs, std::uint16_t step_line, std::uint16_t dir_line, bool active_level,
                                bool dir_forward_level, std::int64_t initial_position)

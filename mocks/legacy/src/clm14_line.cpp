@@ -13,7 +13,8 @@ Clm14Line::Clm14Line(std::shared_ptr<const serial::clm14::DeviceData> data, int 
   if (stations <= 0) {
     stations_.push_back(std::make_unique<Clm14Station>(0, data, axes));
   } else {
-    for (int s = 1; s <= std::min(stations, 32); ++s) stations_.push_back(std::make_unique<Clm14Station>(s, data, axes));
+    for (int s = 1; s <= std::min(stations, 32); ++s)
+      stations_.push_back(std::make_unique<Clm14Station>(s, data, axes));
   }
 }
 
@@ -38,7 +39,9 @@ std::string Clm14Line::on_idle(TimePoint now) {
   return out;
 }
 
-TimePoint Clm14Line::next_deadline() const { return held_.empty() ? TimePoint::max() : held_.front().due; }
+TimePoint Clm14Line::next_deadline() const {
+  return held_.empty() ? TimePoint::max() : held_.front().due;
+}
 
 std::string Clm14Line::on_bytes(std::span<const std::uint8_t> data, TimePoint now) {
   std::string out;
@@ -84,10 +87,12 @@ std::string Clm14Line::save_state() const {
 std::expected<void, std::string> Clm14Line::load_state(const std::string& text) {
   const auto j = nlohmann::json::parse(text, nullptr, false);
   if (j.is_discarded() || !j.is_object()) return std::unexpected(std::string("state file is not valid JSON"));
-  if (j.value("device", std::string{}) != "clm14") return std::unexpected(std::string("state file is not a clm14 state"));
+  if (j.value("device", std::string{}) != "clm14")
+    return std::unexpected(std::string("state file is not a clm14 state"));
   const auto& st = j.value("stations", nlohmann::json::array());
   for (std::size_t i = 0; i < st.size() && i < stations_.size(); ++i) {
-    if (auto r = stations_[i]->from_json(st[i]); !r) return std::unexpected(fmt::format("station {}: {}", i + 1, r.error()));
+    if (auto r = stations_[i]->from_json(st[i]); !r)
+      return std::unexpected(fmt::format("station {}: {}", i + 1, r.error()));
   }
   return {};
 }

@@ -32,7 +32,9 @@ int to_int(std::string_view s) {
   std::from_chars(s.data(), s.data() + s.size(), v);
   return v;
 }
-constexpr int code(SerialError e) { return static_cast<int>(e); }
+constexpr int code(SerialError e) {
+  return static_cast<int>(e);
+}
 
 /// "+12345678.123456" canonical form of a variable value, or empty when malformed.
 std::string canonical_variable(std::string_view v) {
@@ -120,7 +122,9 @@ std::string Clm14Station::error(int c) const {
   return reply('X', serial::clm14::make_error_body(c, data_->serial_error_text(c)));
 }
 
-std::string Clm14Station::confirm() const { return confirmation_on() ? std::string("Y\r\n") : std::string{}; }
+std::string Clm14Station::confirm() const {
+  return confirmation_on() ? std::string("Y\r\n") : std::string{};
+}
 
 void Clm14Station::set_mode(ClmMode m) {
   if (m == mode_) return;
@@ -186,12 +190,23 @@ std::string Clm14Station::on_line(std::string_view line) {
   } else if (t.lead == '?' || t.lead == '#') {
     const char kind = t.body.empty() ? '\0' : t.body[0];
     switch (kind) {
-      case 'N': out = on_program(t); break;
-      case 'K': out = on_parameter(t); break;
-      case 'V': out = on_variable(t); break;
-      case 'P': out = on_logic(t); break;
-      case 'X': out = t.lead == '?' ? on_status(t) : error(code(SerialError::format_error)); break;
-      default: out = error(code(SerialError::format_error));
+      case 'N':
+        out = on_program(t);
+        break;
+      case 'K':
+        out = on_parameter(t);
+        break;
+      case 'V':
+        out = on_variable(t);
+        break;
+      case 'P':
+        out = on_logic(t);
+        break;
+      case 'X':
+        out = t.lead == '?' ? on_status(t) : error(code(SerialError::format_error));
+        break;
+      default:
+        out = error(code(SerialError::format_error));
     }
   } else {
     out = error(code(SerialError::format_error));
@@ -223,7 +238,8 @@ std::string Clm14Station::on_parameter(const Telegram& t) {
   if (rest.size() < 4) return error(code(SerialError::format_error));
   const std::string_view block = rest.substr(0, 2);
   const std::string_view item = rest.substr(2, 2);
-  const bool block_ok = block == "B0" || block == "C0" || (block[0] == 'A' && block[1] >= '1' && block[1] <= '0' + axes_);
+  const bool block_ok =
+      block == "B0" || block == "C0" || (block[0] == 'A' && block[1] >= '1' && block[1] <= '0' + axes_);
   if (!block_ok) return error(code(SerialError::invalid_param_block));
   if (!all_digits(item)) return error(code(SerialError::wrong_param_number));
   const std::string number(rest.substr(0, 4));
@@ -276,26 +292,46 @@ std::string Clm14Station::on_status(const Telegram& t) {
   const int shown_fault = fault_ != 0 ? fault_ : (mode_ == ClmMode::parameter ? 0x01 : 0x00);
   std::string content;
   switch (n) {
-    case 0: case 44: content = " +00000.000  +000000.000"; break;
-    case 2: content = "0000 0000"; break;
-    case 3: case 40: content = "00000000 00000000"; break;
+    case 0:
+    case 44:
+      content = " +00000.000  +000000.000";
+      break;
+    case 2:
+      content = "0000 0000";
+      break;
+    case 3:
+    case 40:
+      content = "00000000 00000000";
+      break;
     case 5: {
       std::string fw = data_->identification().substr(0, 20);
       fw.resize(20, ' ');
       content = " " + fw;
       break;
     }
-    case 8: content = "0000 0000 0000 0000 0000 0000"; break;
-    case 10: case 43: content = "+00000.000 +000000.000"; break;
-    case 19: content = data_->identification(); break;
-    case 39: content = "0000 0000 0000 0000"; break;
-    case 53: content = fmt::format("{:02X} {}", shown_fault, data_->fault_text(shown_fault)); break;
+    case 8:
+      content = "0000 0000 0000 0000 0000 0000";
+      break;
+    case 10:
+    case 43:
+      content = "+00000.000 +000000.000";
+      break;
+    case 19:
+      content = data_->identification();
+      break;
+    case 39:
+      content = "0000 0000 0000 0000";
+      break;
+    case 53:
+      content = fmt::format("{:02X} {}", shown_fault, data_->fault_text(shown_fault));
+      break;
     case 60: {
       if (arg.size() != 1 || arg[0] < '0' || arg[0] > '3') return error(code(SerialError::not_accepted));
       content = (arg[0] == '0' && !invalid_item_.empty()) ? invalid_item_ : std::string(6, ' ');
       break;
     }
-    default: return error(code(SerialError::status_illegal));
+    default:
+      return error(code(SerialError::status_illegal));
   }
   return reply('X', fmt::format("{:02d} {} ", n, content));
 }
@@ -304,7 +340,11 @@ std::string Clm14Station::on_command(const Telegram& t) {
   const std::string_view c = trim_right(t.body);
   const bool param = mode_ == ClmMode::parameter;
   const auto range = [&](std::string_view tail, int lo, int hi, int& a, int& b) {
-    if (tail.empty()) { a = lo; b = hi; return true; }
+    if (tail.empty()) {
+      a = lo;
+      b = hi;
+      return true;
+    }
     if (tail.size() != 8 || !all_digits(tail)) return false;
     a = to_int(tail.substr(0, 4));
     b = to_int(tail.substr(4, 4));
@@ -341,7 +381,8 @@ std::string Clm14Station::on_command(const Telegram& t) {
     if (mode_ != ClmMode::manual) return error(code(SerialError::invalid_mode));
   } else if (c == "CLL1" || c == "CLL2") {
     // length counters are not modelled beyond accepting the command
-  } else if (c.size() >= 4 && c[0] == 'M' && c[1] >= '1' && c[1] <= '4' && (c.substr(2) == "ON" || c.substr(2) == "OFF")) {
+  } else if (c.size() >= 4 && c[0] == 'M' && c[1] >= '1' && c[1] <= '4' &&
+             (c.substr(2) == "ON" || c.substr(2) == "OFF")) {
     axis_enabled_[static_cast<std::size_t>(c[1] - '1')] = c.substr(2) == "ON";
   } else {
     return error(code(SerialError::format_error));
@@ -357,14 +398,16 @@ nlohmann::json Clm14Station::to_json() const {
   j["invalid_item"] = invalid_item_;
   nlohmann::json prog = nlohmann::json::object();
   for (int i = 0; i < program_lines; ++i)
-    if (program_[static_cast<std::size_t>(i)] != "NOP   ") prog[fmt::format("{:04d}", i)] = program_[static_cast<std::size_t>(i)];
+    if (program_[static_cast<std::size_t>(i)] != "NOP   ")
+      prog[fmt::format("{:04d}", i)] = program_[static_cast<std::size_t>(i)];
   j["program"] = prog;
   nlohmann::json logic = nlohmann::json::object();
   for (int i = 0; i < logic_lines; ++i) logic[fmt::format("{:04d}", i)] = logic_[static_cast<std::size_t>(i)];
   j["logic"] = logic;
   nlohmann::json vars = nlohmann::json::object();
   for (int i = 0; i < variables; ++i)
-    if (variables_[static_cast<std::size_t>(i)] != "+00000000.000000") vars[fmt::format("{:03d}", i)] = variables_[static_cast<std::size_t>(i)];
+    if (variables_[static_cast<std::size_t>(i)] != "+00000000.000000")
+      vars[fmt::format("{:03d}", i)] = variables_[static_cast<std::size_t>(i)];
   j["variables"] = vars;
   j["parameters"] = parameters_;
   j["axis_enabled"] = axis_enabled_;

@@ -65,9 +65,12 @@ std::string ElgTapeEndpoint::on_bytes(std::span<const std::uint8_t> data, TimePo
     ev.clear();
     reader_.feed(std::span(&data[i], 1), ev);
     for (const auto& e : ev) {
-      if (e.kind == serial::tape::TapeEvent::Kind::block) blocks_.push_back(e.text);
-      else if (e.kind == serial::tape::TapeEvent::Kind::end) finish_tape();
-      else raise(e.error.value(), e.message);
+      if (e.kind == serial::tape::TapeEvent::Kind::block)
+        blocks_.push_back(e.text);
+      else if (e.kind == serial::tape::TapeEvent::Kind::end)
+        finish_tape();
+      else
+        raise(e.error.value(), e.message);
     }
   }
   return out;

@@ -7,7 +7,8 @@
 
 namespace hil::mocks::legacy {
 
-EndpointHost::EndpointHost(Endpoint& endpoint, serial::ByteStream& stream, const Clock& clock, std::filesystem::path state_file)
+EndpointHost::EndpointHost(Endpoint& endpoint, serial::ByteStream& stream, const Clock& clock,
+                           std::filesystem::path state_file)
     : endpoint_(endpoint), stream_(stream), clock_(clock), state_file_(std::move(state_file)) {}
 
 void EndpointHost::send(const std::string& bytes) {

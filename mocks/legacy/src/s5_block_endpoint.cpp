@@ -14,7 +14,9 @@ using serial::s5::Rk512Error;
 S5BlockEndpoint::S5BlockEndpoint(std::unique_ptr<DbPolicy> policy, S5EndpointOptions o)
     : policy_(std::move(policy)), o_(o), proc_(o.procedure) {}
 
-TimePoint S5BlockEndpoint::next_deadline() const { return proc_.next_deadline(); }
+TimePoint S5BlockEndpoint::next_deadline() const {
+  return proc_.next_deadline();
+}
 
 std::string S5BlockEndpoint::drain(TimePoint now) {
   proc_.poll(now);
@@ -47,7 +49,8 @@ std::string S5BlockEndpoint::drain(TimePoint now) {
 void S5BlockEndpoint::execute(const serial::s5::Rk512Telegram& job) {
   std::vector<std::uint8_t> data;
   Rk512Error err = Rk512Error::ok;
-  if (job.kind != serial::s5::Rk512Telegram::Kind::command || (job.header.data_type != 'D' && job.header.data_type != 'X')) {
+  if (job.kind != serial::s5::Rk512Telegram::Kind::command ||
+      (job.header.data_type != 'D' && job.header.data_type != 'X')) {
     err = Rk512Error::header_error;
   } else if (job.header.command == serial::s5::Rk512Command::fetch) {
     std::vector<std::uint16_t> words;
@@ -74,7 +77,9 @@ std::string S5BlockEndpoint::on_line_error(std::error_code, TimePoint now) {
   return drain(now);
 }
 
-std::string S5BlockEndpoint::on_idle(TimePoint now) { return drain(now); }
+std::string S5BlockEndpoint::on_idle(TimePoint now) {
+  return drain(now);
+}
 
 std::string S5BlockEndpoint::save_state() const {
   nlohmann::json j;
@@ -105,7 +110,7 @@ std::expected<void, std::string> S5BlockEndpoint::load_state(const std::string& 
 namespace {
 
 class Ip247Policy final : public DbPolicy {
-public:
+ public:
   explicit Ip247Policy(ImageCheck c) : check_(std::move(c)) {}
   std::string name() const override { return "ip247"; }
 
@@ -142,16 +147,17 @@ public:
     return Rk512Error::ok;
   }
 
-private:
+ private:
   ImageCheck check_;
 };
 
 class Wf725Policy final : public DbPolicy {
-public:
+ public:
   explicit Wf725Policy(std::function<bool(const std::vector<std::uint16_t>&)> c) : check_(std::move(c)) {}
   std::string name() const override { return "wf725"; }
 
-  Rk512Error on_write(DbStore& store, std::uint8_t code, std::uint8_t dw, const std::vector<std::uint16_t>& w) override {
+  Rk512Error on_write(DbStore& store, std::uint8_t code, std::uint8_t dw,
+                      const std::vector<std::uint16_t>& w) override {
     if (code != 1) return Rk512Error::header_error;  // only the MD area is writable (112/113 otherwise)
     if ((dw % 2) != 0 || (w.size() % 2) != 0) return Rk512Error::wrong_identifier;
     if (std::size_t{dw} + w.size() > 100) return Rk512Error::target_too_small;  // MD number > 50: WF error 121
@@ -176,19 +182,22 @@ public:
     // Read-only status codes (3 speed, 4 pulse difference, B Kv, 29 DAC factor, 30 split
     // difference, 32 latched position): 32-bit values; the emulated axis stands still.
     static constexpr std::uint8_t status_codes[] = {0x03, 0x04, 0x0B, 0x29, 0x30, 0x32};
-    if (std::find(std::begin(status_codes), std::end(status_codes), code) == std::end(status_codes)) return Rk512Error::header_error;
+    if (std::find(std::begin(status_codes), std::end(status_codes), code) == std::end(status_codes))
+      return Rk512Error::header_error;
     if (std::size_t{dw} + length > 2) return Rk512Error::target_too_small;
     out.assign(length, 0);
     return Rk512Error::ok;
   }
 
-private:
+ private:
   std::function<bool(const std::vector<std::uint16_t>&)> check_;
 };
 
 }  // namespace
 
-std::unique_ptr<DbPolicy> make_ip247_policy(ImageCheck md_check) { return std::make_unique<Ip247Policy>(std::move(md_check)); }
+std::unique_ptr<DbPolicy> make_ip247_policy(ImageCheck md_check) {
+  return std::make_unique<Ip247Policy>(std::move(md_check));
+}
 std::unique_ptr<DbPolicy> make_wf725_policy(std::function<bool(const std::vector<std::uint16_t>&)> md_check) {
   return std::make_unique<Wf725Policy>(std::move(md_check));
 }

@@ -26,7 +26,8 @@ std::int64_t DriveDevice::read_field(FieldRole r) const noexcept {
   const auto& f = profile_.field(r);
   if (!f.present) return 0;
   const auto space = profile_.space_of(r);
-  const std::uint16_t regs[2] = {table_.get(space, f.address), table_.get(space, static_cast<std::uint16_t>(f.address + 1))};
+  const std::uint16_t regs[2] = {table_.get(space, f.address),
+                                 table_.get(space, static_cast<std::uint16_t>(f.address + 1))};
   return modbus::unpack_value(std::span<const std::uint16_t>(regs, f.words()), f.format);
 }
 
@@ -42,10 +43,14 @@ void DriveDevice::write_field(FieldRole r, std::int64_t raw) noexcept {
 std::uint32_t DriveDevice::fault_code_for(PlantFault f) const noexcept {
   if (profile_.state_machine == modbus::StateMachineKind::cia402) {
     switch (f) {
-      case PlantFault::encoder: return 0x7305;
-      case PlantFault::not_ready: return 0x3100;
-      case PlantFault::following_blowup: return 0x8611;
-      case PlantFault::none: return 0;
+      case PlantFault::encoder:
+        return 0x7305;
+      case PlantFault::not_ready:
+        return 0x3100;
+      case PlantFault::following_blowup:
+        return 0x8611;
+      case PlantFault::none:
+        return 0;
     }
   }
   return static_cast<std::uint32_t>(f);
@@ -74,7 +79,8 @@ void DriveDevice::apply_control(bool stopped) noexcept {
     const DriveState next = modbus::next_device_state(profile_, state_, cw, prev_cw_, pf != PlantFault::none, stopped);
     prev_cw_ = cw;
     if (next == state_) break;
-    if (next == DriveState::fault_reaction_active || (next == DriveState::fault && state_ != DriveState::fault_reaction_active))
+    if (next == DriveState::fault_reaction_active ||
+        (next == DriveState::fault && state_ != DriveState::fault_reaction_active))
       latched_fault_code_ = fault_code_for(pf);
     if (state_ == DriveState::fault && next != DriveState::fault) latched_fault_code_ = 0;
     if (next == DriveState::quick_stop_active) qs_velocity_ = plant_.velocity_inc_per_s();
@@ -96,8 +102,8 @@ void DriveDevice::step(Duration dt) noexcept {
     const std::int64_t mode = read_field(FieldRole::mode);
     const bool velocity_mode = profile_.field(FieldRole::mode).present && mode == profile_.mode_velocity;
     in.mode = velocity_mode ? CommandMode::velocity : CommandMode::position;
-    in.position_inc = static_cast<double>(read_field(FieldRole::target_position)) *
-                      profile_.field(FieldRole::target_position).scale;
+    in.position_inc =
+        static_cast<double>(read_field(FieldRole::target_position)) * profile_.field(FieldRole::target_position).scale;
     in.velocity_inc_per_s = velocity_mode ? static_cast<double>(read_field(FieldRole::target_velocity)) *
                                                 profile_.field(FieldRole::target_velocity).scale
                                           : 0.0;
@@ -149,8 +155,8 @@ void DriveDevice::publish() noexcept {
   write_field(FieldRole::actual_position, std::llround(static_cast<double>(pos) / ap.scale));
   const auto& av = profile_.field(FieldRole::actual_velocity);
   write_field(FieldRole::actual_velocity, std::llround(plant_.velocity_inc_per_s() / av.scale));
-  const double target = static_cast<double>(read_field(FieldRole::target_position)) *
-                        profile_.field(FieldRole::target_position).scale;
+  const double target =
+      static_cast<double>(read_field(FieldRole::target_position)) * profile_.field(FieldRole::target_position).scale;
   const bool reached = std::fabs(target - static_cast<double>(pos)) <= static_cast<double>(config_.target_window_inc);
   if (!in_homing_mode()) homing_attained_ = false;
   std::uint16_t sw = modbus::make_status_word(profile_, state_, true, in_homing_mode() ? homing_attained_ : reached);

@@ -27,7 +27,9 @@ ModbusResponder::ModbusResponder() {
   reply_fd_ = fds[1];
 }
 
-ModbusResponder::~ModbusResponder() { release(); }
+ModbusResponder::~ModbusResponder() {
+  release();
+}
 
 ModbusResponder::ModbusResponder(ModbusResponder&& other) noexcept
     : ctx_(std::exchange(other.ctx_, nullptr)), reply_fd_(std::exchange(other.reply_fd_, -1)) {}
@@ -52,7 +54,8 @@ void ModbusResponder::release() noexcept {
 }
 
 modbus::HandleResult ModbusResponder::handle(std::span<const std::uint8_t> adu, modbus::RegisterTable& table,
-                                             std::span<std::uint8_t> out, const modbus::HandlerOptions& options) noexcept {
+                                             std::span<std::uint8_t> out,
+                                             const modbus::HandlerOptions& options) noexcept {
   modbus::HandleResult result;
   const modbus::RequestCheck check = modbus::check_request(adu, table, options);
   result.function = check.function;

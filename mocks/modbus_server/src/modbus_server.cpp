@@ -6,8 +6,8 @@
 #include <set>
 #include <vector>
 
-#include <asio.hpp>
 #include <fmt/format.h>
+#include <asio.hpp>
 
 #include "hil/modbus/adu.hpp"
 
@@ -23,7 +23,7 @@ struct ModbusDriveServer::Impl {
   asio::steady_timer step_timer{io};
   std::chrono::steady_clock::time_point last_step{};
   std::set<std::shared_ptr<Connection>> connections;  // I/O thread only
-  bool stopping = false;                               // I/O thread only
+  bool stopping = false;                              // I/O thread only
 
   void log(std::string_view msg) const {
     if (server.config_.log) server.config_.log(msg);
@@ -36,7 +36,7 @@ struct ModbusDriveServer::Impl {
 // One client connection. Lives on the I/O thread; owns its buffers, so a misbehaving client
 // cannot disturb another one's framing.
 class ModbusDriveServer::Connection : public std::enable_shared_from_this<Connection> {
-public:
+ public:
   Connection(ModbusDriveServer::Impl& impl, tcp::socket socket)
       : impl_(impl), socket_(std::move(socket)), timer_(impl.io), frame_timer_(impl.io) {
     std::error_code ec;
@@ -56,7 +56,7 @@ public:
     impl_.connections.erase(shared_from_this());
   }
 
-private:
+ private:
   void do_read() {
     socket_.async_read_some(asio::buffer(rx_.data() + have_, rx_.size() - have_),
                             [self = shared_from_this()](std::error_code ec, std::size_t n) {
@@ -77,10 +77,11 @@ private:
       if (frame.status == modbus::FrameStatus::need_more) break;
       if (frame.status != modbus::FrameStatus::complete) {
         srv.malformed_.fetch_add(1);
-        impl_.log(fmt::format("modbus server: closing connection from {}: {} (MBAP protocol id {}, length {}); "
-                              "the peer does not speak Modbus/TCP",
-                              peer_, frame.status == modbus::FrameStatus::bad_protocol_id ? "bad protocol id" : "bad length",
-                              frame.header.protocol_id, frame.header.length));
+        impl_.log(
+            fmt::format("modbus server: closing connection from {}: {} (MBAP protocol id {}, length {}); "
+                        "the peer does not speak Modbus/TCP",
+                        peer_, frame.status == modbus::FrameStatus::bad_protocol_id ? "bad protocol id" : "bad length",
+                        frame.header.protocol_id, frame.header.length));
         close_after_write_ = true;
         off = have_;
         break;
@@ -143,12 +144,10 @@ private:
     frame_timer_.async_wait([self = shared_from_this()](std::error_code ec) {
       if (ec || !self->frame_armed_) return;
       self->impl_.server.stalled_.fetch_add(1);
-      self->impl_.log(fmt::format("modbus server: closing connection from {}: frame incomplete after {} ms ({} bytes)",
-                                  self->peer_,
-                                  std::chrono::duration_cast<std::chrono::milliseconds>(
-                                      self->impl_.server.config_.frame_timeout)
-                                      .count(),
-                                  self->have_));
+      self->impl_.log(fmt::format(
+          "modbus server: closing connection from {}: frame incomplete after {} ms ({} bytes)", self->peer_,
+          std::chrono::duration_cast<std::chrono::milliseconds>(self->impl_.server.config_.frame_timeout).count(),
+          self->have_));
       self->close();
     });
   }
@@ -222,7 +221,9 @@ ModbusDriveServer::ModbusDriveServer(DriveDevice device, ModbusServerConfig conf
   port_ = config_.port;
 }
 
-ModbusDriveServer::~ModbusDriveServer() { stop(); }
+ModbusDriveServer::~ModbusDriveServer() {
+  stop();
+}
 
 std::error_code ModbusDriveServer::start() {
   if (running_) return {};
@@ -231,7 +232,8 @@ std::error_code ModbusDriveServer::start() {
   auto address = asio::ip::make_address(config_.listen_host, ec);
   if (ec) {  // a host name ("localhost", the machine's name): its first address
     tcp::resolver resolver(impl_->io);
-    const auto results = resolver.resolve(config_.listen_host, "", tcp::resolver::passive | tcp::resolver::numeric_service, ec);
+    const auto results =
+        resolver.resolve(config_.listen_host, "", tcp::resolver::passive | tcp::resolver::numeric_service, ec);
     if (ec) return ec;
     if (results.empty()) return asio::error::host_not_found;
     address = results.begin()->endpoint().address();
@@ -278,7 +280,9 @@ void ModbusDriveServer::fail_next(std::uint32_t count, modbus::ModbusError code)
   fail_count_ = count;
 }
 
-void ModbusDriveServer::set_response_delay(Duration delay) { delay_ns_ = delay.count(); }
+void ModbusDriveServer::set_response_delay(Duration delay) {
+  delay_ns_ = delay.count();
+}
 
 ModbusServerStats ModbusDriveServer::stats() const {
   return {accepted_.load(), requests_.load(), exceptions_.load(), malformed_.load(), stalled_.load(), open_.load()};

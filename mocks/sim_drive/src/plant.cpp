@@ -59,8 +59,10 @@ void Plant::inject(PlantFault f, bool active) noexcept {
     faults_ = 0;
     return;
   }
-  if (active) faults_ |= bit(f);
-  else faults_ &= ~bit(f);
+  if (active)
+    faults_ |= bit(f);
+  else
+    faults_ &= ~bit(f);
 }
 
 PlantFault Plant::fault() const noexcept {

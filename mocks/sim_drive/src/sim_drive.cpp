@@ -10,10 +10,10 @@ namespace hil::mocks {
 std::expected<SimDriveConfig, ConfigError> parse_sim_drive_config(const YAML::Node& node, const yaml::Where& where) {
   SimDriveConfig c;
   if (!node.IsDefined() || node.IsNull()) return c;
-  if (auto k = yaml::check_keys(node, where,
-                                {"transport", "kv", "max_velocity", "velocity_lag", "feedforward", "encoder_step",
-                                 "initial_position", "transition_time", "quick_stop_deceleration", "homing_time",
-                                 "home_position"});
+  if (auto k = yaml::check_keys(
+          node, where,
+          {"transport", "kv", "max_velocity", "velocity_lag", "feedforward", "encoder_step", "initial_position",
+           "transition_time", "quick_stop_deceleration", "homing_time", "home_position"});
       !k)
     return std::unexpected(k.error());
   auto positive = [&](std::string_view key, double& out, bool allow_zero) -> std::expected<void, ConfigError> {
@@ -29,19 +29,21 @@ std::expected<SimDriveConfig, ConfigError> parse_sim_drive_config(const YAML::No
   double transition_s = to_seconds(c.transition_time);
   double homing_s = to_seconds(c.homing_time);
   double encoder_step = static_cast<double>(c.plant.encoder_step_inc);
-  for (auto r : {positive("kv", c.plant.kv_per_s, false), positive("max_velocity", c.plant.max_velocity_inc_per_s, false),
-                 positive("velocity_lag", c.plant.velocity_lag_s, true),
-                 positive("feedforward", c.plant.velocity_feedforward, true),
-                 positive("encoder_step", encoder_step, false), positive("transition_time", transition_s, true),
-                 positive("quick_stop_deceleration", c.quick_stop_deceleration_inc_per_s2, false),
-                 positive("homing_time", homing_s, true)})
+  for (auto r :
+       {positive("kv", c.plant.kv_per_s, false), positive("max_velocity", c.plant.max_velocity_inc_per_s, false),
+        positive("velocity_lag", c.plant.velocity_lag_s, true),
+        positive("feedforward", c.plant.velocity_feedforward, true), positive("encoder_step", encoder_step, false),
+        positive("transition_time", transition_s, true),
+        positive("quick_stop_deceleration", c.quick_stop_deceleration_inc_per_s2, false),
+        positive("homing_time", homing_s, true)})
     if (!r) return std::unexpected(r.error());
   if (c.plant.velocity_feedforward > 1.0)
-    return std::unexpected(yaml::error_at(node["feedforward"], where.key("feedforward"),
-                                          fmt::format("must be between 0 and 1, got {}", c.plant.velocity_feedforward)));
+    return std::unexpected(
+        yaml::error_at(node["feedforward"], where.key("feedforward"),
+                       fmt::format("must be between 0 and 1, got {}", c.plant.velocity_feedforward)));
   if (encoder_step != std::floor(encoder_step))
-    return std::unexpected(yaml::error_at(node["encoder_step"], where.key("encoder_step"),
-                                          "must be a whole number of increments"));
+    return std::unexpected(
+        yaml::error_at(node["encoder_step"], where.key("encoder_step"), "must be a whole number of increments"));
   c.plant.encoder_step_inc = static_cast<std::int64_t>(encoder_step);
   c.transition_time = from_seconds(transition_s);
   c.homing_time = from_seconds(homing_s);
@@ -70,9 +72,12 @@ std::vector<std::string> SimDrive::injectable_faults() const {
 }
 
 bool SimDrive::inject_fault(std::string_view fault, bool active) {
-  if (fault == "encoder") plant_.inject(PlantFault::encoder, active);
-  else if (fault == "not_ready") plant_.inject(PlantFault::not_ready, active);
-  else if (fault == "following_blowup") plant_.inject(PlantFault::following_blowup, active);
+  if (fault == "encoder")
+    plant_.inject(PlantFault::encoder, active);
+  else if (fault == "not_ready")
+    plant_.inject(PlantFault::not_ready, active);
+  else if (fault == "following_blowup")
+    plant_.inject(PlantFault::following_blowup, active);
   else if (fault == "stale_feedback") {
     if (active && !stale_) stale_since_ = last_;
     stale_ = active;
@@ -99,7 +104,9 @@ void SimDrive::enter_fault(PlantFault f) {
     case PlantFault::not_ready:
       fault_.text = fmt::format("{}: power stage not ready; check mains and enable input, then reset", name_);
       break;
-    default: fault_.text = fmt::format("{}: {}", name_, make_error_code(f).message()); break;
+    default:
+      fault_.text = fmt::format("{}: {}", name_, make_error_code(f).message());
+      break;
   }
 }
 
@@ -115,7 +122,8 @@ void SimDrive::advance_state(TimePoint now) {
     has_pending_ = false;
     switch (pending_) {
       case DriveRequest::enable:
-        if (state_ == DriveState::quick_stop_active) state_ = DriveState::operation_enabled;  // CiA 402 transition 16
+        if (state_ == DriveState::quick_stop_active)
+          state_ = DriveState::operation_enabled;  // CiA 402 transition 16
         else if (state_ != DriveState::fault && state_ != DriveState::operation_enabled) {
           pending_ = DriveRequest::enable;
           has_pending_ = true;  // keep walking until enabled
@@ -219,7 +227,9 @@ void SimDrive::write(const CycleTime& cycle, const DriveCommand& command) {
       in.velocity_inc_per_s = qs_velocity_;
       break;
     }
-    default: in.powered = false; break;
+    default:
+      in.powered = false;
+      break;
   }
   if (dt > Duration::zero()) plant_.step(dt, in);
   last_ = cycle.now + cycle.period;

@@ -9,10 +9,14 @@ namespace hil::profiles {
 
 std::string_view to_string(Reaction r) noexcept {
   switch (r) {
-    case Reaction::message: return "message";
-    case Reaction::stop: return "stop";
-    case Reaction::drive_off: return "drive_off";
-    case Reaction::needs_reset: return "needs_reset";
+    case Reaction::message:
+      return "message";
+    case Reaction::stop:
+      return "stop";
+    case Reaction::drive_off:
+      return "drive_off";
+    case Reaction::needs_reset:
+      return "needs_reset";
   }
   return "?";
 }
@@ -26,7 +30,7 @@ std::optional<Reaction> parse_reaction(std::string_view s) noexcept {
 }
 
 class ErrorCatalogue::Category final : public std::error_category {
-public:
+ public:
   explicit Category(const ErrorCatalogue& c) : c_(c), name_(c.device_ + "." + c.id_) {}
   const char* name() const noexcept override { return name_.c_str(); }
   std::string message(int code) const override {
@@ -34,7 +38,7 @@ public:
     return fmt::format("{} unknown {} code", c_.format_code(code), c_.title_);
   }
 
-private:
+ private:
   const ErrorCatalogue& c_;
   std::string name_;
 };
@@ -82,7 +86,9 @@ std::string ErrorCatalogue::format_code(int code) const {
   return std::to_string(code);
 }
 
-const std::error_category& ErrorCatalogue::category() const noexcept { return *category_; }
+const std::error_category& ErrorCatalogue::category() const noexcept {
+  return *category_;
+}
 
 hil::Fault ErrorCatalogue::make_fault(int code, std::string_view context) const {
   hil::Fault f;

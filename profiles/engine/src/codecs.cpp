@@ -5,17 +5,19 @@
 #include <charconv>
 #include <cstdlib>
 
-#include "int128.hpp"
 #include "hil/profiles/bcd.hpp"
 #include "hil/profiles/bit_field.hpp"
 #include "hil/profiles/decimal_text.hpp"
 #include "hil/profiles/fixed_point.hpp"
 #include "hil/profiles/twos_complement.hpp"
+#include "int128.hpp"
 
 namespace hil::profiles {
 namespace {
 
-CodecError err(CodecError::Kind k, std::string m) { return CodecError{k, std::move(m)}; }
+CodecError err(CodecError::Kind k, std::string m) {
+  return CodecError{k, std::move(m)};
+}
 
 std::int64_t pow10_i64(int n) {
   std::int64_t r = 1;
@@ -62,7 +64,8 @@ std::string DecimalTextFormat::to_string() const {
 }
 
 std::size_t DecimalTextFormat::width() const noexcept {
-  return static_cast<std::size_t>(int_digits + frac_digits + (frac_digits > 0 ? 1 : 0) + (sign == Sign::always ? 1 : 0));
+  return static_cast<std::size_t>(int_digits + frac_digits + (frac_digits > 0 ? 1 : 0) +
+                                  (sign == Sign::always ? 1 : 0));
 }
 
 Decimal DecimalTextFormat::max_magnitude() const noexcept {
@@ -72,15 +75,18 @@ Decimal DecimalTextFormat::max_magnitude() const noexcept {
 std::expected<std::string, CodecError> make_decimal_text(const Decimal& v, const DecimalTextFormat& f) {
   auto r = v.rescaled(f.frac_digits);
   if (!r)
-    return std::unexpected(err(CodecError::Kind::precision,
-                               fmt::format("{} has more than {} decimals for field {}", v.to_string(), f.frac_digits, f.to_string())));
+    return std::unexpected(err(CodecError::Kind::precision, fmt::format("{} has more than {} decimals for field {}",
+                                                                        v.to_string(), f.frac_digits, f.to_string())));
   const bool neg = r->units < 0;
   if (neg && f.sign == DecimalTextFormat::Sign::none)
-    return std::unexpected(err(CodecError::Kind::out_of_range, fmt::format("{} is negative; field {} is unsigned", v.to_string(), f.to_string())));
-  const std::uint64_t mag = neg ? static_cast<std::uint64_t>(-(r->units + 1)) + 1u : static_cast<std::uint64_t>(r->units);
-  if (mag > static_cast<std::uint64_t>(f.max_magnitude().units))
     return std::unexpected(err(CodecError::Kind::out_of_range,
-                               fmt::format("{} does not fit field {} (at most {})", v.to_string(), f.to_string(), f.max_magnitude().to_string())));
+                               fmt::format("{} is negative; field {} is unsigned", v.to_string(), f.to_string())));
+  const std::uint64_t mag =
+      neg ? static_cast<std::uint64_t>(-(r->units + 1)) + 1u : static_cast<std::uint64_t>(r->units);
+  if (mag > static_cast<std::uint64_t>(f.max_magnitude().units))
+    return std::unexpected(
+        err(CodecError::Kind::out_of_range, fmt::format("{} does not fit field {} (at most {})", v.to_string(),
+                                                        f.to_string(), f.max_magnitude().to_string())));
   std::string digits = fmt::format("{:0{}}", mag, f.int_digits + f.frac_digits);
   if (f.frac_digits > 0) digits.insert(digits.size() - static_cast<std::size_t>(f.frac_digits), 1, '.');
   if (f.int_digits == 0 && f.frac_digits > 0 && digits.front() != '.') digits.insert(0, 1, '.');
@@ -90,11 +96,13 @@ std::expected<std::string, CodecError> make_decimal_text(const Decimal& v, const
 
 std::expected<Decimal, CodecError> parse_decimal_text(std::string_view text, const DecimalTextFormat& f) {
   std::string_view t = text;
-  if (t.empty()) return std::unexpected(err(CodecError::Kind::syntax, fmt::format("empty field; expected {}", f.to_string())));
+  if (t.empty())
+    return std::unexpected(err(CodecError::Kind::syntax, fmt::format("empty field; expected {}", f.to_string())));
   bool neg = false;
   if (t.front() == '+' || t.front() == '-') {
     if (f.sign == DecimalTextFormat::Sign::none && t.front() == '-')
-      return std::unexpected(err(CodecError::Kind::out_of_range, fmt::format("'{}': field {} is unsigned", text, f.to_string())));
+      return std::unexpected(
+          err(CodecError::Kind::out_of_range, fmt::format("'{}': field {} is unsigned", text, f.to_string())));
     neg = t.front() == '-';
     t.remove_prefix(1);
   }
@@ -103,28 +111,36 @@ std::expected<Decimal, CodecError> parse_decimal_text(std::string_view text, con
   std::int64_t u = 0;
   for (char c : t) {
     if (c == '.' || c == ',') {
-      if (point) return std::unexpected(err(CodecError::Kind::syntax, fmt::format("'{}' has two decimal points", text)));
+      if (point)
+        return std::unexpected(err(CodecError::Kind::syntax, fmt::format("'{}' has two decimal points", text)));
       point = true;
       continue;
     }
     if (c < '0' || c > '9')
-      return std::unexpected(err(CodecError::Kind::syntax, fmt::format("'{}' is not a decimal field {} (character '{}')", text, f.to_string(), c)));
+      return std::unexpected(
+          err(CodecError::Kind::syntax,
+              fmt::format("'{}' is not a decimal field {} (character '{}')", text, f.to_string(), c)));
     (point ? frac_digits : int_digits)++;
-    if (int_digits + frac_digits > 18) return std::unexpected(err(CodecError::Kind::out_of_range, fmt::format("'{}' has too many digits", text)));
+    if (int_digits + frac_digits > 18)
+      return std::unexpected(err(CodecError::Kind::out_of_range, fmt::format("'{}' has too many digits", text)));
     u = u * 10 + (c - '0');
   }
-  if (int_digits + frac_digits == 0) return std::unexpected(err(CodecError::Kind::syntax, fmt::format("'{}' has no digits", text)));
+  if (int_digits + frac_digits == 0)
+    return std::unexpected(err(CodecError::Kind::syntax, fmt::format("'{}' has no digits", text)));
   if (point && frac_digits == 0 && f.frac_digits == 0)
-    return std::unexpected(err(CodecError::Kind::syntax, fmt::format("'{}': field {} is an integer", text, f.to_string())));
+    return std::unexpected(
+        err(CodecError::Kind::syntax, fmt::format("'{}': field {} is an integer", text, f.to_string())));
   if (frac_digits > f.frac_digits)
-    return std::unexpected(err(CodecError::Kind::precision, fmt::format("'{}' has {} decimals; field {} has {}", text, frac_digits, f.to_string(), f.frac_digits)));
+    return std::unexpected(err(CodecError::Kind::precision, fmt::format("'{}' has {} decimals; field {} has {}", text,
+                                                                        frac_digits, f.to_string(), f.frac_digits)));
   // Leading zeros beyond the width are harmless; significant digits are not.
   Decimal d{neg ? -u : u, frac_digits};
   auto r = d.rescaled(f.frac_digits);
   if (!r) return std::unexpected(err(CodecError::Kind::out_of_range, r.error()));
   const std::int64_t mag = r->units < 0 ? -r->units : r->units;
   if (mag > f.max_magnitude().units)
-    return std::unexpected(err(CodecError::Kind::out_of_range, fmt::format("'{}' does not fit field {}", text, f.to_string())));
+    return std::unexpected(
+        err(CodecError::Kind::out_of_range, fmt::format("'{}' does not fit field {}", text, f.to_string())));
   return *r;
 }
 
@@ -132,21 +148,28 @@ std::expected<Decimal, CodecError> parse_decimal_text(std::string_view text, con
 
 std::int64_t bcd_max_magnitude(const BcdFormat& f) noexcept {
   switch (f.sign) {
-    case BcdSign::none: return pow10_i64(f.digits) - 1;
-    case BcdSign::bit31: return 8 * pow10_i64(f.digits - 1) - 1;  // top digit 0..7
-    case BcdSign::nibble: return pow10_i64(f.digits - 1) - 1;
+    case BcdSign::none:
+      return pow10_i64(f.digits) - 1;
+    case BcdSign::bit31:
+      return 8 * pow10_i64(f.digits - 1) - 1;  // top digit 0..7
+    case BcdSign::nibble:
+      return pow10_i64(f.digits - 1) - 1;
   }
   return 0;
 }
 
 std::expected<std::uint32_t, CodecError> make_bcd(std::int64_t v, const BcdFormat& f) {
-  if (f.digits < 1 || f.digits > 8) return std::unexpected(err(CodecError::Kind::syntax, "BCD format needs 1..8 digits"));
-  if (f.sign == BcdSign::bit31 && f.digits != 8) return std::unexpected(err(CodecError::Kind::syntax, "the bit-31 sign needs 8 BCD digits"));
+  if (f.digits < 1 || f.digits > 8)
+    return std::unexpected(err(CodecError::Kind::syntax, "BCD format needs 1..8 digits"));
+  if (f.sign == BcdSign::bit31 && f.digits != 8)
+    return std::unexpected(err(CodecError::Kind::syntax, "the bit-31 sign needs 8 BCD digits"));
   if (v < 0 && f.sign == BcdSign::none)
-    return std::unexpected(err(CodecError::Kind::out_of_range, fmt::format("{} is negative; the BCD format is unsigned", v)));
+    return std::unexpected(
+        err(CodecError::Kind::out_of_range, fmt::format("{} is negative; the BCD format is unsigned", v)));
   const std::int64_t mag = v < 0 ? -v : v;
   if (mag > bcd_max_magnitude(f))
-    return std::unexpected(err(CodecError::Kind::out_of_range, fmt::format("{} exceeds the BCD limit ±{}", v, bcd_max_magnitude(f))));
+    return std::unexpected(
+        err(CodecError::Kind::out_of_range, fmt::format("{} exceeds the BCD limit ±{}", v, bcd_max_magnitude(f))));
   std::uint32_t w = 0;
   std::int64_t m = mag;
   for (int i = 0; i < f.digits; ++i) {
@@ -154,17 +177,22 @@ std::expected<std::uint32_t, CodecError> make_bcd(std::int64_t v, const BcdForma
     m /= 10;
   }
   if (v < 0) {
-    if (f.sign == BcdSign::bit31) w |= 0x80000000u;
-    else w |= 0xFu << (4 * (f.digits - 1));
+    if (f.sign == BcdSign::bit31)
+      w |= 0x80000000u;
+    else
+      w |= 0xFu << (4 * (f.digits - 1));
   }
   return w;
 }
 
 std::expected<std::int64_t, CodecError> parse_bcd(std::uint32_t word, const BcdFormat& f) {
-  if (f.digits < 1 || f.digits > 8) return std::unexpected(err(CodecError::Kind::syntax, "BCD format needs 1..8 digits"));
-  if (f.sign == BcdSign::bit31 && f.digits != 8) return std::unexpected(err(CodecError::Kind::syntax, "the bit-31 sign needs 8 BCD digits"));
+  if (f.digits < 1 || f.digits > 8)
+    return std::unexpected(err(CodecError::Kind::syntax, "BCD format needs 1..8 digits"));
+  if (f.sign == BcdSign::bit31 && f.digits != 8)
+    return std::unexpected(err(CodecError::Kind::syntax, "the bit-31 sign needs 8 BCD digits"));
   if (f.digits < 8 && (word >> (4 * f.digits)) != 0)
-    return std::unexpected(err(CodecError::Kind::syntax, fmt::format("BCD word {:08X} has bits above its {} digits", word, f.digits)));
+    return std::unexpected(
+        err(CodecError::Kind::syntax, fmt::format("BCD word {:08X} has bits above its {} digits", word, f.digits)));
   bool neg = false;
   std::uint32_t w = word;
   const int top_shift = 4 * (f.digits - 1);
@@ -174,8 +202,9 @@ std::expected<std::int64_t, CodecError> parse_bcd(std::uint32_t word, const BcdF
   } else if (f.sign == BcdSign::nibble) {
     const std::uint32_t top = (w >> top_shift) & 0xFu;
     if (top != 0 && top != 0xF)
-      return std::unexpected(err(CodecError::Kind::invalid_digit,
-                                 fmt::format("BCD word {:08X}: sign nibble {:X} is neither 0 (+) nor F (-)", word, top)));
+      return std::unexpected(
+          err(CodecError::Kind::invalid_digit,
+              fmt::format("BCD word {:08X}: sign nibble {:X} is neither 0 (+) nor F (-)", word, top)));
     neg = top == 0xF;
     w &= ~(0xFu << top_shift);
   }
@@ -183,8 +212,9 @@ std::expected<std::int64_t, CodecError> parse_bcd(std::uint32_t word, const BcdF
   for (int i = f.digits - 1; i >= 0; --i) {
     const std::uint32_t d = (w >> (4 * i)) & 0xFu;
     if (d > 9)
-      return std::unexpected(err(CodecError::Kind::invalid_digit,
-                                 fmt::format("BCD word {:08X}: nibble {} (10^{}) is {:X}, not a decimal digit", word, i, i, d)));
+      return std::unexpected(
+          err(CodecError::Kind::invalid_digit,
+              fmt::format("BCD word {:08X}: nibble {} (10^{}) is {:X}, not a decimal digit", word, i, i, d)));
     v = v * 10 + d;
   }
   return neg ? -v : v;
@@ -195,14 +225,16 @@ std::expected<std::int64_t, CodecError> parse_bcd(std::uint32_t word, const BcdF
 std::expected<std::uint64_t, CodecError> make_twos_complement(std::int64_t v, const TwosComplementFormat& f) {
   if (f.bits < 1 || f.bits > 64) return std::unexpected(err(CodecError::Kind::syntax, "word width must be 1..64 bits"));
   if (f.bits == 64) {
-    if (!f.is_signed && v < 0) return std::unexpected(err(CodecError::Kind::out_of_range, fmt::format("{} is negative in an unsigned word", v)));
+    if (!f.is_signed && v < 0)
+      return std::unexpected(err(CodecError::Kind::out_of_range, fmt::format("{} is negative in an unsigned word", v)));
     return static_cast<std::uint64_t>(v);
   }
   const std::int64_t lo = f.is_signed ? -(std::int64_t{1} << (f.bits - 1)) : 0;
   const std::int64_t hi = f.is_signed ? (std::int64_t{1} << (f.bits - 1)) - 1 : (std::int64_t{1} << f.bits) - 1;
   if (v < lo || v > hi)
-    return std::unexpected(err(CodecError::Kind::out_of_range, fmt::format("{} does not fit a {}-bit {} word ({}..{})", v, f.bits,
-                                                                           f.is_signed ? "signed" : "unsigned", lo, hi)));
+    return std::unexpected(
+        err(CodecError::Kind::out_of_range, fmt::format("{} does not fit a {}-bit {} word ({}..{})", v, f.bits,
+                                                        f.is_signed ? "signed" : "unsigned", lo, hi)));
   return static_cast<std::uint64_t>(v) & ((std::uint64_t{1} << f.bits) - 1);
 }
 
@@ -226,7 +258,8 @@ std::expected<std::uint64_t, CodecError> make_bit_field(const std::vector<BitVal
     if (!d) return std::unexpected(err(CodecError::Kind::syntax, fmt::format("unknown bit field '{}'", v.name)));
     const std::uint64_t mask = d->width >= 64 ? ~std::uint64_t{0} : (std::uint64_t{1} << d->width) - 1;
     if (v.value > mask)
-      return std::unexpected(err(CodecError::Kind::out_of_range, fmt::format("{}={} does not fit {} bit(s)", v.name, v.value, d->width)));
+      return std::unexpected(
+          err(CodecError::Kind::out_of_range, fmt::format("{}={} does not fit {} bit(s)", v.name, v.value, d->width)));
     w |= v.value << d->first;
   }
   return w;
@@ -234,7 +267,8 @@ std::expected<std::uint64_t, CodecError> make_bit_field(const std::vector<BitVal
 
 std::expected<std::vector<BitValue>, CodecError> parse_bit_field(std::uint64_t word, const BitFieldFormat& f) {
   if (f.bits < 64 && (word >> f.bits) != 0)
-    return std::unexpected(err(CodecError::Kind::out_of_range, fmt::format("{:#x} is wider than {} bits", word, f.bits)));
+    return std::unexpected(
+        err(CodecError::Kind::out_of_range, fmt::format("{:#x} is wider than {} bits", word, f.bits)));
   std::vector<BitValue> out;
   std::uint64_t covered = 0;
   for (const auto& b : f.fields) {
@@ -243,7 +277,8 @@ std::expected<std::vector<BitValue>, CodecError> parse_bit_field(std::uint64_t w
     covered |= mask << b.first;
   }
   if (!f.allow_unnamed && (word & ~covered) != 0)
-    return std::unexpected(err(CodecError::Kind::out_of_range, fmt::format("{:#x} sets undefined bits {:#x}", word, word & ~covered)));
+    return std::unexpected(
+        err(CodecError::Kind::out_of_range, fmt::format("{:#x} sets undefined bits {:#x}", word, word & ~covered)));
   return out;
 }
 
@@ -264,7 +299,8 @@ std::expected<std::vector<BitValue>, CodecError> parse_bit_field_text(std::strin
     if (eq != std::string_view::npos) {
       auto v = parse_decimal(item.substr(eq + 1));
       if (!v || v->scale != 0 || v->units < 0)
-        return std::unexpected(err(CodecError::Kind::syntax, fmt::format("'{}': expected name=unsigned integer", item)));
+        return std::unexpected(
+            err(CodecError::Kind::syntax, fmt::format("'{}': expected name=unsigned integer", item)));
       value = static_cast<std::uint64_t>(v->units);
     }
     out.push_back({std::string(name), value});
@@ -288,7 +324,8 @@ std::string bit_field_text(const std::vector<BitValue>& values, const BitFieldFo
 
 // ---- fixed point ----------------------------------------------------------------------------
 
-std::expected<FixedPointFormat, std::string> FixedPointFormat::parse_lsb(std::string_view lsb, TwosComplementFormat word) {
+std::expected<FixedPointFormat, std::string> FixedPointFormat::parse_lsb(std::string_view lsb,
+                                                                         TwosComplementFormat word) {
   FixedPointFormat f;
   f.word = word;
   const auto slash = lsb.find('/');
@@ -302,7 +339,8 @@ std::expected<FixedPointFormat, std::string> FixedPointFormat::parse_lsb(std::st
     return f;
   }
   auto v = parse_decimal(lsb);
-  if (!v || v->units <= 0) return std::unexpected(fmt::format("bad fixed-point lsb '{}': expected a positive number", lsb));
+  if (!v || v->units <= 0)
+    return std::unexpected(fmt::format("bad fixed-point lsb '{}': expected a positive number", lsb));
   f.lsb_num = v->units;
   f.lsb_den = pow10_i64(v->scale);
   return f;
@@ -317,11 +355,12 @@ std::expected<std::int64_t, CodecError> make_fixed_point(const Decimal& v, const
   const detail::i128 r = n % d;
   if (2 * (r < 0 ? -r : r) >= d) q += n < 0 ? -1 : 1;
   if (q > INT64_MAX || q < INT64_MIN)
-    return std::unexpected(err(CodecError::Kind::out_of_range, fmt::format("{} is too large for the fixed-point format", v.to_string())));
+    return std::unexpected(
+        err(CodecError::Kind::out_of_range, fmt::format("{} is too large for the fixed-point format", v.to_string())));
   const auto raw = static_cast<std::int64_t>(q);
   if (auto w = make_twos_complement(raw, f.word); !w)
-    return std::unexpected(err(CodecError::Kind::out_of_range,
-                               fmt::format("{} (raw {}) does not fit the {}-bit word", v.to_string(), raw, f.word.bits)));
+    return std::unexpected(err(CodecError::Kind::out_of_range, fmt::format("{} (raw {}) does not fit the {}-bit word",
+                                                                           v.to_string(), raw, f.word.bits)));
   return raw;
 }
 
@@ -339,8 +378,10 @@ std::expected<Decimal, CodecError> parse_fixed_point(std::int64_t raw, const Fix
   }
   detail::i128 scaled = n * static_cast<detail::i128>(pow10_i64(12));
   detail::i128 q = scaled / f.lsb_den;
-  if (2 * ((scaled % f.lsb_den) < 0 ? -(scaled % f.lsb_den) : (scaled % f.lsb_den)) >= f.lsb_den) q += scaled < 0 ? -1 : 1;
-  if (q > INT64_MAX || q < INT64_MIN) return std::unexpected(err(CodecError::Kind::out_of_range, "fixed-point value too large"));
+  if (2 * ((scaled % f.lsb_den) < 0 ? -(scaled % f.lsb_den) : (scaled % f.lsb_den)) >= f.lsb_den)
+    q += scaled < 0 ? -1 : 1;
+  if (q > INT64_MAX || q < INT64_MIN)
+    return std::unexpected(err(CodecError::Kind::out_of_range, "fixed-point value too large"));
   return Decimal{static_cast<std::int64_t>(q), 12};
 }
 

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
-#include "int128.hpp"
 #include "hil/profiles/decimal.hpp"
+#include "int128.hpp"
 
 #include <fmt/format.h>
 
@@ -56,8 +56,8 @@ std::string Decimal::to_string() const {
     --s;
   }
   const bool neg = u < 0;
-  const detail::u128 mag = neg ? static_cast<detail::u128>(-static_cast<detail::i128>(u))
-                                    : static_cast<detail::u128>(u);
+  const detail::u128 mag =
+      neg ? static_cast<detail::u128>(-static_cast<detail::i128>(u)) : static_cast<detail::u128>(u);
   std::string digits = fmt::format("{}", static_cast<unsigned long long>(mag));
   if (s > 0) {
     if (static_cast<int>(digits.size()) <= s) digits.insert(0, static_cast<std::size_t>(s + 1) - digits.size(), '0');

@@ -14,9 +14,9 @@ struct Expression::Node {
   enum class Kind { number, string, name, unary_minus, not_, binary, chain, in_list, call };
   Kind kind = Kind::number;
   long double number = 0;
-  std::string text;                         // string literal, name, operator or function name
+  std::string text;  // string literal, name, operator or function name
   std::vector<std::shared_ptr<const Node>> args;
-  std::vector<std::string> ops;             // chain operators
+  std::vector<std::string> ops;  // chain operators
 };
 
 namespace {
@@ -25,7 +25,7 @@ using NodePtr = std::shared_ptr<const Expression::Node>;
 using Node = Expression::Node;
 
 class Parser {
-public:
+ public:
   explicit Parser(std::string_view s) : s_(s) {}
 
   std::expected<NodePtr, std::string> run() {
@@ -36,7 +36,7 @@ public:
     return n;
   }
 
-private:
+ private:
   std::string_view s_;
   std::size_t pos_ = 0;
   int depth_ = 0;
@@ -84,7 +84,7 @@ private:
   }
   std::expected<NodePtr, std::string> parse_not() {
     skip();
-    if ((pos_ < s_.size() && s_[pos_] == '!' && !(pos_ + 1 < s_.size() && s_[pos_ + 1] == '=')) ) {
+    if ((pos_ < s_.size() && s_[pos_] == '!' && !(pos_ + 1 < s_.size() && s_[pos_ + 1] == '='))) {
       ++pos_;
       if (++depth_ > 64) return fail("expression nested too deeply");
       auto a = parse_not();
@@ -247,7 +247,8 @@ std::expected<bool, EvalError> compare(const ExprValue& a, const std::string& op
   if (an != bn) {
     if (op == "==") return false;
     if (op == "!=") return true;
-    return std::unexpected(EvalError{false, fmt::format("cannot compare '{}' {} '{}'", to_string(a), op, to_string(b))});
+    return std::unexpected(
+        EvalError{false, fmt::format("cannot compare '{}' {} '{}'", to_string(a), op, to_string(b))});
   }
   int c = 0;
   if (an) {
@@ -275,8 +276,10 @@ std::expected<long double, EvalError> num(const ExprValue& v) {
 std::expected<ExprValue, EvalError> eval(const Node& n, const Expression::Lookup& lookup) {
   using K = Node::Kind;
   switch (n.kind) {
-    case K::number: return ExprValue{n.number};
-    case K::string: return ExprValue{n.text};
+    case K::number:
+      return ExprValue{n.number};
+    case K::string:
+      return ExprValue{n.text};
     case K::name: {
       auto v = lookup(n.text);
       if (!v) return std::unexpected(EvalError{true, fmt::format("'{}' has no value", n.text)});

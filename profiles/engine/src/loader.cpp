@@ -8,13 +8,13 @@
 #include <fmt/format.h>
 #include <yaml-cpp/yaml.h>
 
+#include <unistd.h>
 #include <algorithm>
 #include <cstdlib>
 #include <fstream>
 #include <mutex>
 #include <set>
 #include <sstream>
-#include <unistd.h>
 
 #include "hil/profiles/validation.hpp"
 #include "hil/profiles/wire.hpp"
@@ -31,7 +31,7 @@ struct LoadFailure {
 };
 
 class Reader {
-public:
+ public:
   explicit Reader(std::string file) : file_(std::move(file)) {}
 
   [[noreturn]] void fail(const YAML::Node& n, const std::string& key, const std::string& msg) const {
@@ -142,13 +142,20 @@ public:
     f.unit = str(n["unit"], key + ".unit");
     f.note = str(n["note"], key + ".note");
     const std::string type = str(n["type"], key + ".type");
-    if (type.empty() || type == "number") f.type = FieldType::number;
-    else if (type == "choice") f.type = FieldType::choice;
-    else if (type == "io") f.type = FieldType::io_address;
-    else if (type == "hex") f.type = FieldType::hex;
-    else if (type == "bits") f.type = FieldType::bits;
-    else if (type == "reserved") f.type = FieldType::reserved;
-    else fail(n["type"], key + ".type", "expected number, choice, io, hex, bits or reserved");
+    if (type.empty() || type == "number")
+      f.type = FieldType::number;
+    else if (type == "choice")
+      f.type = FieldType::choice;
+    else if (type == "io")
+      f.type = FieldType::io_address;
+    else if (type == "hex")
+      f.type = FieldType::hex;
+    else if (type == "bits")
+      f.type = FieldType::bits;
+    else if (type == "reserved")
+      f.type = FieldType::reserved;
+    else
+      fail(n["type"], key + ".type", "expected number, choice, io, hex, bits or reserved");
 
     if (const std::string fmt_s = str(n["format"], key + ".format"); !fmt_s.empty()) {
       auto tf = DecimalTextFormat::parse(fmt_s);
@@ -214,7 +221,8 @@ public:
     if (n["binary"]) f.binary_text = n["binary"].as<bool>(false);
     if (const std::string e = str(n["encoding"], key + ".encoding"); !e.empty()) {
       f.encoding = parse_encoding(e);
-      if (!f.encoding) fail(n["encoding"], key + ".encoding", "expected text, bcd_binary, KF, KH, KY, KD, DL, DR or fixed");
+      if (!f.encoding)
+        fail(n["encoding"], key + ".encoding", "expected text, bcd_binary, KF, KH, KY, KD, DL, DR or fixed");
     }
     TwosComplementFormat word{16, true};
     if (n["word_bits"]) word.bits = static_cast<int>(integer(n["word_bits"], key + ".word_bits"));
@@ -247,24 +255,36 @@ public:
     if (n["note"]) v.note = str(n["note"], key + ".note");
     if (n["takes_effect"]) {
       const auto t = str(n["takes_effect"], key + ".takes_effect");
-      if (t == "immediately") v.takes_effect = TakesEffect::immediately;
-      else if (t == "leaving_parameter_mode") v.takes_effect = TakesEffect::leaving_parameter_mode;
-      else if (t == "after_reset") v.takes_effect = TakesEffect::after_reset;
-      else if (t == "after_power_cycle") v.takes_effect = TakesEffect::after_power_cycle;
-      else fail(n["takes_effect"], key + ".takes_effect", "expected immediately, leaving_parameter_mode, after_reset or after_power_cycle");
+      if (t == "immediately")
+        v.takes_effect = TakesEffect::immediately;
+      else if (t == "leaving_parameter_mode")
+        v.takes_effect = TakesEffect::leaving_parameter_mode;
+      else if (t == "after_reset")
+        v.takes_effect = TakesEffect::after_reset;
+      else if (t == "after_power_cycle")
+        v.takes_effect = TakesEffect::after_power_cycle;
+      else
+        fail(n["takes_effect"], key + ".takes_effect",
+             "expected immediately, leaving_parameter_mode, after_reset or after_power_cycle");
     }
     if (n["protection"]) {
       const auto t = str(n["protection"], key + ".protection");
-      if (t == "none") v.protection = Protection::none;
-      else if (t == "machine_builder") v.protection = Protection::machine_builder;
-      else if (t == "read_only") v.protection = Protection::read_only;
-      else if (t == "system") v.protection = Protection::system;
-      else fail(n["protection"], key + ".protection", "expected none, machine_builder, read_only or system");
+      if (t == "none")
+        v.protection = Protection::none;
+      else if (t == "machine_builder")
+        v.protection = Protection::machine_builder;
+      else if (t == "read_only")
+        v.protection = Protection::read_only;
+      else if (t == "system")
+        v.protection = Protection::system;
+      else
+        fail(n["protection"], key + ".protection", "expected none, machine_builder, read_only or system");
     }
     if (const auto& fs = n["fields"]; fs) {
       if (!fs.IsSequence()) fail(fs, key + ".fields", "expected a list of fields");
       v.fields.clear();
-      for (std::size_t i = 0; i < fs.size(); ++i) v.fields.push_back(field(fs[i], fmt::format("{}.fields[{}]", key, i), wire));
+      for (std::size_t i = 0; i < fs.size(); ++i)
+        v.fields.push_back(field(fs[i], fmt::format("{}.fields[{}]", key, i), wire));
     } else if (n["type"] || n["format"] || n["range"] || n["unit"] || n["default"] || n["choices"] || n["bits"] ||
                n["values"] || n["lsb"] || n["encoding"] || n["word"]) {
       v.fields = {field(n, key, wire)};
@@ -285,15 +305,18 @@ public:
     if (n["number"]) p.number = static_cast<int>(integer(n["number"], key + ".number"));
     if (const auto& r = n["required"]; r) {
       const auto s = str(r, key + ".required");
-      if (s == "true") p.required = *Expression::parse("1");
-      else if (s != "false") p.required = expr(r, key + ".required");
+      if (s == "true")
+        p.required = *Expression::parse("1");
+      else if (s != "false")
+        p.required = expr(r, key + ".required");
     }
     if (const auto& in = n["instances"]; in) {
       if (!in.IsMap() || in.size() != 1) fail(in, key + ".instances", "expected {axis: [1, 2, ...]}");
       for (const auto& kv : in) {
         p.instance_key = kv.first.Scalar();
         if (!kv.second.IsSequence()) fail(kv.second, key + ".instances", "expected a list of numbers");
-        for (std::size_t i = 0; i < kv.second.size(); ++i) p.instances.push_back(integer(kv.second[i], key + ".instances"));
+        for (std::size_t i = 0; i < kv.second.size(); ++i)
+          p.instances.push_back(integer(kv.second[i], key + ".instances"));
       }
       if (p.pattern.empty()) fail(n, key + ".pattern", "instanced parameters need a pattern like \"A{axis}06\"");
       if (p.pattern.find("{" + p.instance_key + "}") == std::string::npos)
@@ -317,7 +340,8 @@ public:
     return p;
   }
 
-  std::unique_ptr<ErrorCatalogue> catalogue(const YAML::Node& n, const std::string& key, const std::string& device) const {
+  std::unique_ptr<ErrorCatalogue> catalogue(const YAML::Node& n, const std::string& key,
+                                            const std::string& device) const {
     if (!n.IsMap()) fail(n, key, "expected a catalogue map");
     const auto id = str(n["id"], key + ".id", true);
     const auto title = str(n["title"], key + ".title");
@@ -344,9 +368,11 @@ public:
       base.group = get("group");
       base.note = get("note");
       const auto reaction = get("reaction");
-      if (reaction.empty()) fail(e, k + ".reaction", "every error needs a reaction (message, stop, drive_off, needs_reset)");
+      if (reaction.empty())
+        fail(e, k + ".reaction", "every error needs a reaction (message, stop, drive_off, needs_reset)");
       auto r = parse_reaction(reaction);
-      if (!r) fail(e["reaction"] ? e["reaction"] : e, k + ".reaction", "expected message, stop, drive_off or needs_reset");
+      if (!r)
+        fail(e["reaction"] ? e["reaction"] : e, k + ".reaction", "expected message, stop, drive_off or needs_reset");
       base.reaction = *r;
       auto code_of = [&](const YAML::Node& c, const std::string& ck) {
         const std::string s = str(c, ck, true);
@@ -406,19 +432,25 @@ public:
         if (const auto& b = w["bcd"]; b) {
           if (b["digits"]) p.wire.bcd.digits = static_cast<int>(integer(b["digits"], "wire.bcd.digits"));
           const auto s = str(b["sign"], "wire.bcd.sign");
-          if (s == "none") p.wire.bcd.sign = BcdSign::none;
-          else if (s == "bit31") p.wire.bcd.sign = BcdSign::bit31;
-          else if (s == "nibble") p.wire.bcd.sign = BcdSign::nibble;
-          else if (!s.empty()) fail(b["sign"], "wire.bcd.sign", "expected none, bit31 or nibble");
+          if (s == "none")
+            p.wire.bcd.sign = BcdSign::none;
+          else if (s == "bit31")
+            p.wire.bcd.sign = BcdSign::bit31;
+          else if (s == "nibble")
+            p.wire.bcd.sign = BcdSign::nibble;
+          else if (!s.empty())
+            fail(b["sign"], "wire.bcd.sign", "expected none, bit31 or nibble");
         }
         if (w["binary_bits"]) p.wire.binary_bits = static_cast<int>(integer(w["binary_bits"], "wire.binary_bits"));
         if (const auto o = str(w["word_order"], "wire.word_order"); !o.empty()) {
-          if (o != "high_first" && o != "low_first") fail(w["word_order"], "wire.word_order", "expected high_first or low_first");
+          if (o != "high_first" && o != "low_first")
+            fail(w["word_order"], "wire.word_order", "expected high_first or low_first");
           p.wire.low_word_first = o == "low_first";
         }
       }
     } else if (doc["device"] && str(doc["device"], "device") != p.device) {
-      fail(doc["device"], "device", fmt::format("included file belongs to '{}', not '{}'", str(doc["device"], "device"), p.device));
+      fail(doc["device"], "device",
+           fmt::format("included file belongs to '{}', not '{}'", str(doc["device"], "device"), p.device));
     }
     if (const auto& inc = doc["include"]; inc) {
       if (!inc.IsSequence()) fail(inc, "include", "expected a list of file names");
@@ -443,7 +475,8 @@ public:
     }
     if (const auto& ps = doc["parameters"]; ps) {
       if (!ps.IsSequence()) fail(ps, "parameters", "expected a list");
-      for (std::size_t i = 0; i < ps.size(); ++i) p.parameters.push_back(param(ps[i], fmt::format("parameters[{}]", i), p.wire));
+      for (std::size_t i = 0; i < ps.size(); ++i)
+        p.parameters.push_back(param(ps[i], fmt::format("parameters[{}]", i), p.wire));
     }
     if (const auto& cs = doc["constraints"]; cs) {
       if (!cs.IsSequence()) fail(cs, "constraints", "expected a list");
@@ -460,7 +493,8 @@ public:
           if (!fe.IsMap() || fe.size() != 1) fail(fe, k + ".for_each", "expected {axis: [1, 2, ...]}");
           for (const auto& kv : fe) {
             c.for_each = kv.first.Scalar();
-            for (std::size_t j = 0; j < kv.second.size(); ++j) c.instances.push_back(integer(kv.second[j], k + ".for_each"));
+            for (std::size_t j = 0; j < kv.second.size(); ++j)
+              c.instances.push_back(integer(kv.second[j], k + ".for_each"));
           }
         }
         p.constraints.push_back(std::move(c));
@@ -468,7 +502,8 @@ public:
     }
     if (const auto& cs = doc["catalogues"]; cs) {
       if (!cs.IsSequence()) fail(cs, "catalogues", "expected a list");
-      for (std::size_t i = 0; i < cs.size(); ++i) p.catalogues.push_back(catalogue(cs[i], fmt::format("catalogues[{}]", i), p.device));
+      for (std::size_t i = 0; i < cs.size(); ++i)
+        p.catalogues.push_back(catalogue(cs[i], fmt::format("catalogues[{}]", i), p.device));
     }
     if (const auto& ds = doc["decisions"]; ds) {
       if (!ds.IsSequence()) fail(ds, "decisions", "expected a list");
@@ -489,7 +524,8 @@ public:
           if (!row.IsMap()) fail(row, fmt::format("tables.{}[{}]", name, i), "expected a row map");
           std::map<std::string, std::string> r;
           for (const auto& c : row) {
-            if (c.second.IsScalar()) r[c.first.Scalar()] = c.second.Scalar();
+            if (c.second.IsScalar())
+              r[c.first.Scalar()] = c.second.Scalar();
             else if (c.second.IsSequence()) {
               std::string joined;
               for (std::size_t j = 0; j < c.second.size(); ++j)
@@ -510,10 +546,12 @@ public:
   void check(Profile& p, const YAML::Node& root) const {
     std::set<std::string> ids;
     for (const auto& r : p.all_refs())
-      if (!ids.insert(normalise_id(r.id())).second) fail(root, "parameters", fmt::format("parameter {} defined twice", r.id()));
+      if (!ids.insert(normalise_id(r.id())).second)
+        fail(root, "parameters", fmt::format("parameter {} defined twice", r.id()));
     std::set<std::string> catalogue_ids;
     for (const auto& c : p.catalogues)
-      if (!catalogue_ids.insert(c->id()).second) fail(root, "catalogues", fmt::format("catalogue {} defined twice", c->id()));
+      if (!catalogue_ids.insert(c->id()).second)
+        fail(root, "catalogues", fmt::format("catalogue {} defined twice", c->id()));
   }
 
   std::string file_;
@@ -552,7 +590,8 @@ std::shared_ptr<Profile> load_impl(const YAML::Node& root, const std::string& na
 
 }  // namespace
 
-std::expected<std::shared_ptr<const Profile>, hil::ConfigError> load_profile_text(std::string_view yaml, std::string_view name) {
+std::expected<std::shared_ptr<const Profile>, hil::ConfigError> load_profile_text(std::string_view yaml,
+                                                                                  std::string_view name) {
   try {
     const auto root = YAML::Load(std::string(yaml));
     return std::shared_ptr<const Profile>(load_impl(root, std::string(name), nullptr));
@@ -636,9 +675,10 @@ std::expected<std::shared_ptr<const Profile>, hil::ConfigError> find_profile(std
   }
   std::string searched;
   for (const auto& d : profile_search_path()) searched += (searched.empty() ? "" : ", ") + d.string();
-  return std::unexpected(hil::ConfigError{"", 0, 0, std::string(device),
-                                          fmt::format("no profile '{}.yaml' found (searched: {}); set HILBRIDGE_PROFILES to its folder",
-                                                      device, searched.empty() ? "nothing" : searched)});
+  return std::unexpected(
+      hil::ConfigError{"", 0, 0, std::string(device),
+                       fmt::format("no profile '{}.yaml' found (searched: {}); set HILBRIDGE_PROFILES to its folder",
+                                   device, searched.empty() ? "nothing" : searched)});
 }
 
 }  // namespace hil::profiles

@@ -9,8 +9,8 @@
 // addresses depends on the SF type, fct and BA, so the header is read before the rest.
 #include <fmt/format.h>
 
-#include <cctype>
 #include <algorithm>
+#include <cctype>
 #include <charconv>
 
 #include "parsers.hpp"
@@ -46,10 +46,12 @@ std::optional<std::int64_t> parse_raw(std::string_view t) {
   return neg ? -v : v;
 }
 
-bool is_header(std::string_view id) { return id.starts_with("INIT") || id == "DR0" || id == "DL0" || id == "DR1" || id == "DL1"; }
+bool is_header(std::string_view id) {
+  return id.starts_with("INIT") || id == "DR0" || id == "DL0" || id == "DR1" || id == "DL1";
+}
 
 class AmkParser final : public ParameterSetParser {
-public:
+ public:
   explicit AmkParser(std::shared_ptr<const Profile> p) : p_(std::move(p)) {}
   std::string_view format_name() const noexcept override { return "amk-db"; }
 
@@ -62,10 +64,12 @@ public:
     for (const auto& line : split_lines(text)) {
       std::string_view t = trim(line.text);
       auto problem = [&](std::string param, std::string value, std::string msg) {
-        r.problems.push_back({line.number, std::move(param), "", std::move(value), "[INIT] DRn|DLn|DWn|DDn = value", std::move(msg)});
+        r.problems.push_back(
+            {line.number, std::move(param), "", std::move(value), "[INIT] DRn|DLn|DWn|DDn = value", std::move(msg)});
       };
       bool init = false;
-      if (t.size() > 4 && (t.starts_with("INIT") || t.starts_with("init")) && (t[4] == ' ' || t[4] == '\t' || t[4] == '_')) {
+      if (t.size() > 4 && (t.starts_with("INIT") || t.starts_with("init")) &&
+          (t[4] == ' ' || t[4] == '\t' || t[4] == '_')) {
         init = true;
         t = trim(t.substr(5));
       }
@@ -75,15 +79,19 @@ public:
       for (auto& c : addr) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
       t = trim(t.substr(i));
       if (t.starts_with("=") || t.starts_with(":")) t = trim(t.substr(1));
-      const bool shape = addr.size() >= 3 && (addr.starts_with("DR") || addr.starts_with("DL") || addr.starts_with("DW") || addr.starts_with("DD")) &&
-                         addr.find_first_not_of("0123456789", 2) == std::string::npos;
+      const bool shape =
+          addr.size() >= 3 &&
+          (addr.starts_with("DR") || addr.starts_with("DL") || addr.starts_with("DW") || addr.starts_with("DD")) &&
+          addr.find_first_not_of("0123456789", 2) == std::string::npos;
       if (!shape) {
-        problem(addr, std::string(t), "expected a data address DRn, DLn, DWn or DDn (INIT prefix for the FB 207 init DB)");
+        problem(addr, std::string(t),
+                "expected a data address DRn, DLn, DWn or DDn (INIT prefix for the FB 207 init DB)");
         continue;
       }
       const int word = std::stoi(addr.substr(2));
       if (word > (init ? 9 : 33) || (addr.starts_with("DD") && word > (init ? 8 : 32))) {
-        problem(addr, std::string(t), fmt::format("{} is outside the {} DB", addr, init ? "10-word init" : "34-word commanding"));
+        problem(addr, std::string(t),
+                fmt::format("{} is outside the {} DB", addr, init ? "10-word init" : "34-word commanding"));
         continue;
       }
       auto raw = parse_raw(t);
@@ -99,7 +107,8 @@ public:
         if (is_header(it.id) != (pass == 0)) continue;
         add(r, it, settings);
       }
-    std::stable_sort(r.problems.begin(), r.problems.end(), [](const Problem& a, const Problem& b) { return a.line < b.line; });
+    std::stable_sort(r.problems.begin(), r.problems.end(),
+                     [](const Problem& a, const Problem& b) { return a.line < b.line; });
     return r;
   }
 
@@ -118,25 +127,31 @@ public:
       auto raw = make_fixed_point(*d, wide);
       if (!raw) continue;
       const std::string id = e.ref.id();
-      if (id.starts_with("INIT_")) init += fmt::format("INIT {} = {}\n", id.substr(5), *raw);
-      else cmd += fmt::format("{} = {}\n", id, *raw);
+      if (id.starts_with("INIT_"))
+        init += fmt::format("INIT {} = {}\n", id.substr(5), *raw);
+      else
+        cmd += fmt::format("{} = {}\n", id, *raw);
     }
     return init + cmd;
   }
 
-private:
+ private:
   void add(ParseResult& r, const RawItem& it, const Settings& settings) const {
-    auto problem = [&](std::string rule, std::string msg) { r.problems.push_back({it.line, it.id, "", it.text, std::move(rule), std::move(msg)}); };
+    auto problem = [&](std::string rule, std::string msg) {
+      r.problems.push_back({it.line, it.id, "", it.text, std::move(rule), std::move(msg)});
+    };
     const auto ref = p_->resolve(it.id);
     if (!ref) {
-      problem("defined address", fmt::format("{} is not a data item of the {} DB", it.id, it.id.starts_with("INIT") ? "init" : "commanding"));
+      problem("defined address", fmt::format("{} is not a data item of the {} DB", it.id,
+                                             it.id.starts_with("INIT") ? "init" : "commanding"));
       return;
     }
     const Scope scope(*p_, &r.set, settings);
     const ParamVariant* v = select_variant(*ref, scope);
     if (!v) {
-      problem("address used by this SF", fmt::format("{} is not used by SF type {} (fct/BA as given): use the addresses of its commanding DB",
-                                                     it.id, scope.lookup("sf_type") ? to_string(*scope.lookup("sf_type")) : "?"));
+      problem("address used by this SF",
+              fmt::format("{} is not used by SF type {} (fct/BA as given): use the addresses of its commanding DB",
+                          it.id, scope.lookup("sf_type") ? to_string(*scope.lookup("sf_type")) : "?"));
       return;
     }
     const auto& f = v->fields.front();
@@ -147,7 +162,8 @@ private:
       problem(fmt::format("{}-bit {} value", word.bits, word.is_signed ? "signed" : "unsigned"), w.error().message);
       return;
     }
-    auto value = parse_fixed_point(it.raw, FixedPointFormat{TwosComplementFormat{64, true}, f.fixed.lsb_num, f.fixed.lsb_den});
+    auto value =
+        parse_fixed_point(it.raw, FixedPointFormat{TwosComplementFormat{64, true}, f.fixed.lsb_num, f.fixed.lsb_den});
     if (!value) {
       problem("value", value.error().message);
       return;
@@ -161,6 +177,8 @@ private:
 
 }  // namespace
 
-std::unique_ptr<ParameterSetParser> make_amk_parser(std::shared_ptr<const Profile> p) { return std::make_unique<AmkParser>(std::move(p)); }
+std::unique_ptr<ParameterSetParser> make_amk_parser(std::shared_ptr<const Profile> p) {
+  return std::make_unique<AmkParser>(std::move(p));
+}
 
 }  // namespace hil::profiles::detail

@@ -12,7 +12,7 @@ namespace hil::profiles::detail {
 namespace {
 
 class ClmParser final : public ParameterSetParser {
-public:
+ public:
   explicit ClmParser(std::shared_ptr<const Profile> p) : p_(std::move(p)) {}
 
   std::string_view format_name() const noexcept override { return "clm-telegram"; }
@@ -39,35 +39,43 @@ public:
           unsigned v = 0;
           bool ok = cs.size() == 2;
           for (char c : cs) {
-            if (!std::isxdigit(static_cast<unsigned char>(c))) ok = false;
-            else v = v * 16 + static_cast<unsigned>(std::isdigit(static_cast<unsigned char>(c)) ? c - '0' : (std::toupper(c) - 'A' + 10));
+            if (!std::isxdigit(static_cast<unsigned char>(c)))
+              ok = false;
+            else
+              v = v * 16 + static_cast<unsigned>(
+                               std::isdigit(static_cast<unsigned char>(c)) ? c - '0' : (std::toupper(c) - 'A' + 10));
           }
           if (!ok) {
-            problem("", std::string(cs), "checksum $hh", "RS Format Error (serial error 02): checksum must be 2 hex digits");
+            problem("", std::string(cs), "checksum $hh",
+                    "RS Format Error (serial error 02): checksum must be 2 hex digits");
             continue;
           }
           const auto want = clm_checksum(payload);
           if (v != want) {
             problem("", std::string(cs), fmt::format("checksum {:02X}", want),
-                    fmt::format("RS Checksum Error (serial error 04): telegram says {:02X}, content gives {:02X}", v, want));
+                    fmt::format("RS Checksum Error (serial error 04): telegram says {:02X}, content gives {:02X}", v,
+                                want));
             continue;
           }
         }
         const char station = payload.size() > 1 ? payload[1] : '?';
         if (!(station == ' ' || (station >= '1' && station <= '9') || (station >= 'A' && station <= 'W'))) {
-          problem("", std::string(1, station), "station ␣, 1-9, A-W",
-                  "RS Format Error (serial error 02): station must be a space (RS232) or 1-9/A-W (RS485 stations 1-32)");
+          problem(
+              "", std::string(1, station), "station ␣, 1-9, A-W",
+              "RS Format Error (serial error 02): station must be a space (RS232) or 1-9/A-W (RS485 stations 1-32)");
           continue;
         }
         if (payload.size() < 5 || payload[2] != 'K' || payload[3] != ' ') {
-          problem("", std::string(trim(payload)), "#sK␣xxyy␣data", "RS Format Error (serial error 02): not a parameter telegram");
+          problem("", std::string(trim(payload)), "#sK␣xxyy␣data",
+                  "RS Format Error (serial error 02): not a parameter telegram");
           continue;
         }
         std::string_view rest = payload.substr(4);
         id = rest.substr(0, 4);
         data = rest.size() > 5 ? rest.substr(5) : std::string_view{};
         if (rest.size() > 4 && rest[4] != ' ') {
-          problem(std::string(rest), "", "#sK␣xxyy␣data", "RS Format Error (serial error 02): space expected after the parameter number");
+          problem(std::string(rest), "", "#sK␣xxyy␣data",
+                  "RS Format Error (serial error 02): space expected after the parameter number");
           continue;
         }
       } else {
@@ -80,7 +88,8 @@ public:
       if (!ref) {
         const bool block_ok = id.size() == 4 && (id.starts_with("B0") || id.starts_with("C0") ||
                                                  (id[0] == 'A' && id[1] >= '1' && id[1] <= '4'));
-        const bool digits = id.size() == 4 && std::isdigit(static_cast<unsigned char>(id[2])) && std::isdigit(static_cast<unsigned char>(id[3]));
+        const bool digits = id.size() == 4 && std::isdigit(static_cast<unsigned char>(id[2])) &&
+                            std::isdigit(static_cast<unsigned char>(id[3]));
         problem(std::string(id), std::string(data), "known parameter",
                 !block_ok ? "Invalid Param Block (serial error 11): block must be B0, A1..A4 or C0"
                 : !digits ? "Wrong RS Param # (serial error 06): parameter number not decimal"
@@ -93,7 +102,8 @@ public:
         problem(ref->id(), std::string(data), "template " + templ(v), value.error());
         continue;
       }
-      if (r.set.find(ref->id())) problem(ref->id(), std::string(data), "once per set", "given twice; the later line wins");
+      if (r.set.find(ref->id()))
+        problem(ref->id(), std::string(data), "once per set", "given twice; the later line wins");
       r.set.set({*ref, std::move(*value), line.number, std::string(data)});
     }
     return r;
@@ -112,7 +122,7 @@ public:
     return out;
   }
 
-private:
+ private:
   /// "-00000.000" and "+00000.000" are the same value; keep the sign the source had (A125's
   /// manual string is "-00000.000") so an unchanged set is rewritten byte-exact.
   static std::string keep_negative_zeros(const std::string& canonical, std::string_view source) {
@@ -134,7 +144,8 @@ private:
     for (std::size_t i = 0; i < c.size(); ++i) {
       std::string tok(c[i]);
       if (tok.starts_with("+") && o[i].starts_with("-") && o[i].size() == tok.size() &&
-          o[i].substr(1).find_first_not_of("0.") == std::string_view::npos && tok.substr(1).find_first_not_of("0.") == std::string::npos)
+          o[i].substr(1).find_first_not_of("0.") == std::string_view::npos &&
+          tok.substr(1).find_first_not_of("0.") == std::string::npos)
         tok[0] = '-';
       out += (i ? " " : "") + tok;
     }
@@ -145,10 +156,17 @@ private:
     for (const auto& f : v.fields) {
       if (!s.empty()) s += ' ';
       switch (f.type) {
-        case FieldType::io_address: s += "Ix.xx.x"; break;
-        case FieldType::hex: s += std::string(static_cast<std::size_t>(f.hex_digits), 'h'); break;
-        case FieldType::reserved: s += f.fixed_text.empty() ? "(empty)" : f.fixed_text; break;
-        default: s += f.text.to_string();
+        case FieldType::io_address:
+          s += "Ix.xx.x";
+          break;
+        case FieldType::hex:
+          s += std::string(static_cast<std::size_t>(f.hex_digits), 'h');
+          break;
+        case FieldType::reserved:
+          s += f.fixed_text.empty() ? "(empty)" : f.fixed_text;
+          break;
+        default:
+          s += f.text.to_string();
       }
     }
     return s;
@@ -158,6 +176,8 @@ private:
 
 }  // namespace
 
-std::unique_ptr<ParameterSetParser> make_clm_parser(std::shared_ptr<const Profile> p) { return std::make_unique<ClmParser>(std::move(p)); }
+std::unique_ptr<ParameterSetParser> make_clm_parser(std::shared_ptr<const Profile> p) {
+  return std::make_unique<ClmParser>(std::move(p));
+}
 
 }  // namespace hil::profiles::detail

@@ -38,7 +38,7 @@ std::optional<long long> parse_int(std::string_view s, int base) {
 }
 
 class S5DbParser final : public ParameterSetParser {
-public:
+ public:
   explicit S5DbParser(std::shared_ptr<const Profile> p) : p_(std::move(p)) {
     for (const auto& spec : p_->parameters)
       for (const auto& f : spec.variants.front().fields) {
@@ -54,7 +54,10 @@ public:
     r.set.device = p_->device;
     std::map<int, Word> words;
     for (const auto& line : split_lines(text)) {
-      auto problem = [&](std::string msg) { r.problems.push_back({line.number, "", "", std::string(trim(line.text)), "n: KF|KH|KY|DH|DD = value", std::move(msg)}); };
+      auto problem = [&](std::string msg) {
+        r.problems.push_back(
+            {line.number, "", "", std::string(trim(line.text)), "n: KF|KH|KY|DH|DD = value", std::move(msg)});
+      };
       std::string_view t = trim(line.text);
       if (t.starts_with("DW") || t.starts_with("dw")) t.remove_prefix(2);
       t = trim(t);
@@ -82,28 +85,41 @@ public:
       };
       if (fmt_s == "KF" || fmt_s == "kf") {
         auto v = parse_int(t, 10);
-        if (!v || *v < -32768 || *v > 32767) { problem(fmt::format("KF '{}' is not a 16-bit signed decimal", t)); continue; }
+        if (!v || *v < -32768 || *v > 32767) {
+          problem(fmt::format("KF '{}' is not a 16-bit signed decimal", t));
+          continue;
+        }
         put(w, static_cast<std::uint16_t>(*v));
       } else if (fmt_s == "KH" || fmt_s == "kh") {
         auto v = parse_int(t, 16);
-        if (!v || *v < 0 || *v > 0xFFFF || t.size() > 4) { problem(fmt::format("KH '{}' is not 1-4 hex digits", t)); continue; }
+        if (!v || *v < 0 || *v > 0xFFFF || t.size() > 4) {
+          problem(fmt::format("KH '{}' is not 1-4 hex digits", t));
+          continue;
+        }
         put(w, static_cast<std::uint16_t>(*v));
       } else if (fmt_s == "KY" || fmt_s == "ky") {
         const auto comma = t.find(',');
         auto hi = comma == std::string_view::npos ? std::nullopt : parse_int(trim(t.substr(0, comma)), 10);
         auto lo = comma == std::string_view::npos ? std::nullopt : parse_int(trim(t.substr(comma + 1)), 10);
-        if (!hi || !lo || *hi < 0 || *hi > 255 || *lo < 0 || *lo > 255) { problem(fmt::format("KY '{}' is not two bytes 0..255 'DL,DR'", t)); continue; }
+        if (!hi || !lo || *hi < 0 || *hi > 255 || *lo < 0 || *lo > 255) {
+          problem(fmt::format("KY '{}' is not two bytes 0..255 'DL,DR'", t));
+          continue;
+        }
         put(w, static_cast<std::uint16_t>((*hi << 8) | *lo));
       } else if (fmt_s == "DH" || fmt_s == "dh" || fmt_s == "DD" || fmt_s == "dd") {
         const bool hex = fmt_s[1] == 'H' || fmt_s[1] == 'h';
         std::string digits(t);
         std::erase(digits, ' ');
         auto v = parse_int(digits, hex ? 16 : 10);
-        if (!v || (hex && (*v < 0 || *v > 0xFFFFFFFFLL || digits.size() > 8)) || (!hex && (*v < INT32_MIN || *v > INT32_MAX))) {
+        if (!v || (hex && (*v < 0 || *v > 0xFFFFFFFFLL || digits.size() > 8)) ||
+            (!hex && (*v < INT32_MIN || *v > INT32_MAX))) {
           problem(fmt::format("{} '{}' is not a 32-bit value", fmt_s, t));
           continue;
         }
-        if (w + 1 >= size_) { problem(fmt::format("a double word at DW {} leaves the block", w)); continue; }
+        if (w + 1 >= size_) {
+          problem(fmt::format("a double word at DW {} leaves the block", w));
+          continue;
+        }
         const auto u = static_cast<std::uint32_t>(*v);
         put(w, static_cast<std::uint16_t>(u >> 16));
         put(w + 1, static_cast<std::uint16_t>(u & 0xFFFFu));
@@ -135,7 +151,8 @@ public:
       }
       if (!any) continue;
       if (!complete) {
-        r.problems.push_back({line, spec.id, "", "", "all words of the field", fmt::format("{} ({}) is incomplete: a data word is missing", spec.id, v.name)});
+        r.problems.push_back({line, spec.id, "", "", "all words of the field",
+                              fmt::format("{} ({}) is incomplete: a data word is missing", spec.id, v.name)});
         continue;
       }
       auto value = decode_wire(*p_, v, wire);
@@ -169,23 +186,30 @@ public:
     std::string out;
     for (const auto& [w, value] : words) {
       switch (kinds[w]) {
-        case Encoding::kf: out += fmt::format("{}: KF = {:+06d}\n", w, static_cast<std::int16_t>(value)); break;
+        case Encoding::kf:
+          out += fmt::format("{}: KF = {:+06d}\n", w, static_cast<std::int16_t>(value));
+          break;
         case Encoding::byte_l:
         case Encoding::byte_r:
-        case Encoding::ky: out += fmt::format("{}: KY = {:03d},{:03d}\n", w, value >> 8, value & 0xFF); break;
-        default: out += fmt::format("{}: KH = {:04X}\n", w, value);
+        case Encoding::ky:
+          out += fmt::format("{}: KY = {:03d},{:03d}\n", w, value >> 8, value & 0xFF);
+          break;
+        default:
+          out += fmt::format("{}: KH = {:04X}\n", w, value);
       }
     }
     return out;
   }
 
-private:
+ private:
   std::shared_ptr<const Profile> p_;
   int size_ = 0;
 };
 
 }  // namespace
 
-std::unique_ptr<ParameterSetParser> make_s5db_parser(std::shared_ptr<const Profile> p) { return std::make_unique<S5DbParser>(std::move(p)); }
+std::unique_ptr<ParameterSetParser> make_s5db_parser(std::shared_ptr<const Profile> p) {
+  return std::make_unique<S5DbParser>(std::move(p));
+}
 
 }  // namespace hil::profiles::detail

@@ -20,7 +20,7 @@ namespace hil::profiles::detail {
 namespace {
 
 class SinumerikParser final : public ParameterSetParser {
-public:
+ public:
   explicit SinumerikParser(std::shared_ptr<const Profile> p) : p_(std::move(p)) {}
   std::string_view format_name() const noexcept override { return "sinumerik-md"; }
 
@@ -46,15 +46,19 @@ public:
     bool parity_error = false;
     auto finish_block = [&](int at) {
       if (parity_error) {
-        r.problems.push_back({at, "", "", block, "ISO even character parity", "V.24 CHARACTER PARITY ERROR (alarm 23): a character has odd parity"});
+        r.problems.push_back({at, "", "", block, "ISO even character parity",
+                              "V.24 CHARACTER PARITY ERROR (alarm 23): a character has odd parity"});
         parity_error = false;
         block.clear();
         return;
       }
       if (block_parity && ((block.size() + 1) % 2) != 0)
-        r.problems.push_back({at, "", "", block, "even block parity", "block has an odd number of characters including LF (block parity; reported as alarm 23)"});
+        r.problems.push_back(
+            {at, "", "", block, "even block parity",
+             "block has an odd number of characters including LF (block parity; reported as alarm 23)"});
       if (block.size() + 1 > 254) {
-        r.problems.push_back({at, "", "", block.substr(0, 32) + "…", "≤ 254 characters per block", "BLOCK TOO LONG (MAX. 254 CHARACTERS) V.24 (alarm 29)"});
+        r.problems.push_back({at, "", "", block.substr(0, 32) + "…", "≤ 254 characters per block",
+                              "BLOCK TOO LONG (MAX. 254 CHARACTERS) V.24 (alarm 29)"});
         block.clear();
         return;
       }
@@ -89,9 +93,12 @@ public:
       const auto& v = parse_variant(*p_, e.ref, set);
       const std::string id = e.ref.id();
       const std::string value = value_text(v, e.value);
-      if (id.starts_with("MD")) md += fmt::format("N{}={}\n", id.substr(2), value);
-      else if (id.starts_with("SD")) sd += fmt::format("N{}={}\n", id.substr(2), value);
-      else if (id.starts_with("R")) sd += fmt::format("{}={}\n", id, value);
+      if (id.starts_with("MD"))
+        md += fmt::format("N{}={}\n", id.substr(2), value);
+      else if (id.starts_with("SD"))
+        sd += fmt::format("N{}={}\n", id.substr(2), value);
+      else if (id.starts_with("R"))
+        sd += fmt::format("{}={}\n", id, value);
     }
     std::string out;
     if (!md.empty()) out += "%TEA1\n" + md + "M02\n";
@@ -99,7 +106,7 @@ public:
     return out;
   }
 
-private:
+ private:
   void handle_block(ParseResult& r, std::string& section, const std::string& raw, int line) const {
     std::string b;
     for (char c : raw)
@@ -109,11 +116,14 @@ private:
     };
     if (b.empty()) return;
     if (b.starts_with("%")) {
-      if (b == "%TEA1") section = "MD";
-      else if (b == "%SEA") section = "SD";
+      if (b == "%TEA1")
+        section = "MD";
+      else if (b == "%SEA")
+        section = "SD";
       else {
         section.clear();
-        problem("", raw, "%TEA1 or %SEA", fmt::format("unknown tape identification '{}' (machine data %TEA1, setting data %SEA)", b));
+        problem("", raw, "%TEA1 or %SEA",
+                fmt::format("unknown tape identification '{}' (machine data %TEA1, setting data %SEA)", b));
       }
       return;
     }
@@ -142,19 +152,23 @@ private:
     const std::string value = b.substr(eq + 1);
     const auto ref = p_->resolve(id);
     if (!ref) {
-      problem(id, value, "known MD/SD/R number", fmt::format("{} does not exist (data channel: DATUM NOT PRESENT, alarm 3018)", id));
+      problem(id, value, "known MD/SD/R number",
+              fmt::format("{} does not exist (data channel: DATUM NOT PRESENT, alarm 3018)", id));
       return;
     }
     const auto& v = parse_variant(*p_, *ref, r.set);
     // digit counts (alarm 32): bits exactly 8 binary digits, words at most 9 digits
     const auto& f = v.fields.front();
-    if (f.type == FieldType::bits && f.binary_text && (value.size() != f.bits.bits || value.find_first_not_of("01") != std::string::npos)) {
-      problem(ref->id(), value, fmt::format("{} binary digits", f.bits.bits), "V.24 DATA FORMAT ERROR (alarm 32): wrong number of digits");
+    if (f.type == FieldType::bits && f.binary_text &&
+        (value.size() != f.bits.bits || value.find_first_not_of("01") != std::string::npos)) {
+      problem(ref->id(), value, fmt::format("{} binary digits", f.bits.bits),
+              "V.24 DATA FORMAT ERROR (alarm 32): wrong number of digits");
       return;
     }
     std::size_t digits = 0;
     for (char c : value) digits += std::isdigit(static_cast<unsigned char>(c)) ? 1 : 0;
-    if (f.type != FieldType::bits && f.type != FieldType::hex && digits > static_cast<std::size_t>(f.text.int_digits + f.text.frac_digits)) {
+    if (f.type != FieldType::bits && f.type != FieldType::hex &&
+        digits > static_cast<std::size_t>(f.text.int_digits + f.text.frac_digits)) {
       problem(ref->id(), value, fmt::format("at most {} digits", f.text.int_digits + f.text.frac_digits),
               "V.24 DATA FORMAT ERROR (alarm 32): wrong number of digits");
       return;

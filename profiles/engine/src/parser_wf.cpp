@@ -14,7 +14,7 @@ namespace hil::profiles::detail {
 namespace {
 
 class WfParser final : public ParameterSetParser {
-public:
+ public:
   explicit WfParser(std::shared_ptr<const Profile> p) : p_(std::move(p)) {}
   std::string_view format_name() const noexcept override { return "wf-md"; }
 
@@ -27,7 +27,8 @@ public:
         r.problems.push_back({line.number, std::move(param), "", std::move(value), std::move(rule), std::move(msg)});
       };
       if (!(t.starts_with("MD") || t.starts_with("md"))) {
-        problem("", std::string(t), "MD <n> = <value>", "expected 'MD <number> = <value>', 'MD <n> BCD <hex>' or 'MD <n> HEX <hex>'");
+        problem("", std::string(t), "MD <n> = <value>",
+                "expected 'MD <number> = <value>', 'MD <n> BCD <hex>' or 'MD <n> HEX <hex>'");
         continue;
       }
       t.remove_prefix(2);
@@ -43,7 +44,8 @@ public:
       const std::string id = "MD" + number;
       const auto ref = p_->resolve(id);
       if (!ref) {
-        problem(id, std::string(rest), "MD 1..50", fmt::format("error 121: machine-data number {} is 0 or above 50", number));
+        problem(id, std::string(rest), "MD 1..50",
+                fmt::format("error 121: machine-data number {} is 0 or above 50", number));
         continue;
       }
       const auto& v = parse_variant(*p_, *ref, r.set);
@@ -53,8 +55,8 @@ public:
         rest = trim(rest.substr(1));
         value_text_in = std::string(rest);
         value = parse_value_input(v, rest);
-      } else if (rest.starts_with("BCD") || rest.starts_with("bcd") || rest.starts_with("HEX") || rest.starts_with("hex") ||
-                 rest.starts_with("BIN") || rest.starts_with("bin")) {
+      } else if (rest.starts_with("BCD") || rest.starts_with("bcd") || rest.starts_with("HEX") ||
+                 rest.starts_with("hex") || rest.starts_with("BIN") || rest.starts_with("bin")) {
         value = decode_wire(*p_, v, rest);
       } else {
         value = parse_value_input(v, rest);
@@ -78,12 +80,14 @@ public:
     return out;
   }
 
-private:
+ private:
   std::shared_ptr<const Profile> p_;
 };
 
 }  // namespace
 
-std::unique_ptr<ParameterSetParser> make_wf_parser(std::shared_ptr<const Profile> p) { return std::make_unique<WfParser>(std::move(p)); }
+std::unique_ptr<ParameterSetParser> make_wf_parser(std::shared_ptr<const Profile> p) {
+  return std::make_unique<WfParser>(std::move(p));
+}
 
 }  // namespace hil::profiles::detail

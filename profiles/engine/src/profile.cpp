@@ -9,20 +9,28 @@ namespace hil::profiles {
 
 std::string_view to_string(TakesEffect t) noexcept {
   switch (t) {
-    case TakesEffect::immediately: return "immediately";
-    case TakesEffect::leaving_parameter_mode: return "leaving_parameter_mode";
-    case TakesEffect::after_reset: return "after_reset";
-    case TakesEffect::after_power_cycle: return "after_power_cycle";
+    case TakesEffect::immediately:
+      return "immediately";
+    case TakesEffect::leaving_parameter_mode:
+      return "leaving_parameter_mode";
+    case TakesEffect::after_reset:
+      return "after_reset";
+    case TakesEffect::after_power_cycle:
+      return "after_power_cycle";
   }
   return "?";
 }
 
 std::string_view to_string(Protection p) noexcept {
   switch (p) {
-    case Protection::none: return "none";
-    case Protection::machine_builder: return "machine_builder";
-    case Protection::read_only: return "read_only";
-    case Protection::system: return "system";
+    case Protection::none:
+      return "none";
+    case Protection::machine_builder:
+      return "machine_builder";
+    case Protection::read_only:
+      return "read_only";
+    case Protection::system:
+      return "system";
   }
   return "?";
 }
@@ -42,15 +50,24 @@ std::optional<Encoding> parse_encoding(std::string_view s) noexcept {
 
 std::string_view to_string(Encoding e) noexcept {
   switch (e) {
-    case Encoding::text: return "text";
-    case Encoding::bcd_binary: return "bcd_binary";
-    case Encoding::kf: return "KF";
-    case Encoding::kh: return "KH";
-    case Encoding::ky: return "KY";
-    case Encoding::kd: return "KD";
-    case Encoding::byte_l: return "DL";
-    case Encoding::byte_r: return "DR";
-    case Encoding::fixed: return "fixed";
+    case Encoding::text:
+      return "text";
+    case Encoding::bcd_binary:
+      return "bcd_binary";
+    case Encoding::kf:
+      return "KF";
+    case Encoding::kh:
+      return "KH";
+    case Encoding::ky:
+      return "KY";
+    case Encoding::kd:
+      return "KD";
+    case Encoding::byte_l:
+      return "DL";
+    case Encoding::byte_r:
+      return "DR";
+    case Encoding::fixed:
+      return "fixed";
   }
   return "?";
 }
@@ -109,7 +126,8 @@ const ParamSpec* Profile::resolve_template(std::string_view id) const {
 std::vector<ParamRef> Profile::all_refs() const {
   std::vector<ParamRef> out;
   for (const auto& p : parameters) {
-    if (p.instances.empty()) out.push_back({&p, std::nullopt});
+    if (p.instances.empty())
+      out.push_back({&p, std::nullopt});
     else
       for (auto i : p.instances) out.push_back({&p, i});
   }

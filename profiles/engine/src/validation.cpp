@@ -40,13 +40,18 @@ bool holds(const Expression& when, const Scope& scope) {
   return r && *r;
 }
 
-std::string field_label(const ParamVariant& v, const FieldSpec& f) { return v.fields.size() > 1 ? f.name : std::string(); }
+std::string field_label(const ParamVariant& v, const FieldSpec& f) {
+  return v.fields.size() > 1 ? f.name : std::string();
+}
 
 }  // namespace
 
-Scope::Scope(const Profile& profile, const ParameterSet* set, const Settings& settings, std::optional<std::int64_t> instance,
-             std::string instance_key)
-    : profile_(&profile), set_(set), settings_(std::make_shared<const Settings>(settings)), instance_(instance),
+Scope::Scope(const Profile& profile, const ParameterSet* set, const Settings& settings,
+             std::optional<std::int64_t> instance, std::string instance_key)
+    : profile_(&profile),
+      set_(set),
+      settings_(std::make_shared<const Settings>(settings)),
+      instance_(instance),
       instance_key_(std::move(instance_key)) {}
 
 Scope Scope::with_instance(std::int64_t v, std::string key) const {
@@ -139,7 +144,8 @@ const ParamVariant* select_variant(const ParamRef& ref, const Scope& scope) {
   return nullptr;
 }
 
-std::vector<Problem> check_field(const ParamRef& ref, const FieldSpec& f, const FieldValue& value, const Scope& scope0) {
+std::vector<Problem> check_field(const ParamRef& ref, const FieldSpec& f, const FieldValue& value,
+                                 const Scope& scope0) {
   std::vector<Problem> out;
   const Scope scope = ref.instance ? scope0.with_instance(*ref.instance, ref.spec->instance_key) : scope0;
   const auto problem = [&](std::string rule, std::string message) {
@@ -154,7 +160,8 @@ std::vector<Problem> check_field(const ParamRef& ref, const FieldSpec& f, const 
     if (*s != "00.00.0" && std::find(f.io_types.begin(), f.io_types.end(), s->substr(0, 1)) == f.io_types.end()) {
       std::string allowed;
       for (const auto& t : f.io_types) allowed += (allowed.empty() ? "" : "/") + t;
-      problem(fmt::format("I/O type {} or 00.00.0", allowed), fmt::format("{} must be an {} address", f.meaning.empty() ? f.name : f.meaning, allowed));
+      problem(fmt::format("I/O type {} or 00.00.0", allowed),
+              fmt::format("{} must be an {} address", f.meaning.empty() ? f.name : f.meaning, allowed));
     }
     return out;
   }
@@ -174,12 +181,15 @@ std::vector<Problem> check_field(const ParamRef& ref, const FieldSpec& f, const 
     if (!ok) problem(fmt::format("one of {}", list), fmt::format("{} is not a defined choice", d->to_string()));
   }
   if (f.type == FieldType::bits) {
-    if (auto b = parse_bit_field(static_cast<std::uint64_t>(std::max<std::int64_t>(d->units, 0)), f.bits); !b || d->units < 0)
+    if (auto b = parse_bit_field(static_cast<std::uint64_t>(std::max<std::int64_t>(d->units, 0)), f.bits);
+        !b || d->units < 0)
       problem("defined bits only", b ? "negative bit field" : b.error().message);
   }
   // text template capacity (text encodings): the value must fit the field
-  if ((f.type == FieldType::number || f.type == FieldType::choice) && f.encoding.value_or(Encoding::text) == Encoding::text) {
-    if (auto t = make_decimal_text(*d, f.text); !t) problem(fmt::format("field {}", f.text.to_string()), t.error().message);
+  if ((f.type == FieldType::number || f.type == FieldType::choice) &&
+      f.encoding.value_or(Encoding::text) == Encoding::text) {
+    if (auto t = make_decimal_text(*d, f.text); !t)
+      problem(fmt::format("field {}", f.text.to_string()), t.error().message);
   }
   for (const auto& r : f.ranges) {
     if (!holds(r.when, scope)) continue;
@@ -195,7 +205,8 @@ std::vector<Problem> check_field(const ParamRef& ref, const FieldSpec& f, const 
     const bool ok = (interval && in_interval) || in_list || (!interval && r.allowed.empty());
     if (!ok) {
       std::string rule;
-      if (interval) rule = fmt::format("range {}..{}", r.min.is_set() ? r.min.text() : "", r.max.is_set() ? r.max.text() : "");
+      if (interval)
+        rule = fmt::format("range {}..{}", r.min.is_set() ? r.min.text() : "", r.max.is_set() ? r.max.text() : "");
       if (!r.allowed.empty()) {
         std::string list;
         for (const auto& a : r.allowed) list += (list.empty() ? "" : ", ") + a.to_string();
@@ -229,13 +240,16 @@ std::vector<Problem> validate(const Profile& profile, const ParameterSet& set, c
   for (const auto& [name, value] : settings) {
     const auto* s = profile.setting(name);
     if (!s) {
-      out.push_back({0, "", "", to_string(value), "known setting", fmt::format("'{}' is not a setting of {}", name, profile.device)});
+      out.push_back({0, "", "", to_string(value), "known setting",
+                     fmt::format("'{}' is not a setting of {}", name, profile.device)});
       continue;
     }
-    if (!s->values.empty() && std::none_of(s->values.begin(), s->values.end(), [&](const ExprValue& a) { return to_string(a) == to_string(value); })) {
+    if (!s->values.empty() && std::none_of(s->values.begin(), s->values.end(),
+                                           [&](const ExprValue& a) { return to_string(a) == to_string(value); })) {
       std::string list;
       for (const auto& a : s->values) list += (list.empty() ? "" : ", ") + to_string(a);
-      out.push_back({0, name, "", to_string(value), "one of " + list, fmt::format("setting {} must be one of {}", name, list)});
+      out.push_back(
+          {0, name, "", to_string(value), "one of " + list, fmt::format("setting {} must be one of {}", name, list)});
     }
   }
   for (const auto& e : set.entries) {
@@ -255,8 +269,9 @@ std::vector<Problem> validate(const Profile& profile, const ParameterSet& set, c
                      fmt::format("{} ({}) cannot be written", e.ref.id(), v->name)});
     }
     if (e.value.size() != v->fields.size()) {
-      out.push_back({e.line, e.ref.id(), "", e.text, fmt::format("{} field(s)", v->fields.size()),
-                     fmt::format("{} has {} field(s), the set gives {}", e.ref.id(), v->fields.size(), e.value.size())});
+      out.push_back(
+          {e.line, e.ref.id(), "", e.text, fmt::format("{} field(s)", v->fields.size()),
+           fmt::format("{} has {} field(s), the set gives {}", e.ref.id(), v->fields.size(), e.value.size())});
       continue;
     }
     for (std::size_t i = 0; i < v->fields.size(); ++i)
@@ -272,7 +287,8 @@ std::vector<Problem> validate(const Profile& profile, const ParameterSet& set, c
     const Scope s = r.instance ? scope.with_instance(*r.instance, r.spec->instance_key) : scope;
     auto need = r.spec->required.test(s.as_lookup());
     if (need && *need && select_variant(r, scope))
-      out.push_back({0, r.id(), "", "", "required" + (r.spec->required.text() == "1" ? std::string() : " when " + r.spec->required.text()),
+      out.push_back({0, r.id(), "", "",
+                     "required" + (r.spec->required.text() == "1" ? std::string() : " when " + r.spec->required.text()),
                      fmt::format("{} ({}) is missing", r.id(), r.spec->variants.front().name)});
   }
   // cross-parameter constraints
@@ -319,7 +335,8 @@ std::vector<Problem> validate(const Profile& profile, const ParameterSet& set, c
       }
       std::string rule = c.rule.text();
       if (inst) rule += fmt::format(" ({} {})", c.for_each, *inst);
-      out.push_back({line, params, "", values, rule, c.message.empty() ? "constraint " + c.id + " violated" : c.message});
+      out.push_back(
+          {line, params, "", values, rule, c.message.empty() ? "constraint " + c.id + " violated" : c.message});
     }
   }
   std::stable_sort(out.begin(), out.end(), [](const Problem& a, const Problem& b) {

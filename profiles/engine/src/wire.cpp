@@ -36,7 +36,8 @@ bool is_io_text(std::string_view t) {
   if (t == "00.00.0") return true;
   if (t.size() != 7) return false;
   if (t[0] != 'I' && t[0] != 'Q' && t[0] != 'M') return false;
-  return digits(t.substr(1, 1), 1) && t[2] == '.' && digits(t.substr(3, 2), 2) && t[5] == '.' && t[6] >= '0' && t[6] <= '7';
+  return digits(t.substr(1, 1), 1) && t[2] == '.' && digits(t.substr(3, 2), 2) && t[5] == '.' && t[6] >= '0' &&
+         t[6] <= '7';
 }
 
 /// Raw integer of a numeric field for word encodings (applies lsb).
@@ -97,10 +98,13 @@ std::expected<FieldValue, std::string> parse_field_input(const FieldSpec& f, std
     case FieldType::io_address: {
       std::string t(text);
       for (auto& c : t) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
-      if (!is_io_text(t)) return std::unexpected(fmt::format("'{}' is not an I/O address like I1.00.0, Q1.02.7, M2.02.0 or 00.00.0", text));
+      if (!is_io_text(t))
+        return std::unexpected(
+            fmt::format("'{}' is not an I/O address like I1.00.0, Q1.02.7, M2.02.0 or 00.00.0", text));
       return FieldValue{t};
     }
-    case FieldType::reserved: return FieldValue{std::string(text)};
+    case FieldType::reserved:
+      return FieldValue{std::string(text)};
     case FieldType::hex: {
       auto v = parse_hex_words(text, f.hex_digits);
       if (!v) return std::unexpected(v.error());
@@ -113,8 +117,10 @@ std::expected<FieldValue, std::string> parse_field_input(const FieldSpec& f, std
         return FieldValue{Decimal{static_cast<std::int64_t>(w), 0}};
       }
       if (auto d = parse_decimal(text); d) {
-        if (d->scale != 0 || d->units < 0) return std::unexpected(fmt::format("'{}': a bit field is a non-negative integer", text));
-        if (auto b = parse_bit_field(static_cast<std::uint64_t>(d->units), f.bits); !b) return std::unexpected(b.error().message);
+        if (d->scale != 0 || d->units < 0)
+          return std::unexpected(fmt::format("'{}': a bit field is a non-negative integer", text));
+        if (auto b = parse_bit_field(static_cast<std::uint64_t>(d->units), f.bits); !b)
+          return std::unexpected(b.error().message);
         return FieldValue{*d};
       }
       // binary literal "00100010" (SINUMERIK bit MDs) or names "K|S|J"
@@ -161,17 +167,21 @@ std::expected<ParamValue, std::string> parse_value_input(const ParamVariant& v, 
       continue;
     }
     if (i >= parts.size())
-      return std::unexpected(fmt::format("expected {} value(s) ({}), got {}", needed, [&] {
-        std::string n;
-        for (const auto& g : v.fields) n += (n.empty() ? "" : " ") + g.name;
-        return n;
-      }(), parts.size()));
+      return std::unexpected(fmt::format(
+          "expected {} value(s) ({}), got {}", needed,
+          [&] {
+            std::string n;
+            for (const auto& g : v.fields) n += (n.empty() ? "" : " ") + g.name;
+            return n;
+          }(),
+          parts.size()));
     auto fv = parse_field_input(f, parts[i]);
     if (!fv) return std::unexpected(fmt::format("{}: {}", f.name, fv.error()));
     out.push_back(*fv);
     ++i;
   }
-  if (i != parts.size()) return std::unexpected(fmt::format("too many values: expected {}, got {}", needed, parts.size()));
+  if (i != parts.size())
+    return std::unexpected(fmt::format("too many values: expected {}, got {}", needed, parts.size()));
   return out;
 }
 
@@ -203,9 +213,11 @@ std::expected<std::string, std::string> make_field_text(const FieldSpec& f, cons
     }
     case FieldType::hex: {
       const auto* d = std::get_if<Decimal>(&v);
-      if (!d || d->scale != 0 || d->units < 0) return std::unexpected(fmt::format("{}: expected a non-negative integer", f.name));
+      if (!d || d->scale != 0 || d->units < 0)
+        return std::unexpected(fmt::format("{}: expected a non-negative integer", f.name));
       auto s = fmt::format("{:0{}X}", d->units, f.hex_digits);
-      if (static_cast<int>(s.size()) > f.hex_digits) return std::unexpected(fmt::format("{}: {} does not fit {} hex digits", f.name, s, f.hex_digits));
+      if (static_cast<int>(s.size()) > f.hex_digits)
+        return std::unexpected(fmt::format("{}: {} does not fit {} hex digits", f.name, s, f.hex_digits));
       return s;
     }
     default: {
@@ -229,7 +241,8 @@ std::expected<FieldValue, std::string> parse_field_text(const FieldSpec& f, std:
   switch (f.type) {
     case FieldType::io_address:
     case FieldType::reserved:
-    case FieldType::hex: return parse_field_input(f, text);
+    case FieldType::hex:
+      return parse_field_input(f, text);
     case FieldType::bits:
       if (f.binary_text) {
         if (text.size() != f.bits.bits || text.find_first_not_of("01") != std::string_view::npos)
@@ -245,7 +258,8 @@ std::expected<FieldValue, std::string> parse_field_text(const FieldSpec& f, std:
   }
 }
 
-std::expected<WireImage, std::string> encode_value(const Profile& p, const ParamVariant& variant, const ParamValue& value) {
+std::expected<WireImage, std::string> encode_value(const Profile& p, const ParamVariant& variant,
+                                                   const ParamValue& value) {
   if (value.size() != variant.fields.size())
     return std::unexpected(fmt::format("expected {} field(s), got {}", variant.fields.size(), value.size()));
   WireImage img;
@@ -315,7 +329,8 @@ std::expected<WireImage, std::string> encode_value(const Profile& p, const Param
   return img;
 }
 
-std::expected<ParamValue, std::string> decode_wire(const Profile& p, const ParamVariant& variant, std::string_view wire) {
+std::expected<ParamValue, std::string> decode_wire(const Profile& p, const ParamVariant& variant,
+                                                   std::string_view wire) {
   ParamValue out;
   const Encoding enc0 = variant.fields.empty() ? p.wire.encoding : variant.fields[0].encoding.value_or(p.wire.encoding);
   if (enc0 == Encoding::text) {
@@ -331,7 +346,8 @@ std::expected<ParamValue, std::string> decode_wire(const Profile& p, const Param
       if (!v) return std::unexpected(v.error());
       out.push_back(*v);
     }
-    if (i != parts.size()) return std::unexpected(fmt::format("'{}' has {} field(s), expected {}", wire, parts.size(), i));
+    if (i != parts.size())
+      return std::unexpected(fmt::format("'{}' has {} field(s), expected {}", wire, parts.size(), i));
     return out;
   }
   if (enc0 == Encoding::bcd_binary) {
@@ -377,11 +393,12 @@ std::expected<ParamValue, std::string> decode_wire(const Profile& p, const Param
     const bool wide = enc == Encoding::kd || (enc == Encoding::fixed && f.fixed.word.bits == 32);
     const std::size_t need = wide ? 2 : 1;
     if (wi + need > words.size()) return std::unexpected(fmt::format("field '{}' needs {} more word(s)", f.name, need));
-    std::uint64_t w = !wide ? words[wi]
+    std::uint64_t w = !wide                   ? words[wi]
                       : p.wire.low_word_first ? (std::uint64_t{words[wi + 1]} << 16) | words[wi]
                                               : (std::uint64_t{words[wi]} << 16) | words[wi + 1];
     wi += need;
-    TwosComplementFormat tf{wide ? 32 : 16, enc == Encoding::kf || enc == Encoding::kd || (enc == Encoding::fixed && f.fixed.word.is_signed)};
+    TwosComplementFormat tf{wide ? 32 : 16, enc == Encoding::kf || enc == Encoding::kd ||
+                                                (enc == Encoding::fixed && f.fixed.word.is_signed)};
     if (enc == Encoding::byte_l) {
       w >>= 8;
       tf = {8, false};

@@ -13,7 +13,8 @@ constexpr std::string_view forms =
 bool valid_name(std::string_view s, std::size_t max) {
   if (s.empty() || s.size() > max) return false;
   for (char c : s) {
-    const bool ok = (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '_' || c == '-' || c == '.';
+    const bool ok =
+        (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '_' || c == '-' || c == '.';
     if (!ok) return false;
   }
   return true;
@@ -27,8 +28,10 @@ std::unexpected<std::string> bad(std::string_view text, std::string_view why) {
 
 std::string BusUrl::to_string() const {
   switch (kind) {
-    case Kind::socketcan: return name;
-    case Kind::virtual_bus: return "virtual:" + name;
+    case Kind::socketcan:
+      return name;
+    case Kind::virtual_bus:
+      return "virtual:" + name;
     case Kind::socketcand: {
       const bool v6 = host.find(':') != std::string::npos;
       return "socketcand://" + (v6 ? "[" + host + "]" : host) + ":" + std::to_string(port) + "/" + name;
@@ -54,7 +57,8 @@ std::expected<BusUrl, std::string> parse_bus_url(std::string_view text) {
     url.kind = BusUrl::Kind::socketcand;
     auto rest = text.substr(13);
     const auto slash = rest.find('/');
-    if (slash == std::string_view::npos) return bad(text, "missing /BUS after the host (e.g. socketcand://127.0.0.1:29536/can0)");
+    if (slash == std::string_view::npos)
+      return bad(text, "missing /BUS after the host (e.g. socketcand://127.0.0.1:29536/can0)");
     auto authority = rest.substr(0, slash);
     url.name = std::string(rest.substr(slash + 1));
     if (!valid_name(url.name, 16)) return bad(text, "the bus name after '/' has 1..16 characters of [A-Za-z0-9_.-]");
@@ -86,7 +90,8 @@ std::expected<BusUrl, std::string> parse_bus_url(std::string_view text) {
     }
     return url;
   }
-  if (text.find("://") != std::string_view::npos) return bad(text, std::string("unknown scheme; ") + std::string(forms));
+  if (text.find("://") != std::string_view::npos)
+    return bad(text, std::string("unknown scheme; ") + std::string(forms));
   url.name = std::string(text);
   if (!valid_name(url.name, 15)) return bad(text, forms);
   return url;

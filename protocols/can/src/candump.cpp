@@ -8,18 +8,26 @@ namespace hil::can::candump {
 namespace {
 
 class Category final : public std::error_category {
-public:
+ public:
   const char* name() const noexcept override { return "candump"; }
   std::string message(int ev) const override {
     switch (static_cast<ParseErrc>(ev)) {
-      case ParseErrc::missing_separator: return "missing '#' between CAN id and data (expected e.g. 123#DEADBEEF)";
-      case ParseErrc::bad_id: return "bad CAN id (3 hex digits for 11-bit, 8 for 29-bit)";
-      case ParseErrc::bad_data: return "bad data (up to 8 bytes as pairs of hex digits, '.' allowed between bytes)";
-      case ParseErrc::bad_rtr_length: return "bad remote frame length (use #R or #R0..#R8)";
-      case ParseErrc::fd_not_supported: return "CAN FD frames (##) are not supported; classic CAN only";
-      case ParseErrc::bad_timestamp: return "bad timestamp (expected '(SECONDS.FRACTION)')";
-      case ParseErrc::bad_interface: return "missing or overlong interface name";
-      case ParseErrc::trailing_garbage: return "unexpected text after the frame";
+      case ParseErrc::missing_separator:
+        return "missing '#' between CAN id and data (expected e.g. 123#DEADBEEF)";
+      case ParseErrc::bad_id:
+        return "bad CAN id (3 hex digits for 11-bit, 8 for 29-bit)";
+      case ParseErrc::bad_data:
+        return "bad data (up to 8 bytes as pairs of hex digits, '.' allowed between bytes)";
+      case ParseErrc::bad_rtr_length:
+        return "bad remote frame length (use #R or #R0..#R8)";
+      case ParseErrc::fd_not_supported:
+        return "CAN FD frames (##) are not supported; classic CAN only";
+      case ParseErrc::bad_timestamp:
+        return "bad timestamp (expected '(SECONDS.FRACTION)')";
+      case ParseErrc::bad_interface:
+        return "missing or overlong interface name";
+      case ParseErrc::trailing_garbage:
+        return "unexpected text after the frame";
     }
     return "unknown candump parse error";
   }
@@ -32,7 +40,9 @@ int hex_value(char c) noexcept {
   return -1;
 }
 
-std::unexpected<std::error_code> fail(ParseErrc e) noexcept { return std::unexpected(make_error_code(e)); }
+std::unexpected<std::error_code> fail(ParseErrc e) noexcept {
+  return std::unexpected(make_error_code(e));
+}
 
 constexpr char hex_digits[] = "0123456789ABCDEF";
 void append_hex(std::string& out, std::uint32_t v, int digits) {
@@ -127,7 +137,8 @@ std::expected<LogRecord, std::error_code> parse_log_line(std::string_view line) 
   if (close == std::string_view::npos) return fail(ParseErrc::bad_timestamp);
   const auto ts_text = line.substr(1, close - 1);
   const auto dot = ts_text.find('.');
-  if (dot == std::string_view::npos || dot == 0 || dot > 18 || ts_text.size() - dot - 1 == 0 || ts_text.size() - dot - 1 > 9)
+  if (dot == std::string_view::npos || dot == 0 || dot > 18 || ts_text.size() - dot - 1 == 0 ||
+      ts_text.size() - dot - 1 > 9)
     return fail(ParseErrc::bad_timestamp);
   LogRecord r;
   for (char c : ts_text.substr(0, dot)) {

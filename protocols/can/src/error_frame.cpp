@@ -9,10 +9,14 @@ constexpr std::uint32_t err_cnt = 0x200;  // CAN_ERR_CNT: data[6..7] hold TX/RX 
 
 const char* to_string(BusState s) noexcept {
   switch (s) {
-    case BusState::error_active: return "error-active";
-    case BusState::error_warning: return "error-warning";
-    case BusState::error_passive: return "error-passive";
-    case BusState::bus_off: return "bus-off";
+    case BusState::error_active:
+      return "error-active";
+    case BusState::error_warning:
+      return "error-warning";
+    case BusState::error_passive:
+      return "error-passive";
+    case BusState::bus_off:
+      return "bus-off";
   }
   return "?";
 }
@@ -64,7 +68,8 @@ std::string describe_error_frame(const Frame& f) {
   if (info.protocol_violation) add("protocol-violation");
   if (info.bus_error) add("bus-error");
   if (info.transceiver) add("transceiver");
-  if (info.tx_error_count) s += " (tec " + std::to_string(*info.tx_error_count) + ", rec " + std::to_string(*info.rx_error_count) + ")";
+  if (info.tx_error_count)
+    s += " (tec " + std::to_string(*info.tx_error_count) + ", rec " + std::to_string(*info.rx_error_count) + ")";
   if (s.empty()) s = "error frame";
   return s;
 }

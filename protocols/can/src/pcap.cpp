@@ -21,14 +21,15 @@ std::array<std::uint8_t, global_header_size> make_global_header() noexcept {
   put_le32(&h[0], 0xA1B2C3D4u);  // microsecond timestamps
   put_le16(&h[4], 2);
   put_le16(&h[6], 4);
-  put_le32(&h[8], 0);    // thiszone
-  put_le32(&h[12], 0);   // sigfigs
+  put_le32(&h[8], 0);   // thiszone
+  put_le32(&h[12], 0);  // sigfigs
   put_le32(&h[16], snaplen);
   put_le32(&h[20], linktype_can_socketcan);
   return h;
 }
 
-std::array<std::uint8_t, record_header_size + frame_size> make_record(const Frame& frame, socketcand::Timestamp time) noexcept {
+std::array<std::uint8_t, record_header_size + frame_size> make_record(const Frame& frame,
+                                                                      socketcand::Timestamp time) noexcept {
   std::array<std::uint8_t, record_header_size + frame_size> r{};
   put_le32(&r[0], static_cast<std::uint32_t>(time.sec));
   put_le32(&r[4], time.usec % 1000000u);

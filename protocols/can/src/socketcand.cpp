@@ -9,27 +9,40 @@ namespace hil::can::socketcand {
 namespace {
 
 class ParseCategory final : public std::error_category {
-public:
+ public:
   const char* name() const noexcept override { return "socketcand"; }
   std::string message(int ev) const override {
     switch (static_cast<ParseErrc>(ev)) {
-      case ParseErrc::not_an_element: return "not a socketcand element (expected '< ... >')";
-      case ParseErrc::empty_element: return "empty element '< >'";
-      case ParseErrc::unknown_command: return "unknown command";
-      case ParseErrc::missing_argument: return "missing argument";
-      case ParseErrc::extra_argument: return "unexpected extra argument";
-      case ParseErrc::bad_id: return "bad CAN id (hex, at most 8 digits, 11- or 29-bit)";
-      case ParseErrc::bad_dlc: return "bad DLC (decimal 0..8)";
-      case ParseErrc::bad_data: return "bad data (hex bytes, at most 8, as many as the DLC says)";
-      case ParseErrc::bad_timestamp: return "bad timestamp (SECONDS.FRACTION)";
-      case ParseErrc::bad_bus_name: return "bad bus name (1..16 characters)";
-      case ParseErrc::element_too_long: return "element too long (no '>' within 256 characters)";
+      case ParseErrc::not_an_element:
+        return "not a socketcand element (expected '< ... >')";
+      case ParseErrc::empty_element:
+        return "empty element '< >'";
+      case ParseErrc::unknown_command:
+        return "unknown command";
+      case ParseErrc::missing_argument:
+        return "missing argument";
+      case ParseErrc::extra_argument:
+        return "unexpected extra argument";
+      case ParseErrc::bad_id:
+        return "bad CAN id (hex, at most 8 digits, 11- or 29-bit)";
+      case ParseErrc::bad_dlc:
+        return "bad DLC (decimal 0..8)";
+      case ParseErrc::bad_data:
+        return "bad data (hex bytes, at most 8, as many as the DLC says)";
+      case ParseErrc::bad_timestamp:
+        return "bad timestamp (SECONDS.FRACTION)";
+      case ParseErrc::bad_bus_name:
+        return "bad bus name (1..16 characters)";
+      case ParseErrc::element_too_long:
+        return "element too long (no '>' within 256 characters)";
     }
     return "unknown socketcand parse error";
   }
 };
 
-constexpr bool is_space(char c) noexcept { return c == ' ' || c == '\t' || c == '\r' || c == '\n'; }
+constexpr bool is_space(char c) noexcept {
+  return c == ' ' || c == '\t' || c == '\r' || c == '\n';
+}
 
 int hex_value(char c) noexcept {
   if (c >= '0' && c <= '9') return c - '0';
@@ -40,7 +53,7 @@ int hex_value(char c) noexcept {
 
 /// Whitespace tokenizer over the inside of an element.
 class Tokens {
-public:
+ public:
   explicit Tokens(std::string_view s) noexcept : s_(s) {}
   bool next(std::string_view& tok) noexcept {
     while (p_ < s_.size() && is_space(s_[p_])) ++p_;
@@ -64,12 +77,13 @@ public:
     return !more;
   }
 
-private:
+ private:
   std::string_view s_;
   std::size_t p_ = 0;
 };
 
-std::expected<std::uint32_t, std::error_code> parse_hex32(std::string_view tok, std::size_t max_digits, ParseErrc err) noexcept {
+std::expected<std::uint32_t, std::error_code> parse_hex32(std::string_view tok, std::size_t max_digits,
+                                                          ParseErrc err) noexcept {
   if (tok.empty() || tok.size() > max_digits) return std::unexpected(make_error_code(err));
   std::uint32_t v = 0;
   for (char c : tok) {
@@ -117,7 +131,9 @@ std::expected<Timestamp, std::error_code> parse_timestamp(std::string_view tok) 
   return t;
 }
 
-std::expected<Element, std::error_code> fail(ParseErrc e) noexcept { return std::unexpected(make_error_code(e)); }
+std::expected<Element, std::error_code> fail(ParseErrc e) noexcept {
+  return std::unexpected(make_error_code(e));
+}
 
 std::expected<Element, std::error_code> no_args(Tokens& t, Element e) noexcept {
   if (!t.at_end()) return fail(ParseErrc::extra_argument);
@@ -306,10 +322,18 @@ void format_open(std::string& out, std::string_view bus) {
 
 void format_mode(std::string& out, Mode mode) {
   switch (mode) {
-    case Mode::bcm: out.append("< bcmmode >"); break;
-    case Mode::raw: out.append("< rawmode >"); break;
-    case Mode::control: out.append("< controlmode >"); break;
-    case Mode::isotp: out.append("< isotpmode >"); break;
+    case Mode::bcm:
+      out.append("< bcmmode >");
+      break;
+    case Mode::raw:
+      out.append("< rawmode >");
+      break;
+    case Mode::control:
+      out.append("< controlmode >");
+      break;
+    case Mode::isotp:
+      out.append("< isotpmode >");
+      break;
   }
 }
 
@@ -317,15 +341,24 @@ void format_element(std::string& out, const Element& element) {
   std::visit(
       [&out](const auto& e) {
         using T = std::decay_t<decltype(e)>;
-        if constexpr (std::is_same_v<T, Hi>) out.append(hi_element);
-        else if constexpr (std::is_same_v<T, Ok>) out.append(ok_element);
-        else if constexpr (std::is_same_v<T, Echo>) out.append("< echo >");
-        else if constexpr (std::is_same_v<T, Open>) format_open(out, e.bus);
-        else if constexpr (std::is_same_v<T, SwitchMode>) format_mode(out, e.mode);
-        else if constexpr (std::is_same_v<T, RxFrame>) (void)format_rx_frame(out, e.frame, e.time);
-        else if constexpr (std::is_same_v<T, Send>) (void)format_send(out, e.frame);
-        else if constexpr (std::is_same_v<T, ErrorFrame>) format_error_frame(out, e.frame.id, e.time);
-        else if constexpr (std::is_same_v<T, ErrorText>) format_error_text(out, e.text);
+        if constexpr (std::is_same_v<T, Hi>)
+          out.append(hi_element);
+        else if constexpr (std::is_same_v<T, Ok>)
+          out.append(ok_element);
+        else if constexpr (std::is_same_v<T, Echo>)
+          out.append("< echo >");
+        else if constexpr (std::is_same_v<T, Open>)
+          format_open(out, e.bus);
+        else if constexpr (std::is_same_v<T, SwitchMode>)
+          format_mode(out, e.mode);
+        else if constexpr (std::is_same_v<T, RxFrame>)
+          (void)format_rx_frame(out, e.frame, e.time);
+        else if constexpr (std::is_same_v<T, Send>)
+          (void)format_send(out, e.frame);
+        else if constexpr (std::is_same_v<T, ErrorFrame>)
+          format_error_frame(out, e.frame.id, e.time);
+        else if constexpr (std::is_same_v<T, ErrorText>)
+          format_error_text(out, e.text);
         else if constexpr (std::is_same_v<T, Other>) {
           out.append("< ");
           out.append(e.command);

@@ -42,8 +42,8 @@ std::unique_ptr<VirtualChannel> VirtualBus::attach(std::string participant_name,
 }
 
 std::size_t VirtualBus::participant_count() const noexcept {
-  return static_cast<std::size_t>(std::count_if(participants_.begin(), participants_.end(),
-                                                [](const VirtualChannel* p) { return p != nullptr; }));
+  return static_cast<std::size_t>(
+      std::count_if(participants_.begin(), participants_.end(), [](const VirtualChannel* p) { return p != nullptr; }));
 }
 
 void VirtualBus::detach(VirtualChannel& ch) noexcept {
@@ -287,7 +287,10 @@ void VirtualBus::inject_error_frame(const Frame& error_frame) {
 // VirtualChannel
 
 VirtualChannel::VirtualChannel(VirtualBus& bus, std::uint32_t index, std::string name, ParticipantOptions options)
-    : bus_(&bus), index_(index), name_(std::move(name)), options_(std::move(options)),
+    : bus_(&bus),
+      index_(index),
+      name_(std::move(name)),
+      options_(std::move(options)),
       accept_all_(is_default_filter(options_.filters)) {}
 
 VirtualChannel::~VirtualChannel() {

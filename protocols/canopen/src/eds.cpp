@@ -42,12 +42,12 @@ struct Section {
 };
 
 class Parser {
-public:
+ public:
   Parser(std::string_view text, std::string_view file, NodeId node) : text_(text), file_(file), node_(node) {}
 
   std::expected<DeviceDescription, ConfigError> run();
 
-private:
+ private:
   ConfigError error(int line, std::string_view section, std::string_view key, std::string message) const {
     ConfigError e;
     e.file = std::string(file_);
@@ -61,7 +61,8 @@ private:
     auto it = sections_.find(lower(name));
     return it == sections_.end() ? nullptr : &it->second;
   }
-  std::expected<std::int64_t, ConfigError> integer(const Section& s, std::string_view key, std::optional<std::int64_t> dflt) const;
+  std::expected<std::int64_t, ConfigError> integer(const Section& s, std::string_view key,
+                                                   std::optional<std::int64_t> dflt) const;
   std::expected<std::vector<std::uint8_t>, ConfigError> encode(const Section& s, const Entry& e, std::string_view key,
                                                                DataType type) const;
   std::optional<ConfigError> add_var(const Section& s, std::uint16_t index, std::uint8_t sub, const Section* parent,
@@ -100,8 +101,7 @@ std::optional<ConfigError> Parser::split() {
       continue;
     }
     const auto eq = line.find('=');
-    if (eq == std::string_view::npos)
-      return error(line_no, current ? current->name : "", line, "expected Key=Value");
+    if (eq == std::string_view::npos) return error(line_no, current ? current->name : "", line, "expected Key=Value");
     if (current == nullptr) return error(line_no, "", trim(line.substr(0, eq)), "key outside of any section");
     current->keys[lower(trim(line.substr(0, eq)))] = Entry{std::string(trim(line.substr(eq + 1))), line_no};
   }
@@ -119,19 +119,23 @@ std::expected<std::int64_t, ConfigError> Parser::integer(const Section& s, std::
   return std::unexpected(error(e->line, s.name, key, fmt::format("'{}' is not an integer expression", e->value)));
 }
 
-std::expected<std::vector<std::uint8_t>, ConfigError> Parser::encode(const Section& s, const Entry& e, std::string_view key,
-                                                                     DataType type) const {
+std::expected<std::vector<std::uint8_t>, ConfigError> Parser::encode(const Section& s, const Entry& e,
+                                                                     std::string_view key, DataType type) const {
   std::vector<std::uint8_t> out;
   const auto n = data_type_size(type);
   switch (type) {
     case DataType::visible_string:
-    case DataType::unicode_string: out.assign(e.value.begin(), e.value.end()); return out;
-    case DataType::domain: return out;
+    case DataType::unicode_string:
+      out.assign(e.value.begin(), e.value.end());
+      return out;
+    case DataType::domain:
+      return out;
     case DataType::octet_string: {
       std::string hex;
       for (char c : e.value)
         if (!std::isspace(static_cast<unsigned char>(c))) hex.push_back(c);
-      if (hex.size() % 2 != 0) return std::unexpected(error(e.line, s.name, key, "OCTET_STRING needs an even number of hex digits"));
+      if (hex.size() % 2 != 0)
+        return std::unexpected(error(e.line, s.name, key, "OCTET_STRING needs an even number of hex digits"));
       for (std::size_t i = 0; i < hex.size(); i += 2) {
         unsigned b = 0;
         auto [p, ec] = std::from_chars(hex.data() + i, hex.data() + i + 2, b, 16);
@@ -156,7 +160,8 @@ std::expected<std::vector<std::uint8_t>, ConfigError> Parser::encode(const Secti
       }
       return out;
     }
-    default: break;
+    default:
+      break;
   }
   auto v = eval_eds_integer(e.value, node_);
   if (!v) return std::unexpected(error(e.line, s.name, key, fmt::format("'{}' is not an integer expression", e.value)));
@@ -174,8 +179,8 @@ std::expected<std::vector<std::uint8_t>, ConfigError> Parser::encode(const Secti
   return out;
 }
 
-std::optional<ConfigError> Parser::add_var(const Section& s, std::uint16_t index, std::uint8_t sub, const Section* parent,
-                                           DataType* type_out) {
+std::optional<ConfigError> Parser::add_var(const Section& s, std::uint16_t index, std::uint8_t sub,
+                                           const Section* parent, DataType* type_out) {
   Variable v;
   v.index = index;
   v.sub = sub;
@@ -194,7 +199,9 @@ std::optional<ConfigError> Parser::add_var(const Section& s, std::uint16_t index
   if (acc == nullptr && parent != nullptr) acc = parent->get("AccessType");
   if (acc == nullptr) return error(s.line, s.name, "AccessType", "missing");
   auto a = access_from_string(acc->value);
-  if (!a) return error(acc->line, s.name, "AccessType", fmt::format("'{}' is not one of ro, wo, rw, rwr, rww, const", acc->value));
+  if (!a)
+    return error(acc->line, s.name, "AccessType",
+                 fmt::format("'{}' is not one of ro, wo, rw, rwr, rww, const", acc->value));
   v.access = *a;
   auto pdo = integer(s, "PDOMapping", 0);
   if (!pdo) return pdo.error();
@@ -239,8 +246,10 @@ std::optional<ConfigError> Parser::add_object(std::uint16_t index, const Section
     case 0x6:  // DEFSTRUCT
       return std::nullopt;
     case 0x8:
-    case 0x9: break;
-    default: return error(s.line, s.name, "ObjectType", fmt::format("unsupported object type 0x{:X}", *ot));
+    case 0x9:
+      break;
+    default:
+      return error(s.line, s.name, "ObjectType", fmt::format("unsupported object type 0x{:X}", *ot));
   }
   auto compact = integer(s, "CompactSubObj", 0);
   if (!compact) return compact.error();
@@ -321,7 +330,8 @@ std::expected<DeviceDescription, ConfigError> Parser::run() {
       auto idx = integer(*list, std::to_string(i), std::nullopt);
       if (!idx) return std::unexpected(idx.error());
       if (*idx < 1 || *idx > 0xFFFF)
-        return std::unexpected(error(list->get(std::to_string(i))->line, list->name, std::to_string(i), "index out of range"));
+        return std::unexpected(
+            error(list->get(std::to_string(i))->line, list->name, std::to_string(i), "index out of range"));
       const auto* s = section(fmt::format("{:04X}", *idx));
       if (s == nullptr)
         return std::unexpected(error(list->get(std::to_string(i))->line, list->name, std::to_string(i),
@@ -331,7 +341,8 @@ std::expected<DeviceDescription, ConfigError> Parser::run() {
   }
   if (!listed) {
     for (const auto& [key, s] : sections_) {
-      if (key.size() != 4 || !std::all_of(key.begin(), key.end(), [](char c) { return std::isxdigit(static_cast<unsigned char>(c)); }))
+      if (key.size() != 4 ||
+          !std::all_of(key.begin(), key.end(), [](char c) { return std::isxdigit(static_cast<unsigned char>(c)); }))
         continue;
       objects.emplace_back(static_cast<std::uint16_t>(std::stoul(key, nullptr, 16)), &s);
     }
@@ -400,7 +411,8 @@ std::optional<std::int64_t> eval_eds_integer(std::string_view text, NodeId node_
   return sum;
 }
 
-std::expected<DeviceDescription, ConfigError> parse_eds(std::string_view text, std::string_view file_name, NodeId node_id) {
+std::expected<DeviceDescription, ConfigError> parse_eds(std::string_view text, std::string_view file_name,
+                                                        NodeId node_id) {
   return Parser(text, file_name, node_id).run();
 }
 

@@ -9,19 +9,28 @@ namespace hil::canopen {
 namespace {
 
 class BootCategory final : public std::error_category {
-public:
+ public:
   const char* name() const noexcept override { return "canopen.boot"; }
   std::string message(int v) const override {
     switch (static_cast<BootError>(v)) {
-      case BootError::none: return "no error";
-      case BootError::no_response: return "B: no boot-up message or no response to the 0x1000 upload";
-      case BootError::device_type: return "C: device type (0x1000) differs from the configuration";
-      case BootError::vendor_id: return "D: vendor-ID (0x1018:1) differs from the configuration";
-      case BootError::heartbeat: return "E: heartbeat event during boot-up";
-      case BootError::configuration: return "J: configuration download failed";
-      case BootError::product_code: return "M: product code (0x1018:2) differs from the configuration";
-      case BootError::revision: return "N: revision number (0x1018:3) differs from the configuration";
-      case BootError::serial: return "O: serial number (0x1018:4) differs from the configuration";
+      case BootError::none:
+        return "no error";
+      case BootError::no_response:
+        return "B: no boot-up message or no response to the 0x1000 upload";
+      case BootError::device_type:
+        return "C: device type (0x1000) differs from the configuration";
+      case BootError::vendor_id:
+        return "D: vendor-ID (0x1018:1) differs from the configuration";
+      case BootError::heartbeat:
+        return "E: heartbeat event during boot-up";
+      case BootError::configuration:
+        return "J: configuration download failed";
+      case BootError::product_code:
+        return "M: product code (0x1018:2) differs from the configuration";
+      case BootError::revision:
+        return "N: revision number (0x1018:3) differs from the configuration";
+      case BootError::serial:
+        return "O: serial number (0x1018:4) differs from the configuration";
     }
     return fmt::format("boot error {}", v);
   }
@@ -41,7 +50,8 @@ const std::error_category& boot_category() noexcept {
 }
 
 Master::Master(FrameSink sink, MasterOptions options)
-    : sink_(std::move(sink)), options_(options),
+    : sink_(std::move(sink)),
+      options_(options),
       heartbeat_([this](NodeId id, HeartbeatEvent e, NmtState s) {
         auto it = nodes_.find(id);
         if (it == nodes_.end()) return;
@@ -83,9 +93,15 @@ Master::Node& Master::node(NodeId id) {
   return it->second;
 }
 
-SdoClient& Master::sdo(NodeId id) { return *node(id).sdo; }
-ObjectDictionary& Master::image(NodeId id) { return *node(id).image; }
-const NodeStatus& Master::status(NodeId id) const { return nodes_.at(id).status; }
+SdoClient& Master::sdo(NodeId id) {
+  return *node(id).sdo;
+}
+ObjectDictionary& Master::image(NodeId id) {
+  return *node(id).image;
+}
+const NodeStatus& Master::status(NodeId id) const {
+  return nodes_.at(id).status;
+}
 
 std::vector<NodeId> Master::nodes() const {
   std::vector<NodeId> out;
@@ -148,29 +164,32 @@ void Master::check_identity(Node& n, std::size_t which, TimePoint now) {
   const NodeId id = n.config.id;
   const std::optional<std::uint32_t>* expected[] = {&n.config.device_type, &n.config.vendor_id, &n.config.product_code,
                                                     &n.config.revision, &n.config.serial};
-  constexpr BootError errors[] = {BootError::device_type, BootError::vendor_id, BootError::product_code, BootError::revision,
-                                  BootError::serial};
+  constexpr BootError errors[] = {BootError::device_type, BootError::vendor_id, BootError::product_code,
+                                  BootError::revision, BootError::serial};
   while (which < 5 && which != 0 && !expected[which]->has_value()) ++which;
   if (which >= 5) return configure(n, now);
   const std::uint16_t index = which == 0 ? 0x1000 : 0x1018;
   const auto sub = static_cast<std::uint8_t>(which == 0 ? 0 : which);
-  n.sdo->async_upload(index, sub, now, [this, id, which, index, sub, errors](std::error_code ec, std::vector<std::uint8_t> d) {
-    auto& nn = nodes_.at(id);
-    if (nn.status.boot != NodeBootState::identifying) return;
-    const TimePoint t = nn.boot_deadline;  // completion time is not needed beyond ordering
-    if (ec) {
-      return fail(nn, which == 0 ? BootError::no_response : errors[which],
-                  fmt::format("upload of 0x{:04X}:{} failed: {}", index, sub, ec.message()), t);
-    }
-    const std::optional<std::uint32_t>* exp[] = {&nn.config.device_type, &nn.config.vendor_id, &nn.config.product_code,
-                                                 &nn.config.revision, &nn.config.serial};
-    const auto value = as_u32(d);
-    if (exp[which]->has_value() && **exp[which] != value) {
-      return fail(nn, errors[which],
-                  fmt::format("0x{:04X}:{} is 0x{:08X}, configuration expects 0x{:08X}", index, sub, value, **exp[which]), t);
-    }
-    check_identity(nn, which + 1, last_now_);
-  });
+  n.sdo->async_upload(
+      index, sub, now, [this, id, which, index, sub, errors](std::error_code ec, std::vector<std::uint8_t> d) {
+        auto& nn = nodes_.at(id);
+        if (nn.status.boot != NodeBootState::identifying) return;
+        const TimePoint t = nn.boot_deadline;  // completion time is not needed beyond ordering
+        if (ec) {
+          return fail(nn, which == 0 ? BootError::no_response : errors[which],
+                      fmt::format("upload of 0x{:04X}:{} failed: {}", index, sub, ec.message()), t);
+        }
+        const std::optional<std::uint32_t>* exp[] = {&nn.config.device_type, &nn.config.vendor_id,
+                                                     &nn.config.product_code, &nn.config.revision, &nn.config.serial};
+        const auto value = as_u32(d);
+        if (exp[which]->has_value() && **exp[which] != value) {
+          return fail(
+              nn, errors[which],
+              fmt::format("0x{:04X}:{} is 0x{:08X}, configuration expects 0x{:08X}", index, sub, value, **exp[which]),
+              t);
+        }
+        check_identity(nn, which + 1, last_now_);
+      });
 }
 
 void Master::configure(Node& n, TimePoint now) {
@@ -183,8 +202,8 @@ void Master::configure(Node& n, TimePoint now) {
     if (nn.status.boot != NodeBootState::configuring) return;
     if (ec) {
       const auto& p = nn.config.configuration[nn.config_step];
-      return fail(nn, BootError::configuration, fmt::format("write of 0x{:04X}:{} failed: {}", p.index, p.sub, ec.message()),
-                  last_now_);
+      return fail(nn, BootError::configuration,
+                  fmt::format("write of 0x{:04X}:{} failed: {}", p.index, p.sub, ec.message()), last_now_);
     }
     ++nn.config_step;
     configure(nn, last_now_);
@@ -246,7 +265,8 @@ void Master::step(TimePoint now) {
       } else {
         fail(n, BootError::no_response,
              fmt::format("no boot-up message within {} ms after {} reset-communication attempt(s)",
-                         std::chrono::duration_cast<std::chrono::milliseconds>(options_.boot_timeout).count(), n.boot_attempts + 1),
+                         std::chrono::duration_cast<std::chrono::milliseconds>(options_.boot_timeout).count(),
+                         n.boot_attempts + 1),
              now);
       }
     }

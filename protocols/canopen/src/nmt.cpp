@@ -5,32 +5,46 @@ namespace hil::canopen {
 
 std::string_view to_string(NmtCommand c) noexcept {
   switch (c) {
-    case NmtCommand::start: return "start";
-    case NmtCommand::stop: return "stop";
-    case NmtCommand::enter_preoperational: return "enter pre-operational";
-    case NmtCommand::reset_node: return "reset node";
-    case NmtCommand::reset_communication: return "reset communication";
+    case NmtCommand::start:
+      return "start";
+    case NmtCommand::stop:
+      return "stop";
+    case NmtCommand::enter_preoperational:
+      return "enter pre-operational";
+    case NmtCommand::reset_node:
+      return "reset node";
+    case NmtCommand::reset_communication:
+      return "reset communication";
   }
   return "unknown";
 }
 
 std::string_view to_string(NmtState s) noexcept {
   switch (s) {
-    case NmtState::initialising: return "initialising";
-    case NmtState::stopped: return "stopped";
-    case NmtState::operational: return "operational";
-    case NmtState::preoperational: return "pre-operational";
+    case NmtState::initialising:
+      return "initialising";
+    case NmtState::stopped:
+      return "stopped";
+    case NmtState::operational:
+      return "operational";
+    case NmtState::preoperational:
+      return "pre-operational";
   }
   return "unknown";
 }
 
 std::optional<NmtState> nmt_state_from_byte(std::uint8_t b) noexcept {
   switch (b) {
-    case 0x00: return NmtState::initialising;
-    case 0x04: return NmtState::stopped;
-    case 0x05: return NmtState::operational;
-    case 0x7F: return NmtState::preoperational;
-    default: return std::nullopt;
+    case 0x00:
+      return NmtState::initialising;
+    case 0x04:
+      return NmtState::stopped;
+    case 0x05:
+      return NmtState::operational;
+    case 0x7F:
+      return NmtState::preoperational;
+    default:
+      return std::nullopt;
   }
 }
 

@@ -20,10 +20,15 @@ std::int64_t Variable::as_int() const noexcept {
   if (!is_integer(type)) return 0;
   return decode_int(value, is_signed(type));
 }
-std::uint64_t Variable::as_uint() const noexcept { return static_cast<std::uint64_t>(as_int()); }
+std::uint64_t Variable::as_uint() const noexcept {
+  return static_cast<std::uint64_t>(as_int());
+}
 
 ObjectDictionary::ObjectDictionary(const ObjectDictionary& other)
-    : vars_(other.vars_), validators_(other.validators_), observers_(other.observers_), max_value_size_(other.max_value_size_) {
+    : vars_(other.vars_),
+      validators_(other.validators_),
+      observers_(other.observers_),
+      max_value_size_(other.max_value_size_) {
   rebuild_index();
 }
 
@@ -67,7 +72,7 @@ bool ObjectDictionary::has_object(std::uint16_t index) const noexcept {
 }
 
 std::expected<std::span<const std::uint8_t>, SdoAbort> ObjectDictionary::read(std::uint16_t index,
-                                                                             std::uint8_t sub) const {
+                                                                              std::uint8_t sub) const {
   const auto* v = find(index, sub);
   if (v == nullptr) return std::unexpected(has_object(index) ? SdoAbort::no_sub_index : SdoAbort::no_object);
   if (!readable(v->access)) return std::unexpected(SdoAbort::write_only);

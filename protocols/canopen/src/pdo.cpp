@@ -14,7 +14,9 @@ constexpr std::uint16_t k_tpdo_comm = 0x1800;
 constexpr std::uint16_t k_tpdo_map = 0x1A00;
 constexpr int k_max_pdos = 512;
 
-bool is_dummy(const PdoMappingEntry& e) noexcept { return e.index >= 0x0001 && e.index <= 0x0007 && e.sub == 0; }
+bool is_dummy(const PdoMappingEntry& e) noexcept {
+  return e.index >= 0x0001 && e.index <= 0x0007 && e.sub == 0;
+}
 
 /// CiA 301 §7.3.5 restricted COB-IDs: not usable for PDOs.
 bool restricted_cob(std::uint32_t id) noexcept {
@@ -28,7 +30,7 @@ bool restricted_cob(std::uint32_t id) noexcept {
 PdoEngine::PdoEngine(ObjectDictionary& od, FrameSink sink) : od_(od), sink_(std::move(sink)) {}
 
 SdoAbort PdoEngine::check_mapping(const ObjectDictionary& od, const std::vector<PdoMappingEntry>& m, bool receive,
-                                   bool check_access) {
+                                  bool check_access) {
   if (m.size() > 8) return SdoAbort::value_too_high;
   unsigned total = 0;
   for (const auto& e : m) {
@@ -76,7 +78,8 @@ std::optional<PdoConfig> PdoEngine::read_config(std::uint16_t comm, std::uint16_
   c.sync_start = static_cast<std::uint8_t>(od_.get_int(comm, 6));
   const auto n = od_.get_int(map, 0);
   for (std::int64_t i = 1; i <= n && i <= 8; ++i)
-    c.mapping.push_back(parse_mapping_entry(static_cast<std::uint32_t>(od_.get_int(map, static_cast<std::uint8_t>(i)))));
+    c.mapping.push_back(
+        parse_mapping_entry(static_cast<std::uint32_t>(od_.get_int(map, static_cast<std::uint8_t>(i)))));
   return c;
 }
 
@@ -134,28 +137,32 @@ void PdoEngine::install_validators() {
               if (receive && (value == 0xFC || value == 0xFD)) return SdoAbort::invalid_value;
               return SdoAbort::none;
             case 3:
-            case 6: return is_valid ? SdoAbort::invalid_value : SdoAbort::none;
-            default: return SdoAbort::none;
+            case 6:
+              return is_valid ? SdoAbort::invalid_value : SdoAbort::none;
+            default:
+              return SdoAbort::none;
           }
         });
         od_.add_observer(comm, [this](const Variable&) { dirty_ = true; });
       }
       if (od_.has_object(map)) {
-        od_.set_validator(map, [this, comm, map, receive](const Variable& v, std::span<const std::uint8_t> b) -> SdoAbort {
-          const auto value = static_cast<std::uint32_t>(decode_int(b, false));
-          const bool is_valid = (static_cast<std::uint32_t>(od_.get_int(comm, 1)) & pdo_cob_invalid) == 0;
-          if (is_valid) return SdoAbort::unsupported_access;  // CiA 301 step 1: disable the PDO first
-          if (v.sub == 0) {
-            if (value > 8) return SdoAbort::value_too_high;
-            std::vector<PdoMappingEntry> m;
-            for (std::uint32_t i = 1; i <= value; ++i)
-              m.push_back(parse_mapping_entry(static_cast<std::uint32_t>(od_.get_int(map, static_cast<std::uint8_t>(i)))));
-            return check_mapping(od_, m, receive);
-          }
-          if (od_.get_int(map, 0) != 0) return SdoAbort::unsupported_access;  // step 2: sub 0 = 0 first
-          if (value == 0) return SdoAbort::none;
-          return check_mapping(od_, {parse_mapping_entry(value)}, receive);
-        });
+        od_.set_validator(
+            map, [this, comm, map, receive](const Variable& v, std::span<const std::uint8_t> b) -> SdoAbort {
+              const auto value = static_cast<std::uint32_t>(decode_int(b, false));
+              const bool is_valid = (static_cast<std::uint32_t>(od_.get_int(comm, 1)) & pdo_cob_invalid) == 0;
+              if (is_valid) return SdoAbort::unsupported_access;  // CiA 301 step 1: disable the PDO first
+              if (v.sub == 0) {
+                if (value > 8) return SdoAbort::value_too_high;
+                std::vector<PdoMappingEntry> m;
+                for (std::uint32_t i = 1; i <= value; ++i)
+                  m.push_back(
+                      parse_mapping_entry(static_cast<std::uint32_t>(od_.get_int(map, static_cast<std::uint8_t>(i)))));
+                return check_mapping(od_, m, receive);
+              }
+              if (od_.get_int(map, 0) != 0) return SdoAbort::unsupported_access;  // step 2: sub 0 = 0 first
+              if (value == 0) return SdoAbort::none;
+              return check_mapping(od_, {parse_mapping_entry(value)}, receive);
+            });
         od_.add_observer(map, [this](const Variable&) { dirty_ = true; });
       }
     }

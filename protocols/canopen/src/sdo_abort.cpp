@@ -40,12 +40,13 @@ constexpr std::array<std::pair<SdoAbort, std::string_view>, 31> k_texts{{
     {SdoAbort::general, "General error"},
     {SdoAbort::data_transfer, "Data cannot be transferred or stored to the application"},
     {SdoAbort::data_transfer_local, "Data cannot be transferred or stored to the application because of local control"},
-    {SdoAbort::data_transfer_state, "Data cannot be transferred or stored to the application because of the present device state"},
+    {SdoAbort::data_transfer_state,
+     "Data cannot be transferred or stored to the application because of the present device state"},
     {SdoAbort::no_od, "Object dictionary dynamic generation fails or no object dictionary is present"},
 }};
 
 class SdoCategory final : public std::error_category {
-public:
+ public:
   const char* name() const noexcept override { return "canopen.sdo"; }
   std::string message(int v) const override {
     const auto code = static_cast<std::uint32_t>(v);

@@ -8,7 +8,10 @@
 namespace hil::canopen {
 
 SdoClient::SdoClient(NodeId server, FrameSink sink, SdoClientOptions options)
-    : node_(server), sink_(std::move(sink)), options_(options), tx_cob_(cob_sdo_rx_base + server),
+    : node_(server),
+      sink_(std::move(sink)),
+      options_(options),
+      tx_cob_(cob_sdo_rx_base + server),
       rx_cob_(cob_sdo_tx_base + server) {}
 
 void SdoClient::async_upload(std::uint16_t index, std::uint8_t sub, TimePoint now, SdoCompletion done) {
@@ -76,7 +79,8 @@ void SdoClient::restart_current(TimePoint now) {
   size_ = d.size();
   if (!d.empty() && d.size() <= 4) {
     phase_ = Phase::download_initiate;
-    can::Frame f = frame_of(tx_cob_, {static_cast<std::uint8_t>(0x23 | ((4 - d.size()) << 2)), lo, hi, sub, 0, 0, 0, 0});
+    can::Frame f =
+        frame_of(tx_cob_, {static_cast<std::uint8_t>(0x23 | ((4 - d.size()) << 2)), lo, hi, sub, 0, 0, 0, 0});
     std::copy(d.begin(), d.end(), f.data.begin() + 4);
     deadline_ = now + options_.timeout;
     return sink_(f);
@@ -149,15 +153,23 @@ bool SdoClient::on_frame(const can::Frame& f, TimePoint now) {
   }
   switch (phase_) {
     case Phase::upload_initiate:
-    case Phase::upload_segment: on_upload(f, now); break;
+    case Phase::upload_segment:
+      on_upload(f, now);
+      break;
     case Phase::download_initiate:
-    case Phase::download_segment: on_download(f, now); break;
+    case Phase::download_segment:
+      on_download(f, now);
+      break;
     case Phase::block_download_initiate:
     case Phase::block_download_ack:
-    case Phase::block_download_end: on_block_download(f, now); break;
+    case Phase::block_download_end:
+      on_block_download(f, now);
+      break;
     case Phase::block_upload_initiate:
     case Phase::block_upload_data:
-    case Phase::block_upload_end: on_block_upload(f, now); break;
+    case Phase::block_upload_end:
+      on_block_upload(f, now);
+      break;
   }
   return true;
 }
@@ -232,8 +244,10 @@ void SdoClient::on_download(const can::Frame& f, TimePoint now) {
     toggle_ = false;
     return send_download_segment(now);
   }
-  if ((b0 & 0xEF) != 0x20) return fail(make_error_code(SdoAbort::command_specifier), true, SdoAbort::command_specifier, now);
-  if (((b0 & 0x10) != 0) != toggle_) return fail(make_error_code(SdoAbort::toggle_bit), true, SdoAbort::toggle_bit, now);
+  if ((b0 & 0xEF) != 0x20)
+    return fail(make_error_code(SdoAbort::command_specifier), true, SdoAbort::command_specifier, now);
+  if (((b0 & 0x10) != 0) != toggle_)
+    return fail(make_error_code(SdoAbort::toggle_bit), true, SdoAbort::toggle_bit, now);
   report_progress();
   if (last_segment_) return complete({}, now);
   toggle_ = !toggle_;
@@ -275,7 +289,8 @@ void SdoClient::on_block_download(const can::Frame& f, TimePoint now) {
       if (!mux_matches(f, current_.index, current_.sub)) return;
       server_crc_ = (b0 & 0x04) != 0;
       blksize_ = f.data[4];
-      if (blksize_ < 1 || blksize_ > 127) return fail(make_error_code(SdoAbort::block_size), true, SdoAbort::block_size, now);
+      if (blksize_ < 1 || blksize_ > 127)
+        return fail(make_error_code(SdoAbort::block_size), true, SdoAbort::block_size, now);
       offset_ = 0;
       phase_ = Phase::block_download_ack;
       return send_download_block(now);
@@ -284,7 +299,8 @@ void SdoClient::on_block_download(const can::Frame& f, TimePoint now) {
       const std::uint8_t ackseq = f.data[1];
       if (ackseq > sent_in_block_)
         return fail(make_error_code(SdoAbort::sequence_number), true, SdoAbort::sequence_number, now);
-      if (f.data[2] < 1 || f.data[2] > 127) return fail(make_error_code(SdoAbort::block_size), true, SdoAbort::block_size, now);
+      if (f.data[2] < 1 || f.data[2] > 127)
+        return fail(make_error_code(SdoAbort::block_size), true, SdoAbort::block_size, now);
       const bool all = last_segment_ && ackseq == sent_in_block_;
       offset_ = std::min(current_.data.size(), offset_ + std::size_t{ackseq} * 7);
       blksize_ = f.data[2];
@@ -302,7 +318,8 @@ void SdoClient::on_block_download(const can::Frame& f, TimePoint now) {
     case Phase::block_download_end:
       if (b0 != 0xA1) return protocol_error();
       return complete({}, now);
-    default: return protocol_error();
+    default:
+      return protocol_error();
   }
 }
 
@@ -354,7 +371,8 @@ void SdoClient::on_block_upload(const can::Frame& f, TimePoint now) {
     case Phase::block_upload_end: {
       if ((b0 & 0xE3) != 0xC1) return protocol_error();
       const std::size_t unused = (b0 >> 2) & 0x07;
-      if (unused > rx_.size()) return fail(make_error_code(SdoAbort::length_too_low), true, SdoAbort::length_too_low, now);
+      if (unused > rx_.size())
+        return fail(make_error_code(SdoAbort::length_too_low), true, SdoAbort::length_too_low, now);
       rx_.resize(rx_.size() - unused);
       if (size_known_ && rx_.size() != size_) {
         const auto a = rx_.size() > size_ ? SdoAbort::length_too_high : SdoAbort::length_too_low;
@@ -366,7 +384,8 @@ void SdoClient::on_block_upload(const can::Frame& f, TimePoint now) {
       sink_(r);
       return complete({}, now);
     }
-    default: return protocol_error();
+    default:
+      return protocol_error();
   }
 }
 

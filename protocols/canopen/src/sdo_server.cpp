@@ -8,12 +8,18 @@
 namespace hil::canopen {
 namespace {
 
-std::uint8_t clamp_blksize(std::uint8_t b) noexcept { return b < 1 ? 1 : (b > 127 ? 127 : b); }
+std::uint8_t clamp_blksize(std::uint8_t b) noexcept {
+  return b < 1 ? 1 : (b > 127 ? 127 : b);
+}
 
 }  // namespace
 
 SdoServer::SdoServer(ObjectDictionary& od, NodeId node, FrameSink sink, SdoServerOptions options)
-    : od_(od), sink_(std::move(sink)), options_(options), rx_cob_(cob_sdo_rx_base + node), tx_cob_(cob_sdo_tx_base + node) {
+    : od_(od),
+      sink_(std::move(sink)),
+      options_(options),
+      rx_cob_(cob_sdo_rx_base + node),
+      tx_cob_(cob_sdo_tx_base + node) {
   options_.block_size = clamp_blksize(options_.block_size);
 }
 
@@ -106,24 +112,35 @@ bool SdoServer::on_frame(const can::Frame& f, TimePoint now) {
         return true;
       }
       break;
-    case State::idle: break;
+    case State::idle:
+      break;
   }
   // Idle, or a new initiate request inside a transfer (the client restarted, e.g. after its own
   // timeout): start over.
   index_ = get_le16(&f.data[1]);
   sub_ = f.data[3];
   switch (ccs) {
-    case 1: start_download(f, now); break;
-    case 2: start_upload(f, now); break;
+    case 1:
+      start_download(f, now);
+      break;
+    case 2:
+      start_upload(f, now);
+      break;
     case 5:
-      if ((b0 & 0x03) == 0) start_block_upload(f, now);
-      else abort(SdoAbort::command_specifier, now);
+      if ((b0 & 0x03) == 0)
+        start_block_upload(f, now);
+      else
+        abort(SdoAbort::command_specifier, now);
       break;
     case 6:
-      if ((b0 & 0x01) == 0) start_block_download(f, now);
-      else abort(SdoAbort::command_specifier, now);
+      if ((b0 & 0x01) == 0)
+        start_block_download(f, now);
+      else
+        abort(SdoAbort::command_specifier, now);
       break;
-    default: abort(SdoAbort::command_specifier, now); break;
+    default:
+      abort(SdoAbort::command_specifier, now);
+      break;
   }
   return true;
 }
@@ -180,7 +197,8 @@ void SdoServer::start_upload(const can::Frame& f, TimePoint now) {
   const auto& d = *data;
   if (d.size() <= 4 && !d.empty()) {
     const auto n = static_cast<std::uint8_t>(4 - d.size());
-    can::Frame r = frame_of(tx_cob_, {static_cast<std::uint8_t>(0x43 | (n << 2)), f.data[1], f.data[2], sub_, 0, 0, 0, 0});
+    can::Frame r =
+        frame_of(tx_cob_, {static_cast<std::uint8_t>(0x43 | (n << 2)), f.data[1], f.data[2], sub_, 0, 0, 0, 0});
     std::copy(d.begin(), d.end(), r.data.begin() + 4);
     state_ = State::idle;
     return send(r, now);
@@ -232,7 +250,8 @@ void SdoServer::start_block_download(const can::Frame& f, TimePoint now) {
   seq_error_ = false;
   last_segment_ = false;
   state_ = State::block_download;
-  respond({static_cast<std::uint8_t>(0xA0 | (options_.block_crc ? 0x04 : 0x00)), f.data[1], f.data[2], sub_, blksize_, 0, 0, 0},
+  respond({static_cast<std::uint8_t>(0xA0 | (options_.block_crc ? 0x04 : 0x00)), f.data[1], f.data[2], sub_, blksize_,
+           0, 0, 0},
           now);
 }
 
@@ -297,8 +316,8 @@ void SdoServer::start_block_upload(const can::Frame& f, TimePoint now) {
   blksize_ = blksize;
   block_start_ = 0;
   state_ = State::block_upload_start;
-  can::Frame r = frame_of(tx_cob_, {static_cast<std::uint8_t>(0xC2 | (options_.block_crc ? 0x04 : 0x00)), f.data[1], f.data[2], sub_,
-                                    0, 0, 0, 0});
+  can::Frame r = frame_of(tx_cob_, {static_cast<std::uint8_t>(0xC2 | (options_.block_crc ? 0x04 : 0x00)), f.data[1],
+                                    f.data[2], sub_, 0, 0, 0, 0});
   put_le32(&r.data[4], static_cast<std::uint32_t>(buffer_.size()));
   send(r, now);
 }
@@ -342,8 +361,8 @@ void SdoServer::on_block_upload(const can::Frame& f, TimePoint now) {
       const auto unused = static_cast<std::uint8_t>(buffer_.empty() ? 7 : (rem == 0 ? 0 : 7 - rem));
       const std::uint16_t crc = options_.block_crc && client_crc_ ? crc16_ccitt(buffer_) : 0;
       state_ = State::block_upload_end;
-      return respond({static_cast<std::uint8_t>(0xC1 | (unused << 2)), static_cast<std::uint8_t>(crc), static_cast<std::uint8_t>(crc >> 8),
-                      0, 0, 0, 0, 0},
+      return respond({static_cast<std::uint8_t>(0xC1 | (unused << 2)), static_cast<std::uint8_t>(crc),
+                      static_cast<std::uint8_t>(crc >> 8), 0, 0, 0, 0, 0},
                      now);
     }
     case State::block_upload_end:
@@ -351,7 +370,8 @@ void SdoServer::on_block_upload(const can::Frame& f, TimePoint now) {
       state_ = State::idle;
       buffer_.clear();
       return;
-    default: return abort(SdoAbort::command_specifier, now);
+    default:
+      return abort(SdoAbort::command_specifier, now);
   }
 }
 

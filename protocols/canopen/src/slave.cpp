@@ -4,18 +4,24 @@
 namespace hil::canopen {
 
 Slave::Slave(ObjectDictionary od, NodeId node, FrameSink sink, SdoServerOptions sdo)
-    : defaults_(od), od_(std::move(od)), node_(node), sink_(std::move(sink)), sdo_(od_, node, sink_, sdo),
-      pdo_(od_, sink_), heartbeat_(node, sink_), emcy_(node, sink_),
+    : defaults_(od),
+      od_(std::move(od)),
+      node_(node),
+      sink_(std::move(sink)),
+      sdo_(od_, node, sink_, sdo),
+      pdo_(od_, sink_),
+      heartbeat_(node, sink_),
+      emcy_(node, sink_),
       consumer_([this](NodeId id, HeartbeatEvent e, NmtState) {
-        if (e == HeartbeatEvent::timeout) raise_emcy(emcy_code::heartbeat, error_register::communication, {}, last_now_);
+        if (e == HeartbeatEvent::timeout)
+          raise_emcy(emcy_code::heartbeat, error_register::communication, {}, last_now_);
         if (on_heartbeat) on_heartbeat(id, e, last_now_);
       }) {
-  for (const std::uint16_t idx : {std::uint16_t{0x1005}, std::uint16_t{0x1014}, std::uint16_t{0x1015}, std::uint16_t{0x1016},
-                                  std::uint16_t{0x1017}})
+  for (const std::uint16_t idx : {std::uint16_t{0x1005}, std::uint16_t{0x1014}, std::uint16_t{0x1015},
+                                  std::uint16_t{0x1016}, std::uint16_t{0x1017}})
     od_.add_observer(idx, [this](const Variable&) { comm_dirty_ = true; });
-  pdo_.set_error_handler([this](std::uint16_t code, std::uint32_t) {
-    raise_emcy(code, error_register::communication, {}, last_now_);
-  });
+  pdo_.set_error_handler(
+      [this](std::uint16_t code, std::uint32_t) { raise_emcy(code, error_register::communication, {}, last_now_); });
 }
 
 void Slave::enter(NmtState s) {
@@ -77,11 +83,21 @@ bool Slave::on_frame(const can::Frame& f, TimePoint now) {
   if (auto nmt = parse_nmt(f)) {
     if (nmt->node != 0 && nmt->node != node_) return true;
     switch (nmt->command) {
-      case NmtCommand::start: enter(NmtState::operational); break;
-      case NmtCommand::stop: enter(NmtState::stopped); break;
-      case NmtCommand::enter_preoperational: enter(NmtState::preoperational); break;
-      case NmtCommand::reset_node: reset(true, now); break;
-      case NmtCommand::reset_communication: reset(false, now); break;
+      case NmtCommand::start:
+        enter(NmtState::operational);
+        break;
+      case NmtCommand::stop:
+        enter(NmtState::stopped);
+        break;
+      case NmtCommand::enter_preoperational:
+        enter(NmtState::preoperational);
+        break;
+      case NmtCommand::reset_node:
+        reset(true, now);
+        break;
+      case NmtCommand::reset_communication:
+        reset(false, now);
+        break;
     }
     return true;
   }

@@ -133,7 +133,8 @@ std::error_code AsyncEdgeWriter::last_error() const {
 void AsyncEdgeWriter::run() {
   if (rt_priority_ > 0) {
     sched_param sp{};
-    sp.sched_priority = std::clamp(rt_priority_, sched_get_priority_min(SCHED_FIFO), sched_get_priority_max(SCHED_FIFO));
+    sp.sched_priority =
+        std::clamp(rt_priority_, sched_get_priority_min(SCHED_FIFO), sched_get_priority_max(SCHED_FIFO));
     if (int rc = pthread_setschedparam(pthread_self(), SCHED_FIFO, &sp); rc != 0) {
       std::lock_guard lock(mutex_);
       rt_error_ = std::error_code(rc, std::generic_category());

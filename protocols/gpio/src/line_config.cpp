@@ -5,10 +5,14 @@ namespace hil::gpio {
 
 std::string_view to_string(Bias b) noexcept {
   switch (b) {
-    case Bias::as_is: return "as-is";
-    case Bias::disabled: return "disabled";
-    case Bias::pull_up: return "pull-up";
-    case Bias::pull_down: return "pull-down";
+    case Bias::as_is:
+      return "as-is";
+    case Bias::disabled:
+      return "disabled";
+    case Bias::pull_up:
+      return "pull-up";
+    case Bias::pull_down:
+      return "pull-down";
   }
   return "?";
 }

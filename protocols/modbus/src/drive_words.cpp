@@ -6,8 +6,12 @@
 namespace hil::modbus {
 namespace {
 
-constexpr bool bit(std::uint16_t w, int n) noexcept { return n >= 0 && ((w >> n) & 1u) != 0; }
-constexpr std::uint16_t mask(int n) noexcept { return static_cast<std::uint16_t>(n >= 0 ? (1u << n) : 0u); }
+constexpr bool bit(std::uint16_t w, int n) noexcept {
+  return n >= 0 && ((w >> n) & 1u) != 0;
+}
+constexpr std::uint16_t mask(int n) noexcept {
+  return static_cast<std::uint16_t>(n >= 0 ? (1u << n) : 0u);
+}
 
 bool referenced_from(const Profile& p, std::uint16_t sw) noexcept {
   return p.bits.referenced < 0 ? true : bit(sw, p.bits.referenced);
@@ -21,15 +25,18 @@ DriveState cia402_next(DriveState s, std::uint16_t cw, std::uint16_t prev_cw, bo
   if (fault_active && s != DriveState::fault && s != DriveState::fault_reaction_active)
     return DriveState::fault_reaction_active;
   switch (s) {
-    case DriveState::not_ready: return DriveState::switch_on_disabled;  // self-test done (transition 1)
-    case DriveState::fault_reaction_active: return DriveState::fault;  // reaction done (14)
+    case DriveState::not_ready:
+      return DriveState::switch_on_disabled;  // self-test done (transition 1)
+    case DriveState::fault_reaction_active:
+      return DriveState::fault;  // reaction done (14)
     case DriveState::quick_stop_active:
       if (stopped) return DriveState::switch_on_disabled;  // option code 2: 12 after the ramp
       break;
     case DriveState::fault:
       if (fault_active) return s;  // 15 only once the cause is gone
       break;
-    default: break;
+    default:
+      break;
   }
   const bool reset_edge = (cw & cia402::cw::fault_reset) != 0 && (prev_cw & cia402::cw::fault_reset) == 0;
   return cia402::next_state(s, cw, reset_edge, /*quick_stop_stays=*/false);
@@ -59,14 +66,19 @@ StatusInfo decode_status(const Profile& p, std::uint16_t sw) noexcept {
     r.state = cia402::decode_state(sw);
     return r;
   }
-  if (bit(sw, p.bits.fault)) r.state = DriveState::fault;
-  else if (bit(sw, p.bits.enabled)) r.state = DriveState::operation_enabled;
-  else if (bit(sw, p.bits.ready)) r.state = DriveState::switch_on_disabled;
-  else r.state = DriveState::not_ready;
+  if (bit(sw, p.bits.fault))
+    r.state = DriveState::fault;
+  else if (bit(sw, p.bits.enabled))
+    r.state = DriveState::operation_enabled;
+  else if (bit(sw, p.bits.ready))
+    r.state = DriveState::switch_on_disabled;
+  else
+    r.state = DriveState::not_ready;
   return r;
 }
 
-std::uint16_t make_control_word(const Profile& p, DriveState current, PowerTarget target, bool fault_reset_high) noexcept {
+std::uint16_t make_control_word(const Profile& p, DriveState current, PowerTarget target,
+                                bool fault_reset_high) noexcept {
   if (p.state_machine == StateMachineKind::vendor) {
     std::uint16_t cw = 0;
     if (current == DriveState::fault || current == DriveState::fault_reaction_active) {
@@ -99,8 +111,8 @@ std::uint16_t make_status_word(const Profile& p, DriveState s, bool referenced, 
   return sw;
 }
 
-DriveState next_device_state(const Profile& p, DriveState s, std::uint16_t cw, std::uint16_t prev_cw,
-                             bool fault_active, bool stopped) noexcept {
+DriveState next_device_state(const Profile& p, DriveState s, std::uint16_t cw, std::uint16_t prev_cw, bool fault_active,
+                             bool stopped) noexcept {
   return p.state_machine == StateMachineKind::cia402 ? cia402_next(s, cw, prev_cw, fault_active, stopped)
                                                      : vendor_next(p, s, cw, prev_cw, fault_active, stopped);
 }

@@ -48,10 +48,10 @@ std::expected<ExchangePlan, std::string> make_exchange_plan(const Profile& profi
     if (plan.read_fc != 3)
       return std::unexpected(std::string("FC 23 reads holding registers: set function_codes.read to 3"));
     if (plan.writes.size() != 1 || plan.reads.size() != 1)
-      return std::unexpected(fmt::format(
-          "FC 23 needs the command fields in one contiguous block and the feedback fields in another "
-          "(got {} command and {} feedback blocks); move the registers or drop read_write",
-          plan.writes.size(), plan.reads.size()));
+      return std::unexpected(
+          fmt::format("FC 23 needs the command fields in one contiguous block and the feedback fields in another "
+                      "(got {} command and {} feedback blocks); move the registers or drop read_write",
+                      plan.writes.size(), plan.reads.size()));
     if (plan.writes[0].count > kMaxRwWriteRegisters)
       return std::unexpected(fmt::format("FC 23 writes at most {} registers", kMaxRwWriteRegisters));
     plan.read_write = true;

@@ -68,7 +68,8 @@ RequestCheck check_request(std::span<const std::uint8_t> adu, const RegisterTabl
       r.written_count = wqty;
       return r;
     }
-    default: return fail(r, ModbusError::illegal_function);
+    default:
+      return fail(r, ModbusError::illegal_function);
   }
 }
 

@@ -28,8 +28,9 @@ std::string UploadReport::describe() const {
   return s;
 }
 
-UploadReport upload_items(ItemDevice& device, const std::vector<Item>& items, std::size_t start, const ProgressFn& progress,
-                          const std::atomic<bool>* cancel, const std::function<void(std::size_t)>& on_confirmed) {
+UploadReport upload_items(ItemDevice& device, const std::vector<Item>& items, std::size_t start,
+                          const ProgressFn& progress, const std::atomic<bool>* cancel,
+                          const std::function<void(std::size_t)>& on_confirmed) {
   UploadReport r;
   r.total = items.size();
   r.start = std::min(start, items.size());
@@ -53,13 +54,15 @@ UploadReport upload_items(ItemDevice& device, const std::vector<Item>& items, st
 }
 
 std::expected<std::vector<Item>, ItemError> download_items(ItemDevice& device, const std::vector<std::string>& keys,
-                                                           const ProgressFn& progress, const std::atomic<bool>* cancel) {
+                                                           const ProgressFn& progress,
+                                                           const std::atomic<bool>* cancel) {
   std::vector<Item> out;
   out.reserve(keys.size());
   for (std::size_t i = 0; i < keys.size(); ++i) {
     if (cancel != nullptr && cancel->load())
-      return std::unexpected(ItemError{std::make_error_code(std::errc::operation_canceled),
-                                       fmt::format("interrupted after {} of {} items; nothing was written", i, keys.size())});
+      return std::unexpected(
+          ItemError{std::make_error_code(std::errc::operation_canceled),
+                    fmt::format("interrupted after {} of {} items; nothing was written", i, keys.size())});
     auto t = device.read_item(keys[i]);
     if (!t) return std::unexpected(t.error());
     out.push_back(Item{keys[i], *t});
@@ -145,7 +148,8 @@ void ResumeJournal::remove(const std::filesystem::path& file) {
   std::filesystem::remove(path_for(file), ec);
 }
 
-std::expected<std::filesystem::path, std::error_code> write_with_backup(const std::filesystem::path& path, const std::string& text) {
+std::expected<std::filesystem::path, std::error_code> write_with_backup(const std::filesystem::path& path,
+                                                                        const std::string& text) {
   std::filesystem::path backup;
   std::error_code ec;
   if (std::filesystem::exists(path, ec)) {

@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: MIT
 #include "hil/serial/line_format.hpp"
 
-#include <charconv>
 #include <fmt/format.h>
+#include <charconv>
 
 namespace hil::serial {
 
@@ -15,24 +15,39 @@ std::string LineFormat::describe() const {
 
 std::expected<LineFormat, FormatError> parse_char_format(std::string_view text, LineFormat base) {
   const auto bad = [&] {
-    return std::unexpected(FormatError{fmt::format(
-        "character format '{}' not understood: expected <data bits 7|8><parity N|E|O><stop bits 1|1.5|2>, e.g. 7E2 or 8N1",
-        text)});
+    return std::unexpected(
+        FormatError{fmt::format("character format '{}' not understood: expected <data bits 7|8><parity N|E|O><stop "
+                                "bits 1|1.5|2>, e.g. 7E2 or 8N1",
+                                text)});
   };
   if (text.size() < 3) return bad();
   if (text[0] != '7' && text[0] != '8') return bad();
   base.data_bits = static_cast<std::uint8_t>(text[0] - '0');
   switch (text[1]) {
-    case 'N': case 'n': base.parity = Parity::none; break;
-    case 'E': case 'e': base.parity = Parity::even; break;
-    case 'O': case 'o': base.parity = Parity::odd; break;
-    default: return bad();
+    case 'N':
+    case 'n':
+      base.parity = Parity::none;
+      break;
+    case 'E':
+    case 'e':
+      base.parity = Parity::even;
+      break;
+    case 'O':
+    case 'o':
+      base.parity = Parity::odd;
+      break;
+    default:
+      return bad();
   }
   const auto stop = text.substr(2);
-  if (stop == "1") base.stop_bits = StopBits::one;
-  else if (stop == "1.5") base.stop_bits = StopBits::one_and_half;
-  else if (stop == "2") base.stop_bits = StopBits::two;
-  else return bad();
+  if (stop == "1")
+    base.stop_bits = StopBits::one;
+  else if (stop == "1.5")
+    base.stop_bits = StopBits::one_and_half;
+  else if (stop == "2")
+    base.stop_bits = StopBits::two;
+  else
+    return bad();
   return validate(base);
 }
 
@@ -40,7 +55,8 @@ std::expected<LineFormat, FormatError> validate(const LineFormat& f) {
   if (f.baud < 110 || f.baud > 115200)
     return std::unexpected(FormatError{fmt::format("baud rate {} out of range: allowed 110..115200", f.baud)});
   if (f.data_bits != 7 && f.data_bits != 8)
-    return std::unexpected(FormatError{fmt::format("{} data bits not supported: use 7 or 8", static_cast<int>(f.data_bits))});
+    return std::unexpected(
+        FormatError{fmt::format("{} data bits not supported: use 7 or 8", static_cast<int>(f.data_bits))});
   if (f.flow == FlowControl::xon_xoff && f.xon == f.xoff)
     return std::unexpected(FormatError{fmt::format("XON and XOFF are both 0x{:02X}: they must differ", f.xon)});
   return f;

@@ -16,8 +16,9 @@ struct Pipe {
 };
 
 class MemoryEnd final : public RawLine {
-public:
-  MemoryEnd(std::shared_ptr<Pipe> rx, std::shared_ptr<Pipe> tx, std::shared_ptr<LineFilter> filter, VirtualClock* vclock)
+ public:
+  MemoryEnd(std::shared_ptr<Pipe> rx, std::shared_ptr<Pipe> tx, std::shared_ptr<LineFilter> filter,
+            VirtualClock* vclock)
       : rx_(std::move(rx)), tx_(std::move(tx)), filter_(std::move(filter)), vclock_(vclock) {}
 
   ReadResult read_some(std::span<std::uint8_t> buf, Duration timeout) override {
@@ -49,7 +50,7 @@ public:
     return {};
   }
 
-private:
+ private:
   std::shared_ptr<Pipe> rx_, tx_;
   std::shared_ptr<LineFilter> filter_;
   VirtualClock* vclock_;

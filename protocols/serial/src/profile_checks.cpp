@@ -4,7 +4,6 @@
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
-
 #include "hil/profiles/loader.hpp"
 #include "hil/profiles/parameter_set.hpp"
 #include "hil/profiles/validation.hpp"
@@ -16,7 +15,8 @@ namespace pf = hil::profiles;
 
 namespace {
 
-std::expected<std::shared_ptr<const pf::Profile>, std::string> find_first(std::initializer_list<std::string_view> names) {
+std::expected<std::shared_ptr<const pf::Profile>, std::string> find_first(
+    std::initializer_list<std::string_view> names) {
   std::string why;
   for (auto n : names) {
     auto p = pf::find_profile(n);
@@ -45,14 +45,17 @@ std::vector<std::string> check_wire(const pf::Profile& p, const pf::ParamRef& re
 std::expected<ElgCheck, std::string> load_elg_check() {
   auto p = find_first({"sinumerik-elg", "elg"});
   if (!p) return std::unexpected(p.error());
-  return ElgCheck([prof = *p](tape::ElgSectionKind k, int number, const std::string& value) -> std::optional<std::string> {
-    const std::string id = fmt::format("{}{}", k == tape::ElgSectionKind::machine_data ? "MD" : "SD", number);
-    auto ref = prof->resolve(id);
-    if (!ref) return fmt::format("{} is not a {} of the ELG", id, k == tape::ElgSectionKind::machine_data ? "machine datum" : "setting datum");
-    auto problems = check_wire(*prof, *ref, value);
-    if (problems.empty()) return std::nullopt;
-    return fmt::format("{}", fmt::join(problems, "; "));
-  });
+  return ElgCheck(
+      [prof = *p](tape::ElgSectionKind k, int number, const std::string& value) -> std::optional<std::string> {
+        const std::string id = fmt::format("{}{}", k == tape::ElgSectionKind::machine_data ? "MD" : "SD", number);
+        auto ref = prof->resolve(id);
+        if (!ref)
+          return fmt::format("{} is not a {} of the ELG", id,
+                             k == tape::ElgSectionKind::machine_data ? "machine datum" : "setting datum");
+        auto problems = check_wire(*prof, *ref, value);
+        if (problems.empty()) return std::nullopt;
+        return fmt::format("{}", fmt::join(problems, "; "));
+      });
 }
 
 std::expected<Ip247Check, std::string> load_ip247_check() {
@@ -87,10 +90,12 @@ std::expected<Wf725Check, std::string> load_wf725_check() {
       const std::uint16_t hi = w[static_cast<std::size_t>(2 * md - 2)];
       const std::uint16_t lo = w[static_cast<std::size_t>(2 * md - 1)];
       auto ref = prof->resolve(fmt::format("MD{}", md));
-      const pf::Scope scope(*prof, nullptr, settings, ref ? ref->instance : std::nullopt, ref ? ref->spec->instance_key : "");
+      const pf::Scope scope(*prof, nullptr, settings, ref ? ref->instance : std::nullopt,
+                            ref ? ref->spec->instance_key : "");
       if (!ref || pf::select_variant(*ref, scope) == nullptr) {
         // An MD this module variant does not use must stay 0.
-        if (hi != 0 || lo != 0) out.push_back(fmt::format("MD{} is not used by this module variant but holds {:04X} {:04X}", md, hi, lo));
+        if (hi != 0 || lo != 0)
+          out.push_back(fmt::format("MD{} is not used by this module variant but holds {:04X} {:04X}", md, hi, lo));
         continue;
       }
       text += fmt::format("MD {} HEX {:04X} {:04X}\n", md, hi, lo);

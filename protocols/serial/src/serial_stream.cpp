@@ -10,7 +10,9 @@ namespace hil::serial {
 SerialStream::SerialStream(std::unique_ptr<RawLine> raw, LineFormat format, Discipline discipline, const Clock& clock)
     : raw_(std::move(raw)), format_(format), discipline_(discipline), clock_(clock) {}
 
-void SerialStream::push_error(LineError e) { pending_.push_back(static_cast<std::uint16_t>(0x100U + static_cast<unsigned>(e))); }
+void SerialStream::push_error(LineError e) {
+  pending_.push_back(static_cast<std::uint16_t>(0x100U + static_cast<unsigned>(e)));
+}
 
 void SerialStream::decode(std::span<const std::uint8_t> raw) {
   const bool seven = format_.data_bits == 7;
@@ -40,8 +42,14 @@ void SerialStream::decode(std::span<const std::uint8_t> raw) {
     // the parity bit, so a plain 0x13 and a parity-carrying 0x93 both stop us.
     if (format_.flow == FlowControl::xon_xoff) {
       const auto m = [&](std::uint8_t flow) { return b == flow || (seven && (b & 0x7F) == (flow & 0x7F)); };
-      if (m(format_.xoff)) { paused_ = true; continue; }
-      if (m(format_.xon)) { paused_ = false; continue; }
+      if (m(format_.xoff)) {
+        paused_ = true;
+        continue;
+      }
+      if (m(format_.xon)) {
+        paused_ = false;
+        continue;
+      }
     }
     if (sw_parity && !parity7_ok(b, format_.parity)) {
       push_error(LineError::parity);
@@ -120,8 +128,9 @@ std::error_code SerialStream::write(std::span<const std::uint8_t> data, Duration
         if (auto ec = fill(deadline - now); ec && ec != LineError::timeout) return ec;
       }
     }
-    const std::size_t n = format_.flow == FlowControl::xon_xoff ? std::min(discipline_.xoff_poll_chunk, data.size() - pos)
-                                                                : data.size() - pos;
+    const std::size_t n = format_.flow == FlowControl::xon_xoff
+                              ? std::min(discipline_.xoff_poll_chunk, data.size() - pos)
+                              : data.size() - pos;
     chunk.resize(n);
     for (std::size_t i = 0; i < n; ++i) chunk[i] = encode(data[pos + i]);
     const Duration left = std::max(Duration::zero(), deadline - clock_.now());
@@ -134,20 +143,30 @@ std::error_code SerialStream::write(std::span<const std::uint8_t> data, Duration
 
 namespace {
 class LineCategory final : public std::error_category {
-public:
+ public:
   const char* name() const noexcept override { return "serial-line"; }
   std::string message(int c) const override {
     switch (static_cast<LineError>(c)) {
-      case LineError::timeout: return "timeout: the device did not answer in time (check cable, baud rate, station)";
-      case LineError::parity: return "parity error on a received character (check parity/data bits; on a tty also framing)";
-      case LineError::framing: return "framing error on a received character (check baud rate and stop bits)";
-      case LineError::overrun: return "overrun: characters were lost (lower the baud rate or enable flow control)";
-      case LineError::break_received: return "break received: the line was held in the spacing state";
-      case LineError::xoff_stalled: return "flow control stalled: the device sent XOFF and no XON within the timeout";
-      case LineError::closed: return "the line was closed by the peer";
-      case LineError::dsr_low: return "DSR is not asserted: the device is not ready (check cable and power)";
-      case LineError::cts_stalled: return "CTS stayed low: the device did not accept data within the timeout";
-      case LineError::io: return "I/O error on the serial port";
+      case LineError::timeout:
+        return "timeout: the device did not answer in time (check cable, baud rate, station)";
+      case LineError::parity:
+        return "parity error on a received character (check parity/data bits; on a tty also framing)";
+      case LineError::framing:
+        return "framing error on a received character (check baud rate and stop bits)";
+      case LineError::overrun:
+        return "overrun: characters were lost (lower the baud rate or enable flow control)";
+      case LineError::break_received:
+        return "break received: the line was held in the spacing state";
+      case LineError::xoff_stalled:
+        return "flow control stalled: the device sent XOFF and no XON within the timeout";
+      case LineError::closed:
+        return "the line was closed by the peer";
+      case LineError::dsr_low:
+        return "DSR is not asserted: the device is not ready (check cable and power)";
+      case LineError::cts_stalled:
+        return "CTS stayed low: the device did not accept data within the timeout";
+      case LineError::io:
+        return "I/O error on the serial port";
     }
     return "unknown serial line error";
   }

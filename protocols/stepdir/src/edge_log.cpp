@@ -7,20 +7,28 @@
 
 namespace hil::stepdir {
 
-std::string EdgeLogError::describe() const { return fmt::format("line {}, column {}: {}", line, column, message); }
+std::string EdgeLogError::describe() const {
+  return fmt::format("line {}, column {}: {}", line, column, message);
+}
 
 std::string_view edge_line_name(std::uint16_t line) noexcept {
   switch (line) {
-    case 0: return "step";
-    case 1: return "dir";
-    case 2: return "enable";
-    default: return {};
+    case 0:
+      return "step";
+    case 1:
+      return "dir";
+    case 2:
+      return "enable";
+    default:
+      return {};
   }
 }
 
 namespace {
 
-bool is_space(char c) noexcept { return c == ' ' || c == '\t' || c == '\r'; }
+bool is_space(char c) noexcept {
+  return c == ' ' || c == '\t' || c == '\r';
+}
 
 }  // namespace
 
@@ -43,7 +51,8 @@ std::expected<std::vector<gpio::Edge>, EdgeLogError> parse_edge_log(std::string_
       const std::size_t start = i;
       while (i < line.size() && !is_space(line[i]) && line[i] != '#') ++i;
       if (nf == 3) {
-        return std::unexpected(EdgeLogError{line_no, start + 1, "too many fields: expected '<time_ns> <line> <level>'"});
+        return std::unexpected(
+            EdgeLogError{line_no, start + 1, "too many fields: expected '<time_ns> <line> <level>'"});
       }
       fields[nf] = line.substr(start, i - start);
       cols[nf] = start + 1;
@@ -57,13 +66,13 @@ std::expected<std::vector<gpio::Edge>, EdgeLogError> parse_edge_log(std::string_
       gpio::Edge e;
       auto [p, ec] = std::from_chars(fields[0].data(), fields[0].data() + fields[0].size(), e.t_ns);
       if (ec != std::errc{} || p != fields[0].data() + fields[0].size()) {
-        return std::unexpected(EdgeLogError{line_no, cols[0],
-                                            fmt::format("time must be an integer in ns, got '{}'", fields[0])});
+        return std::unexpected(
+            EdgeLogError{line_no, cols[0], fmt::format("time must be an integer in ns, got '{}'", fields[0])});
       }
       // Bounded so that the verifier's differences of two times cannot overflow.
       if (e.t_ns < 0 || e.t_ns > (std::int64_t{1} << 62)) {
-        return std::unexpected(EdgeLogError{line_no, cols[0],
-                                            fmt::format("time must be 0 .. 2^62 ns, got '{}'", fields[0])});
+        return std::unexpected(
+            EdgeLogError{line_no, cols[0], fmt::format("time must be 0 .. 2^62 ns, got '{}'", fields[0])});
       }
       if (fields[1] == "step") {
         e.line = 0;
@@ -85,7 +94,8 @@ std::expected<std::vector<gpio::Edge>, EdgeLogError> parse_edge_log(std::string_
       } else if (fields[2] == "1") {
         e.level = true;
       } else {
-        return std::unexpected(EdgeLogError{line_no, cols[2], fmt::format("level must be 0 or 1, got '{}'", fields[2])});
+        return std::unexpected(
+            EdgeLogError{line_no, cols[2], fmt::format("level must be 0 or 1, got '{}'", fields[2])});
       }
       out.push_back(e);
     }

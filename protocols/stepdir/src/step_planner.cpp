@@ -84,8 +84,8 @@ bool StepPlanner::next_ramp(std::int64_t now, Candidate& c) noexcept {
       idx = std::max(idx, last_idx_ - 1);  // never faster deceleration than the ramp
       c.idx = idx;
       c.d = dir_;
-      const std::int64_t iv = std::max(ramp_->interval_ns(static_cast<std::size_t>(std::max<std::int64_t>(idx, 0))),
-                                       v_period_);
+      const std::int64_t iv =
+          std::max(ramp_->interval_ns(static_cast<std::size_t>(std::max<std::int64_t>(idx, 0))), v_period_);
       c.rise = last_rise_ + iv;
       return true;
     }

@@ -9,16 +9,26 @@ namespace hil::stepdir {
 
 std::string_view to_string(Rule r) noexcept {
   switch (r) {
-    case Rule::time_order: return "time_order";
-    case Rule::redundant_edge: return "redundant_edge";
-    case Rule::pulse_width: return "pulse_width";
-    case Rule::step_space: return "step_space";
-    case Rule::max_frequency: return "max_frequency";
-    case Rule::dir_setup: return "dir_setup";
-    case Rule::dir_hold: return "dir_hold";
-    case Rule::dir_during_pulse: return "dir_during_pulse";
-    case Rule::step_count: return "step_count";
-    case Rule::unknown_line: return "unknown_line";
+    case Rule::time_order:
+      return "time_order";
+    case Rule::redundant_edge:
+      return "redundant_edge";
+    case Rule::pulse_width:
+      return "pulse_width";
+    case Rule::step_space:
+      return "step_space";
+    case Rule::max_frequency:
+      return "max_frequency";
+    case Rule::dir_setup:
+      return "dir_setup";
+    case Rule::dir_hold:
+      return "dir_hold";
+    case Rule::dir_during_pulse:
+      return "dir_during_pulse";
+    case Rule::step_count:
+      return "step_count";
+    case Rule::unknown_line:
+      return "unknown_line";
   }
   return "?";
 }
@@ -29,7 +39,8 @@ std::string Violation::describe() const {
     case Rule::step_count:
       return fmt::format("after edge {}: step_count: net {} steps, expected {}", index, measured, limit);
     case Rule::time_order:
-      return fmt::format("edge {} at {:.6f} ms: time_order: earlier than the previous edge ({} ns)", index, ms, measured);
+      return fmt::format("edge {} at {:.6f} ms: time_order: earlier than the previous edge ({} ns)", index, ms,
+                         measured);
     case Rule::redundant_edge:
       return fmt::format("edge {} at {:.6f} ms: redundant_edge: level unchanged", index, ms);
     case Rule::unknown_line:

@@ -1,9 +1,9 @@
 // SPDX-License-Identifier: MIT
 #include "hil/can/linux/socketcan_channel.hpp"
 
+#include <fcntl.h>
 #include <linux/can.h>
 #include <linux/can/raw.h>
-#include <fcntl.h>
 #include <net/if.h>
 #include <sys/ioctl.h>
 #include <sys/socket.h>
@@ -16,8 +16,8 @@
 #include <mutex>
 #include <vector>
 
-#include <asio/post.hpp>
 #include <asio/posix/stream_descriptor.hpp>
+#include <asio/post.hpp>
 #include <asio/steady_timer.hpp>
 
 namespace hil::can::socketcan {
@@ -41,7 +41,9 @@ Frame from_kernel(const can_frame& k) noexcept {
   return f;
 }
 
-std::error_code errno_code(int e) noexcept { return {e, std::generic_category()}; }
+std::error_code errno_code(int e) noexcept {
+  return {e, std::generic_category()};
+}
 
 std::error_code apply_options(int fd, const SocketCanOptions& o) {
   const int own = o.receive_own ? 1 : 0;
@@ -86,7 +88,7 @@ struct SocketCanChannel::Impl : std::enable_shared_from_this<SocketCanChannel::I
 
   mutable std::mutex mu;  // guards the fields below
   std::deque<can_frame> queue;
-  bool waiting = false;   // an async wait/timer for the queue is pending
+  bool waiting = false;  // an async wait/timer for the queue is pending
   Duration backoff{0};
   bool closed = false;
   SocketCanStats stats;
@@ -153,7 +155,8 @@ struct SocketCanChannel::Impl : std::enable_shared_from_this<SocketCanChannel::I
   void start_wait(bool enobufs) {
     auto self = shared_from_this();
     if (!enobufs) {
-      desc.async_wait(asio::posix::stream_descriptor::wait_write, [self](const std::error_code& ec) { self->on_retry(ec); });
+      desc.async_wait(asio::posix::stream_descriptor::wait_write,
+                      [self](const std::error_code& ec) { self->on_retry(ec); });
       return;
     }
     backoff = backoff == Duration{0} ? options.enobufs_backoff_min : std::min(backoff * 2, options.enobufs_backoff_max);
@@ -255,9 +258,11 @@ struct SocketCanChannel::Impl : std::enable_shared_from_this<SocketCanChannel::I
   }
 };
 
-std::expected<std::unique_ptr<SocketCanChannel>, std::error_code> SocketCanChannel::open(
-    asio::any_io_executor executor, const Clock& clock, const std::string& interface, SocketCanOptions options,
-    std::string* diagnostic) {
+std::expected<std::unique_ptr<SocketCanChannel>, std::error_code> SocketCanChannel::open(asio::any_io_executor executor,
+                                                                                         const Clock& clock,
+                                                                                         const std::string& interface,
+                                                                                         SocketCanOptions options,
+                                                                                         std::string* diagnostic) {
   auto fail = [&](std::error_code ec, const std::string& what) -> std::unexpected<std::error_code> {
     if (diagnostic) *diagnostic = "SocketCAN " + interface + ": " + what + " (" + ec.message() + ")";
     return std::unexpected(ec);
@@ -268,14 +273,17 @@ std::expected<std::unique_ptr<SocketCanChannel>, std::error_code> SocketCanChann
   if (fd < 0) {
     const int e = errno;
     if (e == EAFNOSUPPORT || e == EPROTONOSUPPORT)
-      return fail(errno_code(e), "this kernel has no CAN support; load it with `modprobe can-raw` (and `modprobe vcan` for virtual interfaces)");
+      return fail(errno_code(e),
+                  "this kernel has no CAN support; load it with `modprobe can-raw` (and `modprobe vcan` for virtual "
+                  "interfaces)");
     return fail(errno_code(e), "cannot create a CAN_RAW socket");
   }
   const unsigned index = ::if_nametoindex(interface.c_str());
   if (index == 0) {
     ::close(fd);
     return fail(std::make_error_code(std::errc::no_such_device),
-                "no such interface; create a virtual one with `ip link add dev " + interface + " type vcan && ip link set up " + interface + "`");
+                "no such interface; create a virtual one with `ip link add dev " + interface +
+                    " type vcan && ip link set up " + interface + "`");
   }
   if (auto ec = apply_options(fd, options)) {
     ::close(fd);

@@ -28,12 +28,14 @@ std::expected<std::unique_ptr<Channel>, BusError> make_channel(const BusUrl& url
   switch (url.kind) {
     case BusUrl::Kind::virtual_bus: {
       if (request.virtual_buses == nullptr)
-        return std::unexpected(BusError{std::make_error_code(std::errc::operation_not_supported),
-                                        "bus '" + url.to_string() + "': in-process virtual buses are not available to this command"});
+        return std::unexpected(
+            BusError{std::make_error_code(std::errc::operation_not_supported),
+                     "bus '" + url.to_string() + "': in-process virtual buses are not available to this command"});
       return request.virtual_buses->get(url.name).attach(request.participant);
     }
     case BusUrl::Kind::socketcand: {
-      auto ch = socketcand::SocketcandChannel::connect(request.executor, request.clock, url.host, url.port, url.name, {}, &diag);
+      auto ch = socketcand::SocketcandChannel::connect(request.executor, request.clock, url.host, url.port, url.name,
+                                                       {}, &diag);
       if (!ch) return std::unexpected(BusError{ch.error(), diag});
       return std::unique_ptr<Channel>(std::move(*ch));
     }

@@ -103,18 +103,19 @@ struct SocketcandChannel::Impl : std::enable_shared_from_this<SocketcandChannel:
       outbox.swap(pending);
       pending.clear();
     }
-    asio::async_write(socket, asio::buffer(outbox), [self = shared_from_this()](const std::error_code& ec, std::size_t) {
-      self->outbox.clear();
-      if (ec) {
-        {
-          std::lock_guard lock(self->mu);
-          self->writing = false;
-        }
-        self->close();
-        return;
-      }
-      self->start_write();
-    });
+    asio::async_write(socket, asio::buffer(outbox),
+                      [self = shared_from_this()](const std::error_code& ec, std::size_t) {
+                        self->outbox.clear();
+                        if (ec) {
+                          {
+                            std::lock_guard lock(self->mu);
+                            self->writing = false;
+                          }
+                          self->close();
+                          return;
+                        }
+                        self->start_write();
+                      });
   }
 };
 
@@ -187,7 +188,8 @@ std::expected<std::unique_ptr<SocketcandChannel>, std::error_code> SocketcandCha
   if (bus.empty() || bus.size() > max_bus_name)
     return failure(std::errc::invalid_argument, diagnostic, where + ": bus name must have 1..16 characters");
   Handshake h;
-  h.deadline = std::chrono::steady_clock::now() + std::chrono::duration_cast<std::chrono::steady_clock::duration>(options.handshake_timeout);
+  h.deadline = std::chrono::steady_clock::now() +
+               std::chrono::duration_cast<std::chrono::steady_clock::duration>(options.handshake_timeout);
 
   asio::ip::tcp::resolver resolver(h.io);
   std::error_code ec;
@@ -201,7 +203,8 @@ std::expected<std::unique_ptr<SocketcandChannel>, std::error_code> SocketcandCha
       result = e;
     });
     if (auto e = h.wait(done, result)) {
-      if (diagnostic) *diagnostic = where + ": connect failed: " + e.message() + " (is `hilbridge can hub` or socketcand running?)";
+      if (diagnostic)
+        *diagnostic = where + ": connect failed: " + e.message() + " (is `hilbridge can hub` or socketcand running?)";
       return std::unexpected(e);
     }
   }
@@ -215,16 +218,19 @@ std::expected<std::unique_ptr<SocketcandChannel>, std::error_code> SocketcandCha
     if (parsed && std::holds_alternative<ErrorText>(*parsed))
       return failure(step == "open" ? std::errc::no_such_device : std::errc::protocol_error, diagnostic,
                      where + ": server refused " + std::string(step) + ": " + std::get<ErrorText>(*parsed).text);
-    return failure(std::errc::protocol_error, diagnostic, where + ": unexpected reply to " + std::string(step) + ": '" + *el + "'");
+    return failure(std::errc::protocol_error, diagnostic,
+                   where + ": unexpected reply to " + std::string(step) + ": '" + *el + "'");
   };
   auto is_ok = [](const Element& e) { return std::holds_alternative<Ok>(e); };
-  if (auto r = expect("connect (waiting for < hi >)", [](const Element& e) { return std::holds_alternative<Hi>(e); }); !r)
+  if (auto r = expect("connect (waiting for < hi >)", [](const Element& e) { return std::holds_alternative<Hi>(e); });
+      !r)
     return std::unexpected(r.error());
   std::string out;
   format_open(out, bus);
   if (auto e = h.write(out)) return failure(std::errc::connection_reset, diagnostic, where + ": " + e.message());
   if (auto r = expect("open", is_ok); !r) return std::unexpected(r.error());
-  if (auto e = h.write("< rawmode >")) return failure(std::errc::connection_reset, diagnostic, where + ": " + e.message());
+  if (auto e = h.write("< rawmode >"))
+    return failure(std::errc::connection_reset, diagnostic, where + ": " + e.message());
   if (auto r = expect("rawmode", is_ok); !r) return std::unexpected(r.error());
 
   h.sock.set_option(asio::ip::tcp::no_delay(true), ec);
@@ -293,7 +299,9 @@ std::string SocketcandChannel::last_server_error() const {
   return impl_->last_error;
 }
 
-bool SocketcandChannel::connected() const noexcept { return !impl_->is_closed(); }
+bool SocketcandChannel::connected() const noexcept {
+  return !impl_->is_closed();
+}
 
 std::size_t SocketcandChannel::tx_pending_bytes() const {
   std::lock_guard lock(impl_->mu);

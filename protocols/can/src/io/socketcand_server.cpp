@@ -19,7 +19,7 @@ struct Server::Shared {
 };
 
 class Server::Session : public std::enable_shared_from_this<Server::Session> {
-public:
+ public:
   Session(asio::ip::tcp::socket socket, std::shared_ptr<Shared> shared)
       : socket_(std::move(socket)), shared_(std::move(shared)) {
     std::error_code ec;
@@ -44,7 +44,7 @@ public:
     channel_.reset();  // leave the bus now, not when the last handler lets go
   }
 
-private:
+ private:
   enum class State { no_bus, bcm, raw };
 
   void read() {
@@ -148,7 +148,8 @@ private:
       ++shared_->stats.rtr_not_forwarded;
       return;
     }
-    if (shared_->options.raw_mode_grace > Duration{0} && shared_->clock.now() < raw_since_ + shared_->options.raw_mode_grace) {
+    if (shared_->options.raw_mode_grace > Duration{0} &&
+        shared_->clock.now() < raw_since_ + shared_->options.raw_mode_grace) {
       ++shared_->stats.dropped_during_grace;
       return;
     }
@@ -170,20 +171,21 @@ private:
     writing_ = true;
     outbox_.swap(pending_);
     pending_.clear();
-    asio::async_write(socket_, asio::buffer(outbox_), [self = shared_from_this()](const std::error_code& ec, std::size_t) {
-      self->writing_ = false;
-      self->outbox_.clear();
-      if (self->closed_) return;
-      if (ec) {
-        self->close();
-        return;
-      }
-      if (self->close_after_write_ && self->pending_.empty()) {
-        self->close();
-        return;
-      }
-      self->flush();
-    });
+    asio::async_write(socket_, asio::buffer(outbox_),
+                      [self = shared_from_this()](const std::error_code& ec, std::size_t) {
+                        self->writing_ = false;
+                        self->outbox_.clear();
+                        if (self->closed_) return;
+                        if (ec) {
+                          self->close();
+                          return;
+                        }
+                        if (self->close_after_write_ && self->pending_.empty()) {
+                          self->close();
+                          return;
+                        }
+                        self->flush();
+                      });
   }
 
   asio::ip::tcp::socket socket_;
@@ -214,7 +216,9 @@ Server::Server(asio::any_io_executor executor, const Clock& clock, BusOpener ope
   }
 }
 
-Server::~Server() { close(); }
+Server::~Server() {
+  close();
+}
 
 std::error_code Server::listen(const asio::ip::tcp::endpoint& endpoint) {
   std::error_code ec;
@@ -241,7 +245,9 @@ asio::ip::tcp::endpoint Server::local_endpoint() const {
   return acceptor_.local_endpoint(ec);
 }
 
-const ServerStats& Server::stats() const noexcept { return shared_->stats; }
+const ServerStats& Server::stats() const noexcept {
+  return shared_->stats;
+}
 
 void Server::accept() {
   acceptor_.async_accept([this, shared = shared_](const std::error_code& ec, asio::ip::tcp::socket socket) {

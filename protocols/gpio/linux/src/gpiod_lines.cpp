@@ -9,16 +9,25 @@
 namespace hil::gpio::linux_gpiod {
 namespace {
 
-std::error_code last_errno() noexcept { return {errno ? errno : EIO, std::generic_category()}; }
+std::error_code last_errno() noexcept {
+  return {errno ? errno : EIO, std::generic_category()};
+}
 
 int request_flags(const LineSpec& s) noexcept {
   int flags = 0;
   if (s.active_low) flags |= GPIOD_LINE_REQUEST_FLAG_ACTIVE_LOW;
   switch (s.bias) {
-    case Bias::as_is: break;
-    case Bias::disabled: flags |= GPIOD_LINE_REQUEST_FLAG_BIAS_DISABLE; break;
-    case Bias::pull_up: flags |= GPIOD_LINE_REQUEST_FLAG_BIAS_PULL_UP; break;
-    case Bias::pull_down: flags |= GPIOD_LINE_REQUEST_FLAG_BIAS_PULL_DOWN; break;
+    case Bias::as_is:
+      break;
+    case Bias::disabled:
+      flags |= GPIOD_LINE_REQUEST_FLAG_BIAS_DISABLE;
+      break;
+    case Bias::pull_up:
+      flags |= GPIOD_LINE_REQUEST_FLAG_BIAS_PULL_UP;
+      break;
+    case Bias::pull_down:
+      flags |= GPIOD_LINE_REQUEST_FLAG_BIAS_PULL_DOWN;
+      break;
   }
   return flags;
 }
@@ -31,8 +40,8 @@ std::string describe(const LineSpec& s) {
 }  // namespace
 
 std::expected<std::unique_ptr<GpiodLines>, OpenError> GpiodLines::open(std::string_view chip,
-                                                                        const std::vector<LineSpec>& specs,
-                                                                        std::string_view consumer) {
+                                                                       const std::vector<LineSpec>& specs,
+                                                                       std::string_view consumer) {
   std::unique_ptr<GpiodLines> self(new GpiodLines());
   self->chip_name_ = std::string(chip);
   errno = 0;
@@ -51,8 +60,8 @@ std::expected<std::unique_ptr<GpiodLines>, OpenError> GpiodLines::open(std::stri
     errno = 0;
     if (s.offset) {
       if (*s.offset >= chip_lines) {
-        return std::unexpected(OpenError{fmt::format("{}: {}: offset out of range, the chip has {} lines (0..{})",
-                                                     chip, describe(s), chip_lines, chip_lines - 1),
+        return std::unexpected(OpenError{fmt::format("{}: {}: offset out of range, the chip has {} lines (0..{})", chip,
+                                                     describe(s), chip_lines, chip_lines - 1),
                                          std::make_error_code(std::errc::invalid_argument)});
       }
       line = ::gpiod_chip_get_line(self->chip_, *s.offset);
@@ -61,22 +70,22 @@ std::expected<std::unique_ptr<GpiodLines>, OpenError> GpiodLines::open(std::stri
     }
     if (!line) {
       auto ec = errno ? last_errno() : std::make_error_code(std::errc::no_such_device);
-      return std::unexpected(OpenError{fmt::format("{}: {}: not found: {} (`gpioinfo {}` lists the lines)", chip,
-                                                   describe(s), ec.message(), chip),
-                                       ec});
+      return std::unexpected(OpenError{
+          fmt::format("{}: {}: not found: {} (`gpioinfo {}` lists the lines)", chip, describe(s), ec.message(), chip),
+          ec});
     }
     gpiod_line_request_config cfg{};
     cfg.consumer = consumer_s.c_str();
-    cfg.request_type = s.direction == LineDirection::output ? GPIOD_LINE_REQUEST_DIRECTION_OUTPUT
-                                                            : GPIOD_LINE_REQUEST_DIRECTION_INPUT;
+    cfg.request_type =
+        s.direction == LineDirection::output ? GPIOD_LINE_REQUEST_DIRECTION_OUTPUT : GPIOD_LINE_REQUEST_DIRECTION_INPUT;
     cfg.flags = request_flags(s);
     errno = 0;
     if (::gpiod_line_request(line, &cfg, s.initial ? 1 : 0) != 0) {
       auto ec = last_errno();
-      return std::unexpected(OpenError{
-          fmt::format("{}: {}: request failed: {} (is another program using it? bias needs kernel 5.5+)", chip,
-                      describe(s), ec.message()),
-          ec});
+      return std::unexpected(
+          OpenError{fmt::format("{}: {}: request failed: {} (is another program using it? bias needs kernel 5.5+)",
+                                chip, describe(s), ec.message()),
+                    ec});
     }
     self->lines_.push_back(line);
     self->directions_.push_back(s.direction);

@@ -13,9 +13,12 @@ namespace {
 std::string shown(std::string_view s) {
   std::string out;
   for (char c : s) {
-    if (c == '\r') out += "<CR>";
-    else if (c == '\n') out += "<LF>";
-    else out.push_back(c);
+    if (c == '\r')
+      out += "<CR>";
+    else if (c == '\n')
+      out += "<LF>";
+    else
+      out.push_back(c);
   }
   return out;
 }
@@ -26,7 +29,10 @@ std::string_view trim_right(std::string_view s) {
 }  // namespace
 
 Client::Client(ByteStream& stream, const Clock& clock, ClientOptions options, std::shared_ptr<const DeviceData> data)
-    : stream_(stream), clock_(clock), options_(options), data_(std::move(data)),
+    : stream_(stream),
+      clock_(clock),
+      options_(options),
+      data_(std::move(data)),
       station_(station_char(options.station).value_or(' ')) {}
 
 void Client::drain() {
@@ -45,10 +51,11 @@ std::expected<std::string, ClientError> Client::read_line(Duration first_byte_ti
   for (;;) {
     const TimePoint now = clock_.now();
     if (now >= deadline) {
-      return std::unexpected(ClientError{LineError::timeout,
-                                         line.empty() ? fmt::format("no reply from station {} within {} ms", options_.station,
-                                                                    std::chrono::duration_cast<std::chrono::milliseconds>(first_byte_timeout).count())
-                                                      : fmt::format("reply '{}' stopped before CR LF", shown(line))});
+      return std::unexpected(ClientError{
+          LineError::timeout,
+          line.empty() ? fmt::format("no reply from station {} within {} ms", options_.station,
+                                     std::chrono::duration_cast<std::chrono::milliseconds>(first_byte_timeout).count())
+                       : fmt::format("reply '{}' stopped before CR LF", shown(line))});
     }
     const ReadResult r = stream_.read_some(b, deadline - now);
     if (r.size == 1) {
@@ -56,15 +63,16 @@ std::expected<std::string, ClientError> Client::read_line(Duration first_byte_ti
       if (b[0] == '\n') {
         if (!line.empty() && line.back() == '\r') line.pop_back();
         if (line_error)
-          return std::unexpected(ClientError{line_error, fmt::format("reply '{}' arrived with a character error: {}", shown(line),
-                                                                     line_error.message())});
+          return std::unexpected(ClientError{line_error, fmt::format("reply '{}' arrived with a character error: {}",
+                                                                     shown(line), line_error.message())});
         if (line.empty()) continue;  // stray LF
         return line;
       }
       line.push_back(static_cast<char>(b[0]));
       if (line.size() > max_line_length)
-        return std::unexpected(ClientError{SerialError::format_error, fmt::format("reply longer than {} characters: noise on the line?",
-                                                                            max_line_length)});
+        return std::unexpected(
+            ClientError{SerialError::format_error,
+                        fmt::format("reply longer than {} characters: noise on the line?", max_line_length)});
     }
     if (r.error && r.error != LineError::timeout) {
       if (r.error == LineError::closed || r.error == LineError::io)
@@ -95,7 +103,8 @@ std::expected<Telegram, ClientError> Client::transact(char lead, std::string_vie
     }
     auto t = parse_telegram(*line, true);
     if (!t && *line != "Y") {
-      last = ClientError{static_cast<SerialError>(t.error().code), fmt::format("reply to '{}' unusable: {}", shown(request), t.error().message)};
+      last = ClientError{static_cast<SerialError>(t.error().code),
+                         fmt::format("reply to '{}' unusable: {}", shown(request), t.error().message)};
       continue;
     }
     if (t->lead == 'X') {
@@ -106,13 +115,15 @@ std::expected<Telegram, ClientError> Client::transact(char lead, std::string_vie
                                        shown(trim_right(request.substr(0, request.size() - 2))), rep->code, text),
                            rep->code};
         // A checksum error means the request was damaged on the way: send it again.
-        if (rep->code == static_cast<int>(SerialError::checksum_error) || rep->code == static_cast<int>(SerialError::format_error))
+        if (rep->code == static_cast<int>(SerialError::checksum_error) ||
+            rep->code == static_cast<int>(SerialError::format_error))
           continue;
         return std::unexpected(last);
       }
     }
     if (t->station != station_ && !t->is_confirmation()) {
-      last = ClientError{SerialError::format_error, fmt::format("reply from station '{}' but station '{}' was asked", t->station, station_)};
+      last = ClientError{SerialError::format_error,
+                         fmt::format("reply from station '{}' but station '{}' was asked", t->station, station_)};
       continue;
     }
     return *t;
@@ -125,7 +136,8 @@ std::expected<std::string, ClientError> Client::read_program_line(int n) {
   if (!t) return std::unexpected(t.error());
   const std::string prefix = fmt::format("N{:04d} ", n);
   if (t->lead != '#' || !t->body.starts_with(prefix))
-    return std::unexpected(ClientError{SerialError::format_error, fmt::format("asked for line {:04d}, got '{}{}'", n, t->lead, t->body)});
+    return std::unexpected(
+        ClientError{SerialError::format_error, fmt::format("asked for line {:04d}, got '{}{}'", n, t->lead, t->body)});
   return std::string(trim_right(std::string_view(t->body).substr(prefix.size())));
 }
 
@@ -133,7 +145,8 @@ std::expected<void, ClientError> Client::write_program_line(int n, std::string_v
   auto t = transact('#', fmt::format("N{:04d} {} ", n, trim_right(text)), options_.expect_confirmation);
   if (!t) return std::unexpected(t.error());
   if (options_.expect_confirmation && !t->is_confirmation())
-    return std::unexpected(ClientError{SerialError::format_error, fmt::format("line {:04d}: expected Y, got '{}{}'", n, t->lead, t->body)});
+    return std::unexpected(ClientError{SerialError::format_error,
+                                       fmt::format("line {:04d}: expected Y, got '{}{}'", n, t->lead, t->body)});
   return {};
 }
 
@@ -142,7 +155,8 @@ std::expected<std::string, ClientError> Client::read_parameter(std::string_view 
   if (!t) return std::unexpected(t.error());
   const std::string prefix = fmt::format("K {}", number);
   if (t->lead != '#' || !t->body.starts_with(prefix))
-    return std::unexpected(ClientError{SerialError::format_error, fmt::format("asked for {}, got '{}{}'", number, t->lead, t->body)});
+    return std::unexpected(
+        ClientError{SerialError::format_error, fmt::format("asked for {}, got '{}{}'", number, t->lead, t->body)});
   std::string_view rest = std::string_view(t->body).substr(prefix.size());
   if (!rest.empty() && rest.front() == ' ') rest.remove_prefix(1);
   return std::string(trim_right(rest));
@@ -153,7 +167,8 @@ std::expected<void, ClientError> Client::write_parameter(std::string_view number
   auto t = transact('#', fmt::format("K {} {}", number, trim_right(data)), options_.expect_confirmation);
   if (!t) return std::unexpected(t.error());
   if (options_.expect_confirmation && !t->is_confirmation())
-    return std::unexpected(ClientError{SerialError::format_error, fmt::format("{}: expected Y, got '{}{}'", number, t->lead, t->body)});
+    return std::unexpected(
+        ClientError{SerialError::format_error, fmt::format("{}: expected Y, got '{}{}'", number, t->lead, t->body)});
   return {};
 }
 
@@ -161,7 +176,8 @@ std::expected<std::string, ClientError> Client::read_variable(int n) {
   auto t = transact('?', fmt::format("V{:03d}", n), true);
   if (!t) return std::unexpected(t.error());
   if (t->lead != 'V' || t->body.size() < 4)
-    return std::unexpected(ClientError{SerialError::format_error, fmt::format("asked for V{:03d}, got '{}{}'", n, t->lead, t->body)});
+    return std::unexpected(
+        ClientError{SerialError::format_error, fmt::format("asked for V{:03d}, got '{}{}'", n, t->lead, t->body)});
   return std::string(trim_right(std::string_view(t->body).substr(4)));
 }
 
@@ -175,7 +191,8 @@ std::expected<std::string, ClientError> Client::read_status(int n, std::string_v
   auto t = transact('?', arg.empty() ? fmt::format("X  {:02d} ", n) : fmt::format("X  {:02d} {} ", n, arg), true);
   if (!t) return std::unexpected(t.error());
   if (t->lead != 'X' || t->body.size() < 2)
-    return std::unexpected(ClientError{SerialError::format_error, fmt::format("asked for status {:02d}, got '{}{}'", n, t->lead, t->body)});
+    return std::unexpected(ClientError{SerialError::format_error,
+                                       fmt::format("asked for status {:02d}, got '{}{}'", n, t->lead, t->body)});
   std::string_view rest = std::string_view(t->body).substr(2);
   if (!rest.empty() && rest.front() == ' ') rest.remove_prefix(1);
   return std::string(trim_right(rest));

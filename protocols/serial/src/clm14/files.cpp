@@ -61,8 +61,8 @@ std::expected<DeviceFile, FileProblems> parse_device_file(std::string_view text,
       }
     } else {
       if (std::find(numbers.begin(), numbers.end(), key) == numbers.end()) {
-        where(fmt::format("'{}' is not a parameter of this CLM ({} axes): expected B000..B019, A100..A{}42, C000..C008", key,
-                          axes, axes));
+        where(fmt::format("'{}' is not a parameter of this CLM ({} axes): expected B000..B019, A100..A{}42, C000..C008",
+                          key, axes, axes));
         continue;
       }
       auto checked = data.check_parameter(key, rest);

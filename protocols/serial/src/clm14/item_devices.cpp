@@ -6,7 +6,9 @@
 namespace hil::serial::clm14 {
 
 namespace {
-ItemError to_item_error(const ClientError& e) { return ItemError{e.code, e.message}; }
+ItemError to_item_error(const ClientError& e) {
+  return ItemError{e.code, e.message};
+}
 std::string squeeze(std::string s) {
   while (!s.empty() && s.back() == ' ') s.pop_back();
   for (char& c : s)
@@ -27,7 +29,9 @@ std::expected<std::string, ItemError> ProgramDevice::read_item(const std::string
   return *r;
 }
 
-std::string ProgramDevice::normalise(const std::string&, const std::string& text) const { return squeeze(text); }
+std::string ProgramDevice::normalise(const std::string&, const std::string& text) const {
+  return squeeze(text);
+}
 
 std::vector<std::string> ProgramDevice::all_keys() {
   std::vector<std::string> k;
@@ -48,7 +52,9 @@ std::expected<std::string, ItemError> ParameterDevice::read_item(const std::stri
   return *r;
 }
 
-std::string ParameterDevice::normalise(const std::string&, const std::string& text) const { return squeeze(text); }
+std::string ParameterDevice::normalise(const std::string&, const std::string& text) const {
+  return squeeze(text);
+}
 
 std::vector<Item> to_items(const DeviceFile& f) {
   std::vector<Item> out;

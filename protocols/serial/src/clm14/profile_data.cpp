@@ -27,7 +27,7 @@ constexpr std::array<std::string_view, 55> program_commands{
     "REP", "RMI", "RSV", "RTM", "RTS", "SAC", "SET", "SRM", "SRP", "TXT", "VCC", "VEO", "WAI"};
 
 class ProfileData final : public DeviceData {
-public:
+ public:
   explicit ProfileData(std::shared_ptr<const pf::Profile> p) : p_(std::move(p)) {
     settings_["hardware_axes"] = pf::ExprValue{4.0L};
     defaults_ = pf::default_set(*p_, settings_);
@@ -61,7 +61,8 @@ public:
     return it == default_text_.end() ? std::string{} : it->second;
   }
 
-  std::expected<std::string, FieldRejection> check_parameter(std::string_view number, std::string_view data) const override {
+  std::expected<std::string, FieldRejection> check_parameter(std::string_view number,
+                                                             std::string_view data) const override {
     const auto ref = p_->resolve(number);
     if (!ref) return std::unexpected(FieldRejection{7, fmt::format("{} is not a CLM1.4 parameter", number)});
     const auto* v = variant(*ref);
@@ -84,17 +85,21 @@ public:
     const std::string_view mne = line.substr(0, 3);
     if (line.size() < 3 || std::find(program_commands.begin(), program_commands.end(), mne) == program_commands.end() ||
         (line.size() > 3 && line[3] != ' '))
-      return std::unexpected(FieldRejection{13, fmt::format("'{}' is not a CLM command (ACC ... WAI)", line.substr(0, 8))});
+      return std::unexpected(
+          FieldRejection{13, fmt::format("'{}' is not a CLM command (ACC ... WAI)", line.substr(0, 8))});
     const std::string_view ops = line.size() > 4 ? line.substr(4) : std::string_view{};
-    if (ops.size() > 32) return std::unexpected(FieldRejection{3, fmt::format("{} operands longer than 32 characters", mne)});
+    if (ops.size() > 32)
+      return std::unexpected(FieldRejection{3, fmt::format("{} operands longer than 32 characters", mne)});
     for (char c : ops) {
       const bool txt_ok = mne == "TXT" && c >= 32 && c <= 95 && c != '$' && c != '\\';
-      const bool ok = (c >= '0' && c <= '9') || (c >= 'A' && c <= 'Z') || c == ' ' || c == '+' || c == '-' || c == '.' ||
-                      c == ',' || c == '<' || c == '>' || c == '=' || c == '*' || c == '/';
-      if (!ok && !txt_ok) return std::unexpected(FieldRejection{3, fmt::format("{}: character '{}' not allowed in operands", mne, c)});
+      const bool ok = (c >= '0' && c <= '9') || (c >= 'A' && c <= 'Z') || c == ' ' || c == '+' || c == '-' ||
+                      c == '.' || c == ',' || c == '<' || c == '>' || c == '=' || c == '*' || c == '/';
+      if (!ok && !txt_ok)
+        return std::unexpected(FieldRejection{3, fmt::format("{}: character '{}' not allowed in operands", mne, c)});
     }
     const bool no_operands = mne == "NOP" || mne == "RTS" || mne == "EOS";
-    if (no_operands && !ops.empty()) return std::unexpected(FieldRejection{3, fmt::format("{} takes no operands", mne)});
+    if (no_operands && !ops.empty())
+      return std::unexpected(FieldRejection{3, fmt::format("{} takes no operands", mne)});
     if (!no_operands && ops.empty()) return std::unexpected(FieldRejection{3, fmt::format("{} needs operands", mne)});
     return std::string(line);
   }
@@ -103,7 +108,7 @@ public:
   std::string fault_text(int code) const override { return text_of("diagnostic", code); }
   std::string identification() const override { return "CLM01.4-P-E-4-B CLM1.4-LAP-05VRS"; }
 
-private:
+ private:
   const pf::ParamVariant* variant(const pf::ParamRef& ref) const {
     const pf::Scope scope(*p_, &defaults_, settings_, ref.instance, ref.spec->instance_key);
     return pf::select_variant(ref, scope);

@@ -7,7 +7,7 @@ namespace hil::serial::clm14 {
 
 namespace {
 class Category final : public std::error_category {
-public:
+ public:
   const char* name() const noexcept override { return "clm14-serial"; }
   std::string message(int c) const override {
     return fmt::format("CLM1.4 serial error {:02d} (see the device profile's serial_errors for the device text)", c);

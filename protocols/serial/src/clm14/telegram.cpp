@@ -49,8 +49,10 @@ std::string printable(std::string_view s) {
   std::string out;
   for (char c : s) {
     const auto u = static_cast<unsigned char>(c);
-    if (u >= 0x20 && u < 0x7F) out.push_back(c);
-    else out += fmt::format("<{:02X}>", u);
+    if (u >= 0x20 && u < 0x7F)
+      out.push_back(c);
+    else
+      out += fmt::format("<{:02X}>", u);
   }
   return out;
 }
@@ -59,15 +61,17 @@ std::string printable(std::string_view s) {
 std::expected<Telegram, ParseFailure> parse_telegram(std::string_view line, bool require_checksum) {
   if (line == "Y") return Telegram{'Y', ' ', {}, std::nullopt};
   if (line.size() > max_line_length)
-    return std::unexpected(ParseFailure{SyntaxError::format, fmt::format("telegram of {} characters is longer than {}",
-                                                                         line.size(), max_line_length)});
+    return std::unexpected(ParseFailure{
+        SyntaxError::format, fmt::format("telegram of {} characters is longer than {}", line.size(), max_line_length)});
   if (line.size() < 2)
     return std::unexpected(ParseFailure{SyntaxError::format, fmt::format("telegram '{}' too short: expected "
-                                                                         "<lead><station>...", printable(line))});
+                                                                         "<lead><station>...",
+                                                                         printable(line))});
   if (!known_lead(line[0]))
-    return std::unexpected(ParseFailure{SyntaxError::format, fmt::format("telegram '{}' starts with '{}': expected one of "
-                                                                         "? # ! : X V P",
-                                                                         printable(line), printable(line.substr(0, 1)))});
+    return std::unexpected(
+        ParseFailure{SyntaxError::format, fmt::format("telegram '{}' starts with '{}': expected one of "
+                                                      "? # ! : X V P",
+                                                      printable(line), printable(line.substr(0, 1)))});
   Telegram t;
   t.lead = line[0];
   t.station = line[1];
@@ -77,22 +81,25 @@ std::expected<Telegram, ParseFailure> parse_telegram(std::string_view line, bool
     const int hi = hex_digit(line[dollar + 1]);
     const int lo = hex_digit(line[dollar + 2]);
     if (hi < 0 || lo < 0)
-      return std::unexpected(ParseFailure{SyntaxError::checksum, fmt::format("checksum '{}' is not two hex digits in '{}'",
-                                                                             printable(line.substr(dollar)), printable(line))});
+      return std::unexpected(ParseFailure{
+          SyntaxError::checksum,
+          fmt::format("checksum '{}' is not two hex digits in '{}'", printable(line.substr(dollar)), printable(line))});
     t.checksum = static_cast<std::uint8_t>(hi * 16 + lo);
     const std::uint8_t expect = checksum(line.substr(0, dollar));
     if (*t.checksum != expect)
-      return std::unexpected(ParseFailure{SyntaxError::checksum, fmt::format("checksum ${:02X} wrong in '{}': computed ${:02X}",
-                                                                             *t.checksum, printable(line), expect)});
+      return std::unexpected(ParseFailure{
+          SyntaxError::checksum,
+          fmt::format("checksum ${:02X} wrong in '{}': computed ${:02X}", *t.checksum, printable(line), expect)});
     body = line.substr(2, dollar - 2);
   } else if (require_checksum) {
-    return std::unexpected(ParseFailure{SyntaxError::checksum, fmt::format("telegram '{}' has no $hh checksum", printable(line))});
+    return std::unexpected(
+        ParseFailure{SyntaxError::checksum, fmt::format("telegram '{}' has no $hh checksum", printable(line))});
   }
   for (char c : body) {
     const auto u = static_cast<unsigned char>(c);
     if (u < 0x20 || u >= 0x7F)
-      return std::unexpected(ParseFailure{SyntaxError::format, fmt::format("control or 8-bit character in telegram '{}'",
-                                                                           printable(line))});
+      return std::unexpected(ParseFailure{SyntaxError::format,
+                                          fmt::format("control or 8-bit character in telegram '{}'", printable(line))});
   }
   t.body = std::string(body);
   return t;

@@ -9,10 +9,10 @@
 #include <termios.h>
 #include <unistd.h>
 
+#include <fmt/format.h>
 #include <asio.hpp>
 #include <cstdlib>
 #include <utility>
-#include <fmt/format.h>
 
 namespace hil::serial::linux_io {
 
@@ -29,7 +29,7 @@ std::error_code map_error(const std::error_code& ec) {
 
 template <class Stream>
 class AsioLine final : public RawLine {
-public:
+ public:
   template <class... A>
   explicit AsioLine(A&&... a) : s_(io_, std::forward<A>(a)...) {}
   asio::io_context& io() { return io_; }
@@ -53,8 +53,10 @@ public:
     bool done = false;
     asio::async_write(s_, asio::buffer(data.data(), data.size()), [&](const std::error_code& ec, std::size_t) {
       done = true;
-      if (ec == asio::error::operation_aborted) result = LineError::cts_stalled;
-      else if (ec) result = map_error(ec);
+      if (ec == asio::error::operation_aborted)
+        result = LineError::cts_stalled;
+      else if (ec)
+        result = map_error(ec);
     });
     run(timeout, done);
     return result;
@@ -79,11 +81,13 @@ public:
     (void)::ioctl(s_.native_handle(), TIOCCBRK);
   }
 
-private:
+ private:
   void run(Duration timeout, const bool& done) {
     io_.restart();
-    if (timeout <= Duration::zero()) io_.poll();
-    else io_.run_for(timeout);
+    if (timeout <= Duration::zero())
+      io_.poll();
+    else
+      io_.run_for(timeout);
     if (!done) {
       std::error_code ignored;
       s_.cancel(ignored);
@@ -105,7 +109,9 @@ bool is_pty(int fd) {
   return maj >= 136 && maj <= 143;  // Unix98 pty slaves
 }
 
-std::error_code errno_code() { return {errno, std::system_category()}; }
+std::error_code errno_code() {
+  return {errno, std::system_category()};
+}
 
 /// Raw mode + the character format. Returns an error text or "".
 std::string configure(int fd, const LineFormat& f, bool pty) {
@@ -150,8 +156,9 @@ std::string configure(int fd, const LineFormat& f, bool pty) {
 }  // namespace
 
 std::expected<std::unique_ptr<SerialStream>, OpenError> open_tty(const std::string& path, const LineFormat& format,
-                                                                const Clock& clock) {
-  if (auto v = validate(format); !v) return std::unexpected(OpenError{std::make_error_code(std::errc::invalid_argument), v.error().message});
+                                                                 const Clock& clock) {
+  if (auto v = validate(format); !v)
+    return std::unexpected(OpenError{std::make_error_code(std::errc::invalid_argument), v.error().message});
   auto line = std::make_unique<AsioLine<asio::serial_port>>();
   std::error_code ec;
   line->stream().open(path, ec);
@@ -162,27 +169,32 @@ std::expected<std::unique_ptr<SerialStream>, OpenError> open_tty(const std::stri
   const int fd = line->stream().native_handle();
   const bool pty = is_pty(fd);
   if (auto err = configure(fd, format, pty); !err.empty())
-    return std::unexpected(OpenError{std::make_error_code(std::errc::invalid_argument), fmt::format("{}: {}", path, err)});
+    return std::unexpected(
+        OpenError{std::make_error_code(std::errc::invalid_argument), fmt::format("{}: {}", path, err)});
   Discipline d;
   d.software_parity = pty;
   d.parmrk = !pty && format.parity != Parity::none;
   return std::make_unique<SerialStream>(std::move(line), format, d, clock);
 }
 
-std::unique_ptr<RawLine> adopt_fd(int fd) { return std::make_unique<AsioLine<Descriptor>>(fd); }
+std::unique_ptr<RawLine> adopt_fd(int fd) {
+  return std::make_unique<AsioLine<Descriptor>>(fd);
+}
 
 std::expected<PtyEndpoint, OpenError> PtyEndpoint::create() {
   PtyEndpoint p;
   p.master_fd_ = ::posix_openpt(O_RDWR | O_NOCTTY | O_CLOEXEC);
   if (p.master_fd_ < 0 || ::grantpt(p.master_fd_) != 0 || ::unlockpt(p.master_fd_) != 0)
-    return std::unexpected(OpenError{errno_code(), fmt::format("cannot create a pseudo-terminal: {}", errno_code().message())});
+    return std::unexpected(
+        OpenError{errno_code(), fmt::format("cannot create a pseudo-terminal: {}", errno_code().message())});
   char name[128];
   if (::ptsname_r(p.master_fd_, name, sizeof name) != 0)
     return std::unexpected(OpenError{errno_code(), "ptsname failed"});
   p.slave_path_ = name;
   p.slave_keepalive_fd_ = ::open(name, O_RDWR | O_NOCTTY | O_CLOEXEC);
   if (p.slave_keepalive_fd_ < 0)
-    return std::unexpected(OpenError{errno_code(), fmt::format("cannot open pty slave {}: {}", name, errno_code().message())});
+    return std::unexpected(
+        OpenError{errno_code(), fmt::format("cannot open pty slave {}: {}", name, errno_code().message())});
   // The line discipline is shared by both ends: make it raw now so nothing is echoed or
   // translated before a client configures it.
   LineFormat raw8;
@@ -214,7 +226,8 @@ std::unique_ptr<RawLine> PtyEndpoint::take_master() {
   return fd < 0 ? nullptr : adopt_fd(fd);
 }
 
-std::expected<std::unique_ptr<RawLine>, OpenError> connect_tcp(const std::string& host, std::uint16_t port, Duration timeout) {
+std::expected<std::unique_ptr<RawLine>, OpenError> connect_tcp(const std::string& host, std::uint16_t port,
+                                                               Duration timeout) {
   auto line = std::make_unique<AsioLine<asio::ip::tcp::socket>>();
   std::error_code ec;
   asio::ip::tcp::resolver resolver(line->io());
@@ -239,7 +252,7 @@ std::expected<std::unique_ptr<RawLine>, OpenError> connect_tcp(const std::string
 
 namespace {
 class AsioTcpListener final : public TcpListener {
-public:
+ public:
   AsioTcpListener() : acceptor_(io_) {}
   std::error_code open(const std::string& addr, std::uint16_t port) {
     std::error_code ec;
@@ -282,13 +295,14 @@ public:
     return line;
   }
 
-private:
+ private:
   asio::io_context io_;
   asio::ip::tcp::acceptor acceptor_;
 };
 }  // namespace
 
-std::expected<std::unique_ptr<TcpListener>, OpenError> TcpListener::create(const std::string& bind_address, std::uint16_t port) {
+std::expected<std::unique_ptr<TcpListener>, OpenError> TcpListener::create(const std::string& bind_address,
+                                                                           std::uint16_t port) {
   auto l = std::make_unique<AsioTcpListener>();
   if (auto ec = l->open(bind_address, port))
     return std::unexpected(OpenError{ec, fmt::format("cannot listen on {}:{}: {}", bind_address, port, ec.message())});

@@ -20,7 +20,8 @@ bool to_num(std::string_view s, T& v, int base = 10) {
 }
 }  // namespace
 
-std::expected<std::vector<DbImage>, std::vector<std::string>> parse_db_listing(std::string_view text, std::string_view name) {
+std::expected<std::vector<DbImage>, std::vector<std::string>> parse_db_listing(std::string_view text,
+                                                                               std::string_view name) {
   std::vector<DbImage> out;
   std::vector<std::string> problems;
   int lineno = 0;
@@ -55,7 +56,8 @@ std::expected<std::vector<DbImage>, std::vector<std::string>> parse_db_listing(s
     }
     int dw = -1;
     if (!to_num(trim(line.substr(0, colon)), dw) || dw != static_cast<int>(out.back().words.size())) {
-      bad(fmt::format("data word number '{}' out of sequence: expected {}", trim(line.substr(0, colon)), out.back().words.size()));
+      bad(fmt::format("data word number '{}' out of sequence: expected {}", trim(line.substr(0, colon)),
+                      out.back().words.size()));
       continue;
     }
     if (dw > 2047) {
@@ -84,8 +86,8 @@ std::expected<std::vector<DbImage>, std::vector<std::string>> parse_db_listing(s
     } else if (f == "KY") {
       const auto comma = v.find(',');
       unsigned hi = 0, lo = 0;
-      if (comma == std::string_view::npos || !to_num(trim(v.substr(0, comma)), hi) || !to_num(trim(v.substr(comma + 1)), lo) ||
-          hi > 255 || lo > 255) {
+      if (comma == std::string_view::npos || !to_num(trim(v.substr(0, comma)), hi) ||
+          !to_num(trim(v.substr(comma + 1)), lo) || hi > 255 || lo > 255) {
         bad(fmt::format("KY value '{}' is not two bytes 'hi,lo' (0..255 each)", v));
         continue;
       }

@@ -5,16 +5,22 @@ namespace hil::serial::s5 {
 
 namespace {
 class Category final : public std::error_category {
-public:
+ public:
   const char* name() const noexcept override { return "3964r"; }
   std::string message(int c) const override {
     switch (static_cast<ProcedureError>(c)) {
-      case ProcedureError::no_connection: return "3964R: partner did not answer STX with DLE (check cable, baud rate, partner running)";
-      case ProcedureError::not_acknowledged: return "3964R: block not acknowledged after all attempts (noise or partner busy)";
-      case ProcedureError::char_timeout: return "3964R: character delay time exceeded inside a block";
-      case ProcedureError::bcc_error: return "3964R: block check character wrong";
-      case ProcedureError::framing: return "3964R: DLE followed by an unexpected character";
-      case ProcedureError::block_too_long: return "3964R: block longer than the receive buffer";
+      case ProcedureError::no_connection:
+        return "3964R: partner did not answer STX with DLE (check cable, baud rate, partner running)";
+      case ProcedureError::not_acknowledged:
+        return "3964R: block not acknowledged after all attempts (noise or partner busy)";
+      case ProcedureError::char_timeout:
+        return "3964R: character delay time exceeded inside a block";
+      case ProcedureError::bcc_error:
+        return "3964R: block check character wrong";
+      case ProcedureError::framing:
+        return "3964R: DLE followed by an unexpected character";
+      case ProcedureError::block_too_long:
+        return "3964R: block longer than the receive buffer";
     }
     return "3964R error";
   }
@@ -43,7 +49,9 @@ std::vector<std::uint8_t> make_block(const std::vector<std::uint8_t>& payload, b
   return w;
 }
 
-void Procedure3964::send(std::vector<std::uint8_t> payload) { queue_.push_back(std::move(payload)); }
+void Procedure3964::send(std::vector<std::uint8_t> payload) {
+  queue_.push_back(std::move(payload));
+}
 
 std::optional<std::vector<std::uint8_t>> Procedure3964::take_received() {
   if (received_.empty()) return std::nullopt;
@@ -83,9 +91,11 @@ void Procedure3964::rx_fail(ProcedureError e) {
 }
 
 void Procedure3964::tx_retry(TimePoint now, bool connect_phase) {
-  const bool exhausted = connect_phase ? connect_tries_ >= o_.connect_attempts : transmit_tries_ >= o_.transmit_attempts;
+  const bool exhausted =
+      connect_phase ? connect_tries_ >= o_.connect_attempts : transmit_tries_ >= o_.transmit_attempts;
   if (exhausted) {
-    results_.push_back(SendResult{false, connect_phase ? ProcedureError::no_connection : ProcedureError::not_acknowledged});
+    results_.push_back(
+        SendResult{false, connect_phase ? ProcedureError::no_connection : ProcedureError::not_acknowledged});
     queue_.pop_front();
     connect_tries_ = 0;
     transmit_tries_ = 0;
@@ -181,11 +191,19 @@ void Procedure3964::on_bytes(std::span<const std::uint8_t> bytes, TimePoint now)
 void Procedure3964::poll(TimePoint now) {
   if (now >= deadline_) {
     switch (state_) {
-      case State::tx_wait_dle: tx_retry(now, true); break;
-      case State::tx_wait_ack: tx_retry(now, false); break;
+      case State::tx_wait_dle:
+        tx_retry(now, true);
+        break;
+      case State::tx_wait_ack:
+        tx_retry(now, false);
+        break;
       case State::rx_data:
-      case State::rx_bcc: rx_fail(ProcedureError::char_timeout); break;
-      case State::idle: deadline_ = TimePoint::max(); break;  // retry delay over
+      case State::rx_bcc:
+        rx_fail(ProcedureError::char_timeout);
+        break;
+      case State::idle:
+        deadline_ = TimePoint::max();
+        break;  // retry delay over
     }
   }
   if (state_ == State::idle && !queue_.empty() && deadline_ == TimePoint::max()) start_connect(now);

@@ -56,7 +56,8 @@ std::expected<Rk512Telegram, LinkError> Rk512Client::receive_reaction(std::size_
   while (clock_.now() < deadline) {
     while (auto blk = proc_.take_received()) {
       auto t = parse_rk512(*blk);
-      if (!t) return std::unexpected(LinkError{Rk512Error::header_error, "reaction telegram unusable: " + t.error().message});
+      if (!t)
+        return std::unexpected(LinkError{Rk512Error::header_error, "reaction telegram unusable: " + t.error().message});
       const auto st = as.feed(*t);
       if (st == Rk512Assembler::Status::error)
         return std::unexpected(LinkError{Rk512Error::header_error, "reaction: " + as.error()});
@@ -71,11 +72,14 @@ std::expected<Rk512Telegram, LinkError> Rk512Client::receive_reaction(std::size_
     }
     pump(std::min<Duration>(deadline - clock_.now(), std::chrono::milliseconds(100)));
   }
-  return std::unexpected(LinkError{LineError::timeout, fmt::format("no reaction telegram within {} ms",
-                                                                   std::chrono::duration_cast<std::chrono::milliseconds>(o_.reaction_timeout).count())});
+  return std::unexpected(
+      LinkError{LineError::timeout,
+                fmt::format("no reaction telegram within {} ms",
+                            std::chrono::duration_cast<std::chrono::milliseconds>(o_.reaction_timeout).count())});
 }
 
-std::expected<void, LinkError> Rk512Client::send_db(std::uint8_t db, std::uint8_t dw, const std::vector<std::uint16_t>& words) {
+std::expected<void, LinkError> Rk512Client::send_db(std::uint8_t db, std::uint8_t dw,
+                                                    const std::vector<std::uint16_t>& words) {
   Rk512Header h;
   h.command = Rk512Command::send_db;
   h.data_type = 'D';
@@ -91,7 +95,8 @@ std::expected<void, LinkError> Rk512Client::send_db(std::uint8_t db, std::uint8_
   return {};
 }
 
-std::expected<std::vector<std::uint16_t>, LinkError> Rk512Client::fetch_db(std::uint8_t db, std::uint8_t dw, std::uint16_t length) {
+std::expected<std::vector<std::uint16_t>, LinkError> Rk512Client::fetch_db(std::uint8_t db, std::uint8_t dw,
+                                                                           std::uint16_t length) {
   Rk512Header h;
   h.command = Rk512Command::fetch;
   h.data_type = 'D';

@@ -8,16 +8,21 @@
 
 namespace hil::serial::tape {
 
-std::string_view elg_header(ElgSectionKind k) noexcept { return k == ElgSectionKind::machine_data ? "%TEA1" : "%SEA"; }
+std::string_view elg_header(ElgSectionKind k) noexcept {
+  return k == ElgSectionKind::machine_data ? "%TEA1" : "%SEA";
+}
 
 namespace {
 std::string strip_comments(std::string_view b) {
   std::string out;
   int depth = 0;
   for (char c : b) {
-    if (c == '(') ++depth;
-    else if (c == ')' && depth > 0) --depth;
-    else if (depth == 0 && c != ' ' && c != '\t' && c != '\r') out.push_back(c);
+    if (c == '(')
+      ++depth;
+    else if (c == ')' && depth > 0)
+      --depth;
+    else if (depth == 0 && c != ' ' && c != '\t' && c != '\r')
+      out.push_back(c);
   }
   return out;
 }
@@ -38,9 +43,12 @@ std::expected<std::vector<ElgSection>, ElgTapeError> parse_elg_blocks(const std:
     if (b.front() == '%') {
       if (open) return std::unexpected(format_error(raw, "new '%' header before M02/M30 ended the previous section"));
       ElgSection s;
-      if (b == "%TEA1") s.kind = ElgSectionKind::machine_data;
-      else if (b == "%SEA") s.kind = ElgSectionKind::setting_data;
-      else return std::unexpected(format_error(raw, fmt::format("unknown tape header '{}': expected %TEA1 or %SEA", b)));
+      if (b == "%TEA1")
+        s.kind = ElgSectionKind::machine_data;
+      else if (b == "%SEA")
+        s.kind = ElgSectionKind::setting_data;
+      else
+        return std::unexpected(format_error(raw, fmt::format("unknown tape header '{}': expected %TEA1 or %SEA", b)));
       out.push_back(std::move(s));
       open = true;
       continue;
@@ -60,7 +68,8 @@ std::expected<std::vector<ElgSection>, ElgTapeError> parse_elg_blocks(const std:
     std::string_view mag = val;
     if (!mag.empty() && (mag.front() == '+' || mag.front() == '-')) mag.remove_prefix(1);
     if (!digits(mag) || mag.size() > 9)
-      return std::unexpected(format_error(raw, fmt::format("value '{}' of N{} must be a signed decimal of at most 9 digits", val, num)));
+      return std::unexpected(
+          format_error(raw, fmt::format("value '{}' of N{} must be a signed decimal of at most 9 digits", val, num)));
     ElgEntry e;
     std::from_chars(num.data(), num.data() + num.size(), e.number);
     if (!val.empty() && val.front() == '+') val.remove_prefix(1);
@@ -96,8 +105,9 @@ std::expected<std::vector<ElgSection>, ElgTapeError> parse_elg_text(std::string_
     const auto nl = text.find('\n', pos);
     std::string_view line = text.substr(pos, nl == std::string_view::npos ? std::string_view::npos : nl - pos);
     pos = nl == std::string_view::npos ? text.size() : nl + 1;
-    if (line.size() > 254) return std::unexpected(ElgTapeError{TapeError::block_too_long, std::string(line.substr(0, 40)),
-                                                               "block longer than 254 characters"});
+    if (line.size() > 254)
+      return std::unexpected(
+          ElgTapeError{TapeError::block_too_long, std::string(line.substr(0, 40)), "block longer than 254 characters"});
     if (!line.empty() && line.front() == ';') continue;  // file comment (not on tape)
     blocks.emplace_back(line);
   }

@@ -7,14 +7,18 @@ namespace hil::serial::tape {
 
 namespace {
 class Category final : public std::error_category {
-public:
+ public:
   const char* name() const noexcept override { return "tape"; }
   std::string message(int c) const override {
     switch (static_cast<TapeError>(c)) {
-      case TapeError::character_parity: return "tape character parity error (ELG alarm 23)";
-      case TapeError::eia_character: return "irrelevant EIA character / EIA not allowed here (ELG alarm 24)";
-      case TapeError::block_too_long: return "block too long (ELG alarm 29)";
-      case TapeError::data_format: return "tape data format error (ELG alarm 32)";
+      case TapeError::character_parity:
+        return "tape character parity error (ELG alarm 23)";
+      case TapeError::eia_character:
+        return "irrelevant EIA character / EIA not allowed here (ELG alarm 24)";
+      case TapeError::block_too_long:
+        return "block too long (ELG alarm 29)";
+      case TapeError::data_format:
+        return "tape data format error (ELG alarm 32)";
     }
     return fmt::format("tape error {}", c);
   }
@@ -41,8 +45,8 @@ void TapeReader::end_block(std::vector<TapeEvent>& out) {
   block_chars_ = 0;
   header_block_ = false;
   if (o_.even_block_check && (!header || o_.even_check_header) && (chars % 2) != 0) {
-    fail(TapeError::character_parity, fmt::format("block '{}' has {} characters including LF: the count must be even", text, chars),
-         out);
+    fail(TapeError::character_parity,
+         fmt::format("block '{}' has {} characters including LF: the count must be even", text, chars), out);
     return;
   }
   if (text.empty()) return;  // blank blocks (CR CR after LF, empty lines) carry nothing
@@ -84,8 +88,8 @@ void TapeReader::feed(std::span<const std::uint8_t> bytes, std::vector<TapeEvent
       if (o_.parity_in_data) {
         auto d = parse_iso(b);
         if (!d) {
-          fail(TapeError::character_parity, fmt::format("byte 0x{:02X} at offset {} has odd parity (ISO needs even)", b, offset_ - 1),
-               out);
+          fail(TapeError::character_parity,
+               fmt::format("byte 0x{:02X} at offset {} has odd parity (ISO needs even)", b, offset_ - 1), out);
           return;
         }
         c = *d;
@@ -95,11 +99,13 @@ void TapeReader::feed(std::span<const std::uint8_t> bytes, std::vector<TapeEvent
     } else {
       const auto d = parse_eia(b);
       if (!d.parity_ok) {
-        fail(TapeError::character_parity, fmt::format("byte 0x{:02X} at offset {} has even parity (EIA needs odd)", b, offset_ - 1), out);
+        fail(TapeError::character_parity,
+             fmt::format("byte 0x{:02X} at offset {} has even parity (EIA needs odd)", b, offset_ - 1), out);
         return;
       }
       if (!d.c) {
-        fail(TapeError::eia_character, fmt::format("byte 0x{:02X} at offset {} is not an EIA character", b, offset_ - 1), out);
+        fail(TapeError::eia_character,
+             fmt::format("byte 0x{:02X} at offset {} is not an EIA character", b, offset_ - 1), out);
         return;
       }
       c = *d.c;
@@ -143,14 +149,18 @@ TapeRead read_tape(std::span<const std::uint8_t> bytes, const TapeReaderOptions&
   TapeRead out;
   out.code = r.code();
   for (auto& e : ev) {
-    if (e.kind == TapeEvent::Kind::block) out.blocks.push_back(e.text);
-    else if (e.kind == TapeEvent::Kind::end) out.ended = true;
-    else out.error = e;
+    if (e.kind == TapeEvent::Kind::block)
+      out.blocks.push_back(e.text);
+    else if (e.kind == TapeEvent::Kind::end)
+      out.ended = true;
+    else
+      out.error = e;
   }
   return out;
 }
 
-std::expected<std::vector<std::uint8_t>, std::string> make_tape(const std::vector<std::string>& blocks, const TapeWriterOptions& o) {
+std::expected<std::vector<std::uint8_t>, std::string> make_tape(const std::vector<std::string>& blocks,
+                                                                const TapeWriterOptions& o) {
   std::vector<std::uint8_t> out(o.leader, 0x00);
   const auto put = [&](char c) -> std::expected<void, std::string> {
     if (o.code == Code::iso) {
@@ -165,10 +175,14 @@ std::expected<std::vector<std::uint8_t>, std::string> make_tape(const std::vecto
   for (const auto& blk : blocks) {
     std::string text = blk;
     std::string end;
-    if (o.code == Code::eia) end = "\n";
-    else if (o.block_end == TapeWriterOptions::BlockEnd::lf) end = "\n";
-    else if (o.block_end == TapeWriterOptions::BlockEnd::cr_lf) end = "\r\n";
-    else end = "\n\r\r";
+    if (o.code == Code::eia)
+      end = "\n";
+    else if (o.block_end == TapeWriterOptions::BlockEnd::lf)
+      end = "\n";
+    else if (o.block_end == TapeWriterOptions::BlockEnd::cr_lf)
+      end = "\r\n";
+    else
+      end = "\n\r\r";
     if (o.pad_even_blocks && ((text.size() + end.size()) % 2) != 0) text.push_back(' ');
     for (char c : text)
       if (auto r = put(c); !r) return std::unexpected(fmt::format("block '{}': {}", blk, r.error()));

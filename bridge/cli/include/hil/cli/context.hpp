@@ -11,10 +11,10 @@
 namespace hil::cli {
 
 struct Context {
-  CLI::App& app;                   ///< `hilbridge`
-  CLI::App& emulate;               ///< `hilbridge emulate <endpoint>`: mock endpoints
-  TransportRegistry& transports;   ///< filled by modules; used by run/test
-  int exit_code = 0;               ///< set by a command's callback; returned by main
+  CLI::App& app;                  ///< `hilbridge`
+  CLI::App& emulate;              ///< `hilbridge emulate <endpoint>`: mock endpoints
+  TransportRegistry& transports;  ///< filled by modules; used by run/test
+  int exit_code = 0;              ///< set by a command's callback; returned by main
 };
 
 }  // namespace hil::cli

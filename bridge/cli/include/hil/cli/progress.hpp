@@ -12,14 +12,14 @@
 namespace hil::cli {
 
 class ProgressBar {
-public:
+ public:
   ProgressBar(std::string label, std::uint64_t total, std::string unit, const Clock& clock, std::FILE* out = stderr);
   /// Set the amount done so far (monotonic). Cheap: redraws at most every 100 ms.
   void update(std::uint64_t done);
   /// Final line ("done" or the reason it stopped).
   void finish(const std::string& outcome);
 
-private:
+ private:
   void draw(bool final);
   std::string label_;
   std::uint64_t total_;

@@ -17,7 +17,7 @@ using TimePoint = std::chrono::time_point<Clock, Duration>;
 
 /// Monotonic time source. Thread: `now()` is safe from any thread for both implementations.
 class Clock {
-public:
+ public:
   using duration = Duration;
   using rep = Duration::rep;
   using period = Duration::period;
@@ -30,7 +30,7 @@ public:
 
 /// Wall-time monotonic clock (std::chrono::steady_clock), epoch = construction.
 class SteadyClock final : public Clock {
-public:
+ public:
   SteadyClock() noexcept : start_(std::chrono::steady_clock::now()) {}
   [[nodiscard]] TimePoint now() const noexcept override {
     return TimePoint{std::chrono::duration_cast<Duration>(std::chrono::steady_clock::now() - start_)};
@@ -40,14 +40,14 @@ public:
     return start_ + std::chrono::duration_cast<std::chrono::steady_clock::duration>(t.time_since_epoch());
   }
 
-private:
+ private:
   std::chrono::steady_clock::time_point start_;
 };
 
 /// Clock that moves only when told to. Not thread-safe: tests and the virtual-time runner
 /// own it on one thread.
 class VirtualClock final : public Clock {
-public:
+ public:
   explicit VirtualClock(TimePoint start = TimePoint{}) noexcept : now_(start) {}
   [[nodiscard]] TimePoint now() const noexcept override { return now_; }
   void advance(Duration d) noexcept { now_ += d; }
@@ -56,7 +56,7 @@ public:
     if (t > now_) now_ = t;
   }
 
-private:
+ private:
   TimePoint now_;
 };
 
@@ -64,7 +64,9 @@ private:
 [[nodiscard]] constexpr double to_seconds(Duration d) noexcept {
   return std::chrono::duration<double>(d).count();
 }
-[[nodiscard]] constexpr double to_seconds(TimePoint t) noexcept { return to_seconds(t.time_since_epoch()); }
+[[nodiscard]] constexpr double to_seconds(TimePoint t) noexcept {
+  return to_seconds(t.time_since_epoch());
+}
 [[nodiscard]] constexpr Duration from_seconds(double s) noexcept {
   return std::chrono::duration_cast<Duration>(std::chrono::duration<double>(s));
 }

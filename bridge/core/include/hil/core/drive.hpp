@@ -29,7 +29,7 @@ struct CycleTime {
 /// Power state in CiA 402 terms (CiA 402-2 §6.3). Other transports map onto these:
 /// a step/dir stage is `switch_on_disabled` while reset, `operation_enabled` when enabled and ready.
 enum class DriveState : std::uint8_t {
-  not_ready,              ///< Not ready to switch on (booting, no communication yet)
+  not_ready,  ///< Not ready to switch on (booting, no communication yet)
   switch_on_disabled,
   ready_to_switch_on,
   switched_on,
@@ -86,28 +86,28 @@ enum class DriveRequest : std::uint8_t {
 [[nodiscard]] std::string_view to_string(DriveRequest r) noexcept;
 
 struct DriveCapabilities {
-  bool closed_loop = true;      ///< false: actual position is the commanded one (open-loop step/dir)
-  bool velocity_mode = true;    ///< accepts CommandMode::velocity
-  bool homing = false;          ///< accepts DriveRequest::home
+  bool closed_loop = true;    ///< false: actual position is the commanded one (open-loop step/dir)
+  bool velocity_mode = true;  ///< accepts CommandMode::velocity
+  bool homing = false;        ///< accepts DriveRequest::home
   /// Generates the trajectory itself from DriveCommand::move (CiA 402 PP/PV). The axis then
   /// supervises the end position (in-position, standstill), not the path: the drive watches its
   /// own following error and reports a violation as its fault.
   bool drive_profile = false;
-  Duration min_period{};        ///< shortest cycle period the transport can serve (0 = any)
+  Duration min_period{};  ///< shortest cycle period the transport can serve (0 = any)
 };
 
 struct DriveFeedback {
   DriveState state = DriveState::not_ready;
   std::int64_t position_inc = 0;
   double velocity_inc_per_s = 0.0;
-  bool referenced = false;      ///< position is referenced (homed); false after lost synchronisation
+  bool referenced = false;  ///< position is referenced (homed); false after lost synchronisation
   bool homing_active = false;
-  Fault fault;                  ///< set while state is fault / fault_reaction_active
-  Duration age{};               ///< age of the freshest data in this image (transport staleness)
+  Fault fault;     ///< set while state is fault / fault_reaction_active
+  Duration age{};  ///< age of the freshest data in this image (transport staleness)
 };
 
 class Drive {
-public:
+ public:
   virtual ~Drive() = default;
 
   /// Human name for logs ("canopen:can0/5", "modbus:127.0.0.1:1502/1", "sim:x").

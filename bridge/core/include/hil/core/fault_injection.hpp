@@ -11,7 +11,7 @@
 namespace hil {
 
 class FaultInjectable {
-public:
+ public:
   virtual ~FaultInjectable() = default;
   /// Names this drive accepts ("encoder", "not_ready", "following_blowup", "heartbeat_loss", ...).
   [[nodiscard]] virtual std::vector<std::string> injectable_faults() const = 0;

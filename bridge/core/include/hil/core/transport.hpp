@@ -27,11 +27,11 @@ namespace hil {
 /// What a run gives its transports.
 struct RunEnvironment {
   const Clock& clock;
-  bool virtual_time = true;          ///< true: `hilbridge test` / CI runs; no real I/O may block
-  asio::io_context* io = nullptr;    ///< real-time runs: the I/O context for sockets and serial ports
-  std::string source_file;           ///< scenario path, for ConfigError and relative paths
+  bool virtual_time = true;        ///< true: `hilbridge test` / CI runs; no real I/O may block
+  asio::io_context* io = nullptr;  ///< real-time runs: the I/O context for sockets and serial ports
+  std::string source_file;         ///< scenario path, for ConfigError and relative paths
   Duration period{std::chrono::milliseconds(1)};
-  bool verify_steps = false;         ///< `hilbridge run --verify-steps`: step/dir transports verify edge streams
+  bool verify_steps = false;  ///< `hilbridge run --verify-steps`: step/dir transports verify edge streams
   /// Key path of the `drive:` block being built ("machine.axes[2].drive"), set by the runner before
   /// each make_drive so that transports' errors use the same paths as the scenario loader.
   std::string drive_key;
@@ -50,11 +50,10 @@ struct TransportReport {
 };
 
 class TransportFactory {
-public:
+ public:
   virtual ~TransportFactory() = default;
   /// Build the drive for one axis from its `drive:` node. Errors carry file/line/key.
-  virtual std::expected<DrivePtr, ConfigError> make_drive(const std::string& axis_name,
-                                                          const YAML::Node& drive_node,
+  virtual std::expected<DrivePtr, ConfigError> make_drive(const std::string& axis_name, const YAML::Node& drive_node,
                                                           RunEnvironment& env) = 0;
   /// Bus-level work before the axes read (deliver frames, step in-process mocks, SYNC).
   virtual void begin_cycle(const CycleTime&) {}
@@ -65,7 +64,7 @@ public:
 };
 
 class TransportRegistry {
-public:
+ public:
   using Creator = std::function<std::unique_ptr<TransportFactory>()>;
   void add(std::string name, Creator creator) { creators_[std::move(name)] = std::move(creator); }
   [[nodiscard]] std::unique_ptr<TransportFactory> create(const std::string& name) const {
@@ -78,7 +77,7 @@ public:
     return out;
   }
 
-private:
+ private:
   std::map<std::string, Creator> creators_;
 };
 

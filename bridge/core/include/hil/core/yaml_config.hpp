@@ -19,7 +19,9 @@ namespace hil::yaml {
 struct Where {
   std::string file;
   std::string path;  ///< "axes[2].drive"
-  [[nodiscard]] Where key(std::string_view k) const { return {file, path.empty() ? std::string(k) : path + "." + std::string(k)}; }
+  [[nodiscard]] Where key(std::string_view k) const {
+    return {file, path.empty() ? std::string(k) : path + "." + std::string(k)};
+  }
   [[nodiscard]] Where index(std::size_t i) const { return {file, path + "[" + std::to_string(i) + "]"}; }
 };
 

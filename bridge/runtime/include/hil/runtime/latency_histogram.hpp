@@ -12,7 +12,7 @@
 namespace hil::runtime {
 
 class LatencyHistogram {
-public:
+ public:
   static constexpr Duration bucket_width = std::chrono::microseconds(1);
   static constexpr std::size_t bucket_count = 20'000;  ///< 0..20 ms; later samples go to the overflow bucket
 
@@ -28,7 +28,7 @@ public:
   /// [min, max]; exact to one bucket (1 µs). 0 when empty.
   [[nodiscard]] Duration percentile(double fraction) const noexcept;
 
-private:
+ private:
   std::array<std::uint32_t, bucket_count + 1> buckets_{};
   std::uint64_t count_ = 0;
   Duration sum_{};

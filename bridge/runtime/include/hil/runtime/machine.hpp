@@ -38,7 +38,7 @@ struct NamedReport {
 };
 
 class Machine {
-public:
+ public:
   /// Build every axis' drive through `registry` (unknown transports and factory errors are
   /// ConfigErrors naming the axis' `drive:` line). `env` must outlive the machine.
   [[nodiscard]] static std::expected<Machine, ConfigError> build(const Scenario& scenario,
@@ -56,7 +56,7 @@ public:
   /// Transport names in the order their first axis appears.
   [[nodiscard]] std::vector<std::string> transports() const;
 
-private:
+ private:
   struct Factory {
     std::string name;
     std::unique_ptr<TransportFactory> factory;

@@ -18,7 +18,7 @@
 namespace hil::runtime {
 
 class Program {
-public:
+ public:
   enum class Status : std::uint8_t { running, done, failed };
 
   Program(const Scenario& scenario, Machine& machine);
@@ -35,7 +35,7 @@ public:
   /// Index of the step running now (== program size when done).
   [[nodiscard]] std::size_t current_step() const noexcept { return next_; }
 
-private:
+ private:
   struct Running {
     const Step* step = nullptr;
     Duration started{};

@@ -14,7 +14,7 @@
 namespace hil::runtime {
 
 class RunMonitor {
-public:
+ public:
   RunMonitor(const Scenario& scenario, const Machine& machine);
 
   /// After each cycle, at scenario time `t`. Never throws.
@@ -27,7 +27,7 @@ public:
 
   [[nodiscard]] const std::vector<FaultEvent>& faults() const noexcept { return faults_; }
 
-private:
+ private:
   struct AxisTrack {
     const MachineAxis* axis = nullptr;
     double max_fe = 0.0;

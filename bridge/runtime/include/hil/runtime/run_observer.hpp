@@ -10,7 +10,7 @@
 namespace hil::runtime {
 
 class RunObserver {
-public:
+ public:
   virtual ~RunObserver() = default;
   /// Before the first cycle, once the machine is built.
   virtual void on_start(const Scenario&, const Machine&) {}

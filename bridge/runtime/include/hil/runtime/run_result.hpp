@@ -14,7 +14,7 @@
 namespace hil::runtime {
 
 struct FaultEvent {
-  Duration t{};       ///< scenario time it was first seen
+  Duration t{};  ///< scenario time it was first seen
   std::string axis;
   std::string source;  ///< "axis" (motion supervision) or "drive" (the drive's own fault)
   Fault fault;
@@ -35,9 +35,9 @@ struct ExpectationResult {
   std::string axis;
   std::string description;  ///< "position 100.000 +/- 0.010 mm at t=2.000 s"
   bool passed = false;
-  std::string detail;       ///< why it failed, with values ("was 99.412 mm (off by 0.588 mm)")
+  std::string detail;  ///< why it failed, with values ("was 99.412 mm (off by 0.588 mm)")
   int line = 0;
-  std::string path;         ///< "expect[3]"
+  std::string path;  ///< "expect[3]"
 };
 
 struct RunResult {
@@ -50,7 +50,7 @@ struct RunResult {
   std::vector<ExpectationResult> expectations;
   std::vector<NamedReport> reports;
   SchedulerStats scheduler;
-  Duration simulated{};   ///< scenario time at the last cycle
+  Duration simulated{};  ///< scenario time at the last cycle
   bool interrupted = false;
 };
 

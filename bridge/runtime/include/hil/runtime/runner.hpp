@@ -23,8 +23,8 @@ namespace hil::runtime {
 
 struct RunOptions {
   bool virtual_time = true;
-  bool verify_steps = false;              ///< RunEnvironment::verify_steps
-  bool handle_signals = false;            ///< real time: SIGINT/SIGTERM stop the run in a controlled way
+  bool verify_steps = false;    ///< RunEnvironment::verify_steps
+  bool handle_signals = false;  ///< real time: SIGINT/SIGTERM stop the run in a controlled way
   std::vector<RunObserver*> observers;
 };
 

@@ -42,19 +42,19 @@ struct AxisSpec {
   std::optional<double> soft_limit_max;
   double backlash = 0.0;  ///< units, compensated on direction reversal
   // Supervision (units, seconds).
-  double following_error_window = 0.0;  ///< static window; 0 = 10 x in_position window, at least 1 unit
-  bool following_error_dynamic = false; ///< window = clamp(1.5 v / Kv, min, max)
+  double following_error_window = 0.0;   ///< static window; 0 = 10 x in_position window, at least 1 unit
+  bool following_error_dynamic = false;  ///< window = clamp(1.5 v / Kv, min, max)
   double following_error_kv_per_s = 0.0;
   double following_error_min = 0.0;
   double following_error_max = 0.0;
-  double standstill_window = 0.0;       ///< 0 = 2 x in_position window
-  double in_position_window = 0.0;      ///< 0 = 0.01 units
+  double standstill_window = 0.0;   ///< 0 = 2 x in_position window
+  double in_position_window = 0.0;  ///< 0 = 0.01 units
   std::optional<Duration> in_position_timeout;
   std::optional<Duration> enable_timeout;
   std::optional<Duration> feedback_timeout;
   FaultReaction fault_reaction = FaultReaction::quick_stop;
-  YAML::Node drive;            ///< the `drive:` map, handed to the transport factory
-  std::string transport;       ///< drive.transport
+  YAML::Node drive;       ///< the `drive:` map, handed to the transport factory
+  std::string transport;  ///< drive.transport
   SourceRef source;
 };
 
@@ -68,10 +68,18 @@ struct MoveLimits {
 };
 
 // ---- program steps --------------------------------------------------------------------------
-struct EnableStep { std::vector<std::string> axes; };
-struct DisableStep { std::vector<std::string> axes; };
-struct ResetStep { std::vector<std::string> axes; };
-struct HomeStep { std::vector<std::string> axes; };
+struct EnableStep {
+  std::vector<std::string> axes;
+};
+struct DisableStep {
+  std::vector<std::string> axes;
+};
+struct ResetStep {
+  std::vector<std::string> axes;
+};
+struct HomeStep {
+  std::vector<std::string> axes;
+};
 struct MoveAbsoluteStep {
   std::string axis;
   double position = 0.0;  ///< units
@@ -93,10 +101,18 @@ struct JogStep {
   bool positive = true;  ///< at the axis' jog_velocity
   Duration duration{};   ///< jog this long, then stop
 };
-struct StopStep { std::vector<std::string> axes; };
-struct QuickStopStep { std::vector<std::string> axes; };
-struct WaitStep { Duration duration{}; };
-struct WaitInPositionStep { std::vector<std::string> axes; };
+struct StopStep {
+  std::vector<std::string> axes;
+};
+struct QuickStopStep {
+  std::vector<std::string> axes;
+};
+struct WaitStep {
+  Duration duration{};
+};
+struct WaitInPositionStep {
+  std::vector<std::string> axes;
+};
 
 enum class Quantity : std::uint8_t { position, velocity, following_error };
 enum class Comparison : std::uint8_t { above, below };
@@ -110,14 +126,18 @@ struct Condition {
   std::string state;       ///< Kind::state: axis state name
   std::string fault_code;  ///< Kind::fault: "" = any fault, else "category:value"
 };
-struct WaitUntilStep { Condition condition; };
+struct WaitUntilStep {
+  Condition condition;
+};
 struct InjectFaultStep {
   std::string axis;
   std::string fault;
   bool active = true;
 };
 struct Step;
-struct ParallelStep { std::vector<Step> steps; };
+struct ParallelStep {
+  std::vector<Step> steps;
+};
 
 using StepAction = std::variant<EnableStep, DisableStep, ResetStep, HomeStep, MoveAbsoluteStep, MoveRelativeStep,
                                 MoveVelocityStep, JogStep, StopStep, QuickStopStep, WaitStep, WaitInPositionStep,
@@ -148,7 +168,9 @@ struct StateExpectation {
   std::optional<Duration> at;  ///< default: end of run
 };
 struct NoFaultExpectation {};
-struct MaxFollowingErrorExpectation { double value = 0.0; };
+struct MaxFollowingErrorExpectation {
+  double value = 0.0;
+};
 
 using ExpectationKind = std::variant<PositionExpectation, FaultExpectation, StateExpectation, NoFaultExpectation,
                                      MaxFollowingErrorExpectation>;
@@ -163,7 +185,7 @@ struct Scenario {
   std::string name;
   std::string description;
   Duration period{std::chrono::milliseconds(1)};
-  std::optional<Duration> duration;  ///< fixed run length; default: until the program is done and axes rest
+  std::optional<Duration> duration;             ///< fixed run length; default: until the program is done and axes rest
   Duration timeout{std::chrono::seconds(600)};  ///< the run fails when it lasts longer
   std::vector<AxisSpec> axes;
   std::vector<Step> program;

@@ -46,22 +46,21 @@ struct SchedulerStats {
 };
 
 class VirtualScheduler {
-public:
+ public:
   /// `period` > 0. The clock is advanced by the scheduler only.
   VirtualScheduler(VirtualClock& clock, Duration period) noexcept;
 
   /// Run cycles at clock.now(), +period, ... until `fn` returns stop or `max_cycles` ran.
   /// Blocking; calls `fn` on this thread.
-  SchedulerStats run(const CycleFunction& fn,
-                     std::uint64_t max_cycles = std::numeric_limits<std::uint64_t>::max());
+  SchedulerStats run(const CycleFunction& fn, std::uint64_t max_cycles = std::numeric_limits<std::uint64_t>::max());
 
-private:
+ private:
   VirtualClock& clock_;
   Duration period_;
 };
 
 class AsioScheduler {
-public:
+ public:
   /// `io` runs the timer (and, typically, the transports' sockets); `clock` gives the deadlines.
   AsioScheduler(asio::io_context& io, const SteadyClock& clock, Duration period);
   ~AsioScheduler();
@@ -81,7 +80,7 @@ public:
 
   [[nodiscard]] const SchedulerStats& stats() const noexcept;
 
-private:
+ private:
   struct Impl;
   std::unique_ptr<Impl> impl_;
 };

@@ -18,11 +18,11 @@ namespace hil::runtime {
 struct PlotSeries {
   std::string axis;
   std::string units;
-  bool rotary = false;           ///< positions wrap at the modulo (the plot breaks the line there)
-  std::vector<double> t;         ///< s
-  std::vector<double> position;  ///< units
-  std::vector<double> command;   ///< units
-  std::vector<double> velocity;  ///< units/s
+  bool rotary = false;                  ///< positions wrap at the modulo (the plot breaks the line there)
+  std::vector<double> t;                ///< s
+  std::vector<double> position;         ///< units
+  std::vector<double> command;          ///< units
+  std::vector<double> velocity;         ///< units/s
   std::vector<double> following_error;  ///< units
 };
 
@@ -32,13 +32,13 @@ struct PlotData {
 };
 
 class PlotRecorder final : public RunObserver {
-public:
+ public:
   explicit PlotRecorder(std::size_t max_points = 4000) : max_points_(max_points < 16 ? 16 : max_points) {}
   void on_start(const Scenario& scenario, const Machine& machine) override;
   void on_cycle(Duration t, const Machine& machine) noexcept override;
   [[nodiscard]] const PlotData& data() const noexcept { return data_; }
 
-private:
+ private:
   void decimate();
   PlotData data_;
   std::size_t max_points_;

@@ -16,7 +16,7 @@
 namespace hil::runtime {
 
 class TraceCsvWriter final : public RunObserver {
-public:
+ public:
   /// Opens (truncates) `path`. Error: the OS error.
   [[nodiscard]] std::error_code open(const std::filesystem::path& path);
   void on_start(const Scenario& scenario, const Machine& machine) override;
@@ -26,7 +26,7 @@ public:
   [[nodiscard]] std::error_code close();
   [[nodiscard]] std::uint64_t rows() const noexcept { return rows_; }
 
-private:
+ private:
   struct FileCloser {
     void operator()(std::FILE* f) const noexcept { std::fclose(f); }
   };

@@ -27,10 +27,10 @@ enum class OperatingSetup : std::uint8_t { csp, csv, pp };
 [[nodiscard]] std::string_view to_string(OperatingSetup s) noexcept;
 
 struct DriveOptions {
-  std::string name;                       ///< "canopen:vbus/5"
+  std::string name;                            ///< "canopen:vbus/5"
   OperatingSetup setup = OperatingSetup::csp;  ///< pp needs the profile objects mapped (AxisOptions::profile_objects)
   double csv_position_gain_per_s = 100.0;      ///< csv: master-side position loop gain (1/s)
-  bool homing = true;                     ///< accepts DriveRequest::home (mode 6 with the node's 0x6098 method)
+  bool homing = true;                          ///< accepts DriveRequest::home (mode 6 with the node's 0x6098 method)
   Duration homing_timeout{std::chrono::seconds(30)};
   Duration stale_after{std::chrono::milliseconds(50)};  ///< feedback older than this counts as lost
   /// After request(fault_reset) the drive reports not_ready (no fault) while it walks the
@@ -40,7 +40,7 @@ struct DriveOptions {
 };
 
 class Cia402Drive final : public Drive {
-public:
+ public:
   /// The node must already be added to `network.master()` (make_axis_node_config).
   Cia402Drive(Network& network, canopen::NodeId node, DriveOptions options);
   ~Cia402Drive() override;
@@ -62,7 +62,7 @@ public:
   void on_heartbeat_lost(Duration consumer_time);
   void on_heartbeat_resumed();
 
-private:
+ private:
   void set_fault(std::error_code code, std::string text);
   /// pp: controlword bits, mode and profile objects for `move` (PP / PV / halt).
   Mode write_profile(const DriveMove& move, std::uint16_t& cwv, canopen::ObjectDictionary& img);

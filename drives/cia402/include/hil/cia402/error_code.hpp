@@ -39,8 +39,11 @@ const std::error_category& cia402_category() noexcept;
 inline std::error_code make_error_code(ErrorCode c) noexcept {
   return {static_cast<int>(static_cast<std::uint16_t>(c)), cia402_category()};
 }
-inline std::error_code make_cia402_error(std::uint16_t code) noexcept { return {static_cast<int>(code), cia402_category()}; }
+inline std::error_code make_cia402_error(std::uint16_t code) noexcept {
+  return {static_cast<int>(code), cia402_category()};
+}
 
 }  // namespace hil::cia402
 
-template <> struct std::is_error_code_enum<hil::cia402::ErrorCode> : std::true_type {};
+template <>
+struct std::is_error_code_enum<hil::cia402::ErrorCode> : std::true_type {};

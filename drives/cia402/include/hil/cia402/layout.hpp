@@ -23,8 +23,9 @@ struct AxisOptions {
   canopen::NodeId node = 0;
   Duration heartbeat_producer{std::chrono::milliseconds(20)};  ///< written to the node's 0x1017
   Duration heartbeat_consumer{std::chrono::milliseconds(60)};  ///< master-side supervision (0 = off)
-  bool check_identity = true;  ///< compare 0x1000 / 0x1018:1..3 with the EDS
-  canopen::NodeId master_node = 0;  ///< the master's node-ID when it produces a heartbeat (0 = node does not monitor it)
+  bool check_identity = true;                                  ///< compare 0x1000 / 0x1018:1..3 with the EDS
+  canopen::NodeId master_node =
+      0;  ///< the master's node-ID when it produces a heartbeat (0 = node does not monitor it)
   Duration master_heartbeat_timeout{std::chrono::milliseconds(100)};  ///< node's consumer time 0x1016:1
   bool profile_objects = false;  ///< map 0x6081/0x6083/0x6084 into RPDO3/4 (profile position / velocity)
 };
@@ -32,6 +33,7 @@ struct AxisOptions {
 /// Node configuration for `Master::add_node` from the node's EDS/DCF: identity expectations,
 /// DCF ParameterValues, heartbeat, the remap writes for the layout above, the master's image
 /// (the EDS's OD) and its PDOs.
-[[nodiscard]] canopen::NodeConfig make_axis_node_config(const canopen::DeviceDescription& eds, const AxisOptions& options);
+[[nodiscard]] canopen::NodeConfig make_axis_node_config(const canopen::DeviceDescription& eds,
+                                                        const AxisOptions& options);
 
 }  // namespace hil::cia402

@@ -22,7 +22,7 @@ struct NetworkStats {
 };
 
 class Network {
-public:
+ public:
   /// `channel` must outlive the network.
   Network(can::Channel& channel, canopen::MasterOptions options);
   ~Network();
@@ -41,7 +41,7 @@ public:
   void attach(canopen::NodeId node, Cia402Drive* drive) { drives_[node] = drive; }
   void detach(canopen::NodeId node) noexcept { drives_.erase(node); }
 
-private:
+ private:
   can::Channel& channel_;
   canopen::Master master_;
   std::map<canopen::NodeId, Cia402Drive*> drives_;

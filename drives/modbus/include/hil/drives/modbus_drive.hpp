@@ -43,29 +43,29 @@
 namespace hil::drives {
 
 struct ModbusDriveConfig {
-  std::string name = "modbus";                            ///< axis name, for logs
+  std::string name = "modbus";  ///< axis name, for logs
   std::string host = "127.0.0.1";
   std::uint16_t port = 502;
-  int unit_id = -1;                                       ///< -1: the profile's unit
+  int unit_id = -1;  ///< -1: the profile's unit
   modbus::Profile profile;
   Duration response_timeout{std::chrono::milliseconds(100)};  ///< per request (libmodbus response + byte timeout)
-  Duration poll_period{std::chrono::milliseconds(1)};     ///< free-running: time between exchange starts
-  Duration backoff_min{std::chrono::milliseconds(100)};   ///< first reconnect delay after a link error
-  Duration backoff_max{std::chrono::seconds(5)};          ///< back-off doubles up to this
+  Duration poll_period{std::chrono::milliseconds(1)};         ///< free-running: time between exchange starts
+  Duration backoff_min{std::chrono::milliseconds(100)};       ///< first reconnect delay after a link error
+  Duration backoff_max{std::chrono::seconds(5)};              ///< back-off doubles up to this
   bool lockstep = false;
-  Duration homing_timeout{std::chrono::seconds(30)};      ///< request(home) -> attained, else not referenced
+  Duration homing_timeout{std::chrono::seconds(30)};  ///< request(home) -> attained, else not referenced
 };
 
 struct ModbusLinkStats {
-  std::uint64_t exchanges = 0;   ///< completed exchanges
-  std::uint64_t errors = 0;      ///< failed exchanges / connects
-  std::uint64_t connects = 0;    ///< successful connects
+  std::uint64_t exchanges = 0;  ///< completed exchanges
+  std::uint64_t errors = 0;     ///< failed exchanges / connects
+  std::uint64_t connects = 0;   ///< successful connects
   bool connected = false;
   modbus::ModbusError last_error = modbus::ModbusError::none;
 };
 
 class ModbusDrive final : public Drive {
-public:
+ public:
   /// Starts the worker thread. `clock` must outlive the drive. The profile must be valid
   /// (make_exchange_plan succeeds); load it with modbus::load_profile.
   ModbusDrive(ModbusDriveConfig config, const Clock& clock);
@@ -92,7 +92,7 @@ public:
   [[nodiscard]] ModbusLinkStats link_stats() const;
   [[nodiscard]] const modbus::Profile& profile() const noexcept { return config_.profile; }
 
-private:
+ private:
   struct FieldSlot {
     bool present = false;
     std::size_t block = 0;
@@ -127,7 +127,7 @@ private:
 
   // Motion thread state.
   DriveFeedback feedback_;
-  Image local_image_;                               ///< latest copy of the worker's image
+  Image local_image_;                                ///< latest copy of the worker's image
   std::vector<std::vector<std::uint16_t>> command_;  ///< packed command blocks
   LinkState local_link_;
   std::uint64_t seen_error_seq_ = 0;
@@ -139,9 +139,9 @@ private:
   DriveState drive_state_ = DriveState::not_ready;  ///< from the status word (without link fault)
   enum class Homing : std::uint8_t { idle, selecting, started };
   Homing homing_ = Homing::idle;
-  std::uint64_t homing_seq_ = 0;       ///< image seq when the mode was selected / bit 4 raised
+  std::uint64_t homing_seq_ = 0;  ///< image seq when the mode was selected / bit 4 raised
   std::optional<TimePoint> homing_deadline_;
-  bool unreferenced_ = false;          ///< homing was asked for and has not succeeded
+  bool unreferenced_ = false;  ///< homing was asked for and has not succeeded
   TimePoint created_{};
   bool have_created_ = false;
 

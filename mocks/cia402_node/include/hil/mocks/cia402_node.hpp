@@ -45,7 +45,7 @@ struct Cia402NodeStats {
 };
 
 class Cia402Node {
-public:
+ public:
   /// Attaches to `channel` (which must outlive the node). Throws std::runtime_error only if the
   /// compiled-in EDS fails to parse (a build defect).
   Cia402Node(can::Channel& channel, Cia402NodeOptions options);
@@ -76,7 +76,7 @@ public:
   void set_sdo_delay(Duration delay);  ///< Duration::max() = no answer at all
   void set_following_error_offset(std::int32_t inc) noexcept { following_offset_ = inc; }
 
-private:
+ private:
   void on_sync(TimePoint now);
   void advance(TimePoint now);
   void run_device(double dt_s, TimePoint now);

@@ -3,7 +3,8 @@
 // The simulated drive behind the Modbus drive server: a register table laid out by a profile,
 // the profile's device-side state machine (CiA 402 FSA or vendor bits) and the plant model.
 // Requests are served by libmodbus (ModbusResponder) against the device's register table; the
-// device reacts to control-word writes at once and steps the plant when told. Not thread-safe: ModbusDriveServer serialises access.
+// device reacts to control-word writes at once and steps the plant when told. Not thread-safe: ModbusDriveServer
+// serialises access.
 
 #include <cstdint>
 #include <span>
@@ -26,7 +27,7 @@ struct DriveDeviceConfig {
 };
 
 class DriveDevice {
-public:
+ public:
   DriveDevice(modbus::Profile profile, DriveDeviceConfig config = {});
 
   /// Serve one request ADU (see ModbusResponder::handle); control-word writes take effect at once.
@@ -47,7 +48,7 @@ public:
   /// encoder 0x7305, not_ready 0x3100, following 0x8611; the plant fault number otherwise).
   [[nodiscard]] std::uint32_t fault_code_for(PlantFault f) const noexcept;
 
-private:
+ private:
   [[nodiscard]] std::int64_t read_field(modbus::FieldRole r) const noexcept;
   void write_field(modbus::FieldRole r, std::int64_t raw) noexcept;
   void apply_control(bool stopped) noexcept;

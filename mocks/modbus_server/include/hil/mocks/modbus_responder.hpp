@@ -20,7 +20,7 @@ struct _modbus;  // libmodbus' modbus_t
 namespace hil::mocks {
 
 class ModbusResponder {
-public:
+ public:
   ModbusResponder();
   ~ModbusResponder();
   ModbusResponder(ModbusResponder&& other) noexcept;
@@ -31,10 +31,10 @@ public:
   /// Serve one complete request ADU. `out` must hold modbus::kMaxAduSize bytes. A malformed ADU
   /// gives no response (`size` 0, `error == invalid_request`): the caller closes the connection.
   /// If the local socket pair could not be made, every request gets exception 04 (device failure).
-  modbus::HandleResult handle(std::span<const std::uint8_t> adu, modbus::RegisterTable& table, std::span<std::uint8_t> out,
-                              const modbus::HandlerOptions& options) noexcept;
+  modbus::HandleResult handle(std::span<const std::uint8_t> adu, modbus::RegisterTable& table,
+                              std::span<std::uint8_t> out, const modbus::HandlerOptions& options) noexcept;
 
-private:
+ private:
   void release() noexcept;
   _modbus* ctx_ = nullptr;
   int reply_fd_ = -1;  ///< the end libmodbus sends its reply to is ctx_'s socket; this is the other end

@@ -38,8 +38,8 @@ struct ModbusServerConfig {
   std::string listen_host = "127.0.0.1";  ///< loopback by default; "0.0.0.0" to serve the LAN
   std::uint16_t port = 0;                 ///< 0 = ephemeral (see ModbusDriveServer::port())
   modbus::HandlerOptions handler{};
-  std::size_t max_connections = 64;       ///< further connections are accepted and closed at once
-  Duration auto_step{};                   ///< > 0: step the plant on a real-time timer with this period
+  std::size_t max_connections = 64;  ///< further connections are accepted and closed at once
+  Duration auto_step{};              ///< > 0: step the plant on a real-time timer with this period
   /// A frame started but not completed within this time closes the connection (a stalled
   /// client must not hold a connection slot forever). Real time.
   Duration frame_timeout{std::chrono::seconds(5)};
@@ -50,14 +50,14 @@ struct ModbusServerConfig {
 struct ModbusServerStats {
   std::uint64_t connections_accepted = 0;
   std::uint64_t requests = 0;
-  std::uint64_t exceptions = 0;       ///< exception responses sent (handler or injected)
-  std::uint64_t malformed = 0;        ///< connections closed for a bad MBAP header
-  std::uint64_t stalled = 0;          ///< connections closed for a frame left incomplete (frame_timeout)
+  std::uint64_t exceptions = 0;  ///< exception responses sent (handler or injected)
+  std::uint64_t malformed = 0;   ///< connections closed for a bad MBAP header
+  std::uint64_t stalled = 0;     ///< connections closed for a frame left incomplete (frame_timeout)
   std::uint64_t open_connections = 0;
 };
 
 class ModbusDriveServer {
-public:
+ public:
   ModbusDriveServer(DriveDevice device, ModbusServerConfig config);
   ~ModbusDriveServer();
   ModbusDriveServer(const ModbusDriveServer&) = delete;
@@ -77,7 +77,8 @@ public:
   void step(Duration dt);
   void inject(PlantFault fault, bool active);
   /// Run `fn(device)` under the device mutex.
-  template <class Fn> decltype(auto) with_device(Fn&& fn) {
+  template <class Fn>
+  decltype(auto) with_device(Fn&& fn) {
     std::lock_guard lock(device_mutex_);
     return fn(device_);
   }
@@ -89,7 +90,7 @@ public:
 
   [[nodiscard]] ModbusServerStats stats() const;
 
-private:
+ private:
   struct Impl;
   class Connection;
   DriveDevice device_;

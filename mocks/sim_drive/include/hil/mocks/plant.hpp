@@ -21,23 +21,23 @@
 namespace hil::mocks {
 
 struct PlantConfig {
-  double kv_per_s = 50.0;                      ///< position loop gain Kv (1/s)
-  double max_velocity_inc_per_s = 5.0e6;       ///< velocity limit of the power stage
-  double velocity_lag_s = 0.002;               ///< velocity loop time constant (0 = ideal)
-  double velocity_feedforward = 0.0;           ///< 0..1, share of the commanded velocity fed forward
-  std::int64_t encoder_step_inc = 1;           ///< encoder quantisation (>= 1)
+  double kv_per_s = 50.0;                 ///< position loop gain Kv (1/s)
+  double max_velocity_inc_per_s = 5.0e6;  ///< velocity limit of the power stage
+  double velocity_lag_s = 0.002;          ///< velocity loop time constant (0 = ideal)
+  double velocity_feedforward = 0.0;      ///< 0..1, share of the commanded velocity fed forward
+  std::int64_t encoder_step_inc = 1;      ///< encoder quantisation (>= 1)
   double initial_position_inc = 0.0;
 };
 
 struct PlantInput {
-  bool powered = false;                        ///< power stage on; off = coast to rest through the lag
+  bool powered = false;  ///< power stage on; off = coast to rest through the lag
   CommandMode mode = CommandMode::position;
   double position_inc = 0.0;
-  double velocity_inc_per_s = 0.0;             ///< target (velocity mode) or feed-forward (position mode)
+  double velocity_inc_per_s = 0.0;  ///< target (velocity mode) or feed-forward (position mode)
 };
 
 class Plant {
-public:
+ public:
   explicit Plant(PlantConfig config = {});
 
   /// Advance by `dt` (any length; long steps are sub-stepped for stability).
@@ -59,7 +59,7 @@ public:
 
   [[nodiscard]] const PlantConfig& config() const noexcept { return config_; }
 
-private:
+ private:
   static constexpr unsigned bit(PlantFault f) noexcept { return 1u << static_cast<unsigned>(f); }
   void substep(double dt_s, const PlantInput& in) noexcept;
   void sample_encoder() noexcept;

@@ -22,7 +22,7 @@ struct SimDriveConfig {
   Duration transition_time{std::chrono::milliseconds(1)};  ///< per power-state step (shutdown, switch on, enable)
   double quick_stop_deceleration_inc_per_s2 = 1.0e8;
   Duration homing_time{std::chrono::milliseconds(200)};
-  std::int64_t home_position_inc = 0;                       ///< position after homing (method: current position)
+  std::int64_t home_position_inc = 0;  ///< position after homing (method: current position)
 };
 
 /// Parse a scenario's `drive:` block for `transport: sim`. Keys (all optional):
@@ -34,7 +34,7 @@ struct SimDriveConfig {
 
 /// Thread: all members on the motion thread.
 class SimDrive final : public Drive, public FaultInjectable {
-public:
+ public:
   explicit SimDrive(SimDriveConfig config);
 
   [[nodiscard]] std::string_view name() const noexcept override { return name_; }
@@ -51,7 +51,7 @@ public:
 
   [[nodiscard]] Plant& plant() noexcept { return plant_; }
 
-private:
+ private:
   void advance_state(TimePoint now);
   void enter_fault(PlantFault f);
 

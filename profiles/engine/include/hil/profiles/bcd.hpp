@@ -11,11 +11,11 @@
 namespace hil::profiles {
 
 enum class BcdSign {
-  none,   ///< 8 digits, 0 … 99 999 999
-  bit31,  ///< WF 725/726 §4.3: bit 31 = sign (1 = negative), bits 30..28 = 10^7 digit 0..7;
-          ///< range ±79 999 999; "-24 537" = 0x80024537
-  nibble, ///< IP247 §6.2.7.2 AG values: top nibble 0 = positive, F = negative, 7 digits;
-          ///< range ±9 999 999; "-120 000" = 0xF0120000
+  none,    ///< 8 digits, 0 … 99 999 999
+  bit31,   ///< WF 725/726 §4.3: bit 31 = sign (1 = negative), bits 30..28 = 10^7 digit 0..7;
+           ///< range ±79 999 999; "-24 537" = 0x80024537
+  nibble,  ///< IP247 §6.2.7.2 AG values: top nibble 0 = positive, F = negative, 7 digits;
+           ///< range ±9 999 999; "-120 000" = 0xF0120000
 };
 
 struct BcdFormat {

@@ -22,27 +22,27 @@ enum class Reaction { message, stop, drive_off, needs_reset };
 [[nodiscard]] std::optional<Reaction> parse_reaction(std::string_view s) noexcept;
 
 struct ErrorEntry {
-  int code = 0;              ///< the manual's number (value of the error_code)
-  std::string code_text;     ///< as the manual writes it: "4C", "F03", "2215"
-  std::string text;          ///< English text
-  std::string text_de;       ///< German original ("" when the manual is English)
+  int code = 0;           ///< the manual's number (value of the error_code)
+  std::string code_text;  ///< as the manual writes it: "4C", "F03", "2215"
+  std::string text;       ///< English text
+  std::string text_de;    ///< German original ("" when the manual is English)
   std::string cause;
   std::string remedy;
   Reaction reaction = Reaction::stop;
-  std::string acknowledge;   ///< how it is cleared: "Clear key, External Clear edge or !CLEAR"
-  std::string group;         ///< sub-list of the catalogue ("axis 2", "traversing", "power-on")
-  std::string note;          ///< digest remark, decision taken
+  std::string acknowledge;  ///< how it is cleared: "Clear key, External Clear edge or !CLEAR"
+  std::string group;        ///< sub-list of the catalogue ("axis 2", "traversing", "power-on")
+  std::string note;         ///< digest remark, decision taken
 };
 
 class ErrorCatalogue {
-public:
+ public:
   ErrorCatalogue(std::string device, std::string id, std::string title, std::string code_format,
                  std::vector<ErrorEntry> entries);
   ErrorCatalogue(const ErrorCatalogue&) = delete;
   ErrorCatalogue& operator=(const ErrorCatalogue&) = delete;
   ~ErrorCatalogue();
 
-  [[nodiscard]] const std::string& id() const noexcept { return id_; }          ///< "diagnostic"
+  [[nodiscard]] const std::string& id() const noexcept { return id_; }  ///< "diagnostic"
   [[nodiscard]] const std::string& title() const noexcept { return title_; }
   [[nodiscard]] const std::string& code_format() const noexcept { return code_format_; }  ///< hex2, dec2, dec4, hex3
   [[nodiscard]] const std::vector<ErrorEntry>& entries() const noexcept { return entries_; }
@@ -57,7 +57,7 @@ public:
   /// A fault carrying this catalogue's code; text = "<text>: <cause>" plus `context` ("axis 2").
   [[nodiscard]] hil::Fault make_fault(int code, std::string_view context = {}) const;
 
-private:
+ private:
   class Category;
   std::string device_, id_, title_, code_format_;
   std::vector<ErrorEntry> entries_;

@@ -33,7 +33,7 @@ struct EvalError {
 };
 
 class Expression {
-public:
+ public:
   struct Node;
   using Lookup = std::function<std::optional<ExprValue>(std::string_view name)>;
 
@@ -48,7 +48,7 @@ public:
   [[nodiscard]] const std::string& text() const noexcept { return text_; }
   [[nodiscard]] bool empty() const noexcept { return root_ == nullptr; }
 
-private:
+ private:
   std::shared_ptr<const Node> root_;
   std::string text_;
 };

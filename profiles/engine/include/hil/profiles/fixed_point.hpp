@@ -20,7 +20,8 @@ struct FixedPointFormat {
   std::int64_t lsb_den = 1;
 
   /// "1/256", "0.0001", "10" → lsb.
-  [[nodiscard]] static std::expected<FixedPointFormat, std::string> parse_lsb(std::string_view lsb, TwosComplementFormat word);
+  [[nodiscard]] static std::expected<FixedPointFormat, std::string> parse_lsb(std::string_view lsb,
+                                                                              TwosComplementFormat word);
 };
 
 /// raw = round(v / lsb), half away from zero. Fails with out_of_range when raw does not fit the word.

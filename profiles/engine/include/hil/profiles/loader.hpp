@@ -21,10 +21,11 @@
 namespace hil::profiles {
 
 /// Loads and checks one profile file. Errors name file, line and key. Thread-safe (no shared state).
-[[nodiscard]] std::expected<std::shared_ptr<const Profile>, hil::ConfigError> load_profile(const std::filesystem::path& file);
+[[nodiscard]] std::expected<std::shared_ptr<const Profile>, hil::ConfigError> load_profile(
+    const std::filesystem::path& file);
 /// Loads from YAML text (for tests/fuzzing); `includes` are not followed.
-[[nodiscard]] std::expected<std::shared_ptr<const Profile>, hil::ConfigError> load_profile_text(std::string_view yaml,
-                                                                                                std::string_view name = "<text>");
+[[nodiscard]] std::expected<std::shared_ptr<const Profile>, hil::ConfigError> load_profile_text(
+    std::string_view yaml, std::string_view name = "<text>");
 
 /// Directories searched, in order (existing ones only).
 [[nodiscard]] std::vector<std::filesystem::path> profile_search_path();

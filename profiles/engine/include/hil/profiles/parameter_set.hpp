@@ -32,24 +32,24 @@ namespace hil::profiles {
 struct SetEntry {
   ParamRef ref;
   ParamValue value;
-  int line = 0;       ///< 1-based source line; 0 = not from a file
-  std::string text;   ///< the source text of the value
+  int line = 0;      ///< 1-based source line; 0 = not from a file
+  std::string text;  ///< the source text of the value
 };
 
 /// What is wrong, where: used by the parsers and by validate().
 struct Problem {
-  int line = 0;          ///< 1-based; 0 = not tied to a line (missing parameter, rule over several)
-  std::string param;     ///< concrete id(s): "A106", "MD12, MD11"
-  std::string field;     ///< field name for multi-field parameters
-  std::string value;     ///< the offending value(s) as text
-  std::string rule;      ///< the rule: "range 0.1..50000", "MD12 < MD11 < MD13 < MD14"
-  std::string message;   ///< what it means and what to do
+  int line = 0;         ///< 1-based; 0 = not tied to a line (missing parameter, rule over several)
+  std::string param;    ///< concrete id(s): "A106", "MD12, MD11"
+  std::string field;    ///< field name for multi-field parameters
+  std::string value;    ///< the offending value(s) as text
+  std::string rule;     ///< the rule: "range 0.1..50000", "MD12 < MD11 < MD13 < MD14"
+  std::string message;  ///< what it means and what to do
   /// "set.txt:12: A106 = 60000.000: range 0.100..50000.000: maximum velocity above …"
   [[nodiscard]] std::string describe(std::string_view file = {}) const;
 };
 
 class ParameterSet {
-public:
+ public:
   std::string device;
   std::vector<SetEntry> entries;  ///< in source order; one per concrete id
 
@@ -57,7 +57,7 @@ public:
   /// Inserts or replaces the entry of `e.ref.id()`.
   void set(SetEntry e);
 
-private:
+ private:
   // normalised id → position in `entries`; checked on use, so direct edits of `entries` stay safe
   struct Slot {
     std::size_t pos;
@@ -74,7 +74,7 @@ struct ParseResult {
 };
 
 class ParameterSetParser {
-public:
+ public:
   virtual ~ParameterSetParser() = default;
   /// Pure: text in, set + problems out. Never throws, never stops at the first problem.
   [[nodiscard]] virtual ParseResult parse(std::string_view text) const = 0;

@@ -85,25 +85,25 @@ struct FieldSpec {
   std::string meaning;
   std::string unit;
   FieldType type = FieldType::number;
-  DecimalTextFormat text;        ///< number/choice text template ("+6.3")
-  int hex_digits = 0;            ///< hex: number of digits
+  DecimalTextFormat text;             ///< number/choice text template ("+6.3")
+  int hex_digits = 0;                 ///< hex: number of digits
   std::vector<std::string> io_types;  ///< io_address: allowed letters, e.g. {"I"} or {"Q","M"}
-  std::string fixed_text;        ///< reserved: the text carried
-  std::vector<RangeRule> ranges; ///< first rule whose `when` holds applies
+  std::string fixed_text;             ///< reserved: the text carried
+  std::vector<RangeRule> ranges;      ///< first rule whose `when` holds applies
   std::vector<StepRule> steps;
   std::vector<Choice> choices;
   BitFieldFormat bits;
-  bool binary_text = false;      ///< bits: text form is bits.bits binary digits, MSB first ("00100010")
+  bool binary_text = false;          ///< bits: text form is bits.bits binary digits, MSB first ("00100010")
   std::optional<Encoding> encoding;  ///< overrides the profile's wire encoding
-  FixedPointFormat fixed;        ///< Encoding::fixed
-  int word = -1;                 ///< word-image devices: data word offset of this field
+  FixedPointFormat fixed;            ///< Encoding::fixed
+  int word = -1;                     ///< word-image devices: data word offset of this field
   std::optional<FieldValue> default_value;
-  std::string note;              ///< open point of the manual and the choice made
+  std::string note;  ///< open point of the manual and the choice made
 };
 
 /// One meaning of a parameter; WF 725/726 MDs have several (per control type / encoder).
 struct ParamVariant {
-  Expression when;               ///< empty = always
+  Expression when;  ///< empty = always
   std::string name;
   std::string meaning;
   std::vector<FieldSpec> fields;
@@ -113,16 +113,16 @@ struct ParamVariant {
 };
 
 struct ParamSpec {
-  std::string id;                ///< template id: "Ax06", "MD11", "MD204*", "B002"
-  std::string pattern;           ///< concrete id pattern with "{axis}" ("A{axis}06"); "" = id
-  std::vector<std::string> aliases;  ///< further names resolve() accepts ("fmax" for IP247 "DW5")
-  std::string instance_key;      ///< "axis" when instanced
+  std::string id;                       ///< template id: "Ax06", "MD11", "MD204*", "B002"
+  std::string pattern;                  ///< concrete id pattern with "{axis}" ("A{axis}06"); "" = id
+  std::vector<std::string> aliases;     ///< further names resolve() accepts ("fmax" for IP247 "DW5")
+  std::string instance_key;             ///< "axis" when instanced
   std::vector<std::int64_t> instances;  ///< values of instance_key
-  int number = 0;                ///< number inside its group
-  std::string group;             ///< "axis", "general", "encoder", "MD words", …
-  Expression required;           ///< empty = optional; else must be present when true
+  int number = 0;                       ///< number inside its group
+  std::string group;                    ///< "axis", "general", "encoder", "MD words", …
+  Expression required;                  ///< empty = optional; else must be present when true
   std::vector<ParamVariant> variants;   ///< at least one
-  std::string source;            ///< manual section
+  std::string source;                   ///< manual section
 
   /// Concrete id for an instance ("A106" for axis 1).
   [[nodiscard]] std::string concrete_id(std::optional<std::int64_t> instance) const;
@@ -138,26 +138,26 @@ struct ParamRef {
 struct SettingSpec {
   std::string name;
   std::string meaning;
-  std::vector<ExprValue> values;        ///< allowed values; empty = any
+  std::vector<ExprValue> values;  ///< allowed values; empty = any
   std::optional<ExprValue> default_value;
-  Expression from;                      ///< derived from parameters when they are present
+  Expression from;  ///< derived from parameters when they are present
   std::string note;
 };
 
 struct Constraint {
   std::string id;
   Expression rule;
-  Expression when;             ///< empty = always
-  std::string for_each;        ///< instance key ("axis"): checked once per instance
+  Expression when;       ///< empty = always
+  std::string for_each;  ///< instance key ("axis"): checked once per instance
   std::vector<std::int64_t> instances;
-  std::string message;         ///< what it means and which error the device raises
+  std::string message;  ///< what it means and which error the device raises
   std::string source;
 };
 
 struct Decision {
   std::string topic;
   std::string choice;
-  std::string configurable;    ///< setting/parameter that changes it
+  std::string configurable;  ///< setting/parameter that changes it
 };
 
 /// A descriptive table (I/O map, markers, variables, block layouts): rows of key → text.
@@ -165,20 +165,20 @@ using Table = std::vector<std::map<std::string, std::string>>;
 
 struct WireSpec {
   Encoding encoding = Encoding::text;
-  std::string separator = " ";   ///< between text fields
+  std::string separator = " ";  ///< between text fields
   BcdFormat bcd{8, BcdSign::bit31};
   int binary_bits = 32;
-  bool low_word_first = false;   ///< 32-bit values: low word at the lower address (AMKASYN DD)
+  bool low_word_first = false;  ///< 32-bit values: low word at the lower address (AMKASYN DD)
 };
 
 class Profile {
-public:
-  std::string device;          ///< "clm14"
+ public:
+  std::string device;  ///< "clm14"
   std::string title;
   std::string manual;
   std::string description;
-  std::string text_format;     ///< parameter-set parser name (see parameter_set.hpp)
-  std::string source_file;     ///< YAML it was loaded from
+  std::string text_format;  ///< parameter-set parser name (see parameter_set.hpp)
+  std::string source_file;  ///< YAML it was loaded from
   WireSpec wire;
   std::vector<SettingSpec> settings;
   std::vector<ParamSpec> parameters;
@@ -201,7 +201,7 @@ public:
   /// Builds the id index; called by the loader after filling the members.
   void index();
 
-private:
+ private:
   std::map<std::string, ParamRef, std::less<>> index_;
   std::map<std::string, const ParamSpec*, std::less<>> templates_;
 };

@@ -15,8 +15,10 @@ struct TwosComplementFormat {
 };
 
 /// Encodes `v`; out_of_range when it does not fit (e.g. 2^31 in a signed 32-bit word).
-[[nodiscard]] std::expected<std::uint64_t, CodecError> make_twos_complement(std::int64_t v, const TwosComplementFormat& f);
+[[nodiscard]] std::expected<std::uint64_t, CodecError> make_twos_complement(std::int64_t v,
+                                                                            const TwosComplementFormat& f);
 /// Decodes `word`; syntax error when bits above `bits` are set.
-[[nodiscard]] std::expected<std::int64_t, CodecError> parse_twos_complement(std::uint64_t word, const TwosComplementFormat& f);
+[[nodiscard]] std::expected<std::int64_t, CodecError> parse_twos_complement(std::uint64_t word,
+                                                                            const TwosComplementFormat& f);
 
 }  // namespace hil::profiles

@@ -16,18 +16,17 @@
 
 namespace hil::profiles {
 
-
 /// Value of a name as the rules see it: settings, "<id>" / "<id>.<field>" of the set (or the
 /// default when absent), instance key. `instance` resolves template ids ("Ax06" → "A106").
 class Scope {
-public:
+ public:
   Scope(const Profile& profile, const ParameterSet* set, const Settings& settings,
         std::optional<std::int64_t> instance = std::nullopt, std::string instance_key = "");
   [[nodiscard]] std::optional<ExprValue> lookup(std::string_view name) const;
   [[nodiscard]] Expression::Lookup as_lookup() const;
   [[nodiscard]] Scope with_instance(std::int64_t v, std::string key) const;
 
-private:
+ private:
   const Profile* profile_;
   const ParameterSet* set_;
   std::shared_ptr<const Settings> settings_;  // owned copy: a Scope may outlive the caller's map
@@ -41,8 +40,8 @@ private:
 [[nodiscard]] const ParamVariant* select_variant(const ParamRef& ref, const Scope& scope);
 
 /// Checks one field value against its range/step/choices/type. Empty = fine.
-[[nodiscard]] std::vector<Problem> check_field(const ParamRef& ref, const FieldSpec& field,
-                                               const FieldValue& value, const Scope& scope);
+[[nodiscard]] std::vector<Problem> check_field(const ParamRef& ref, const FieldSpec& field, const FieldValue& value,
+                                               const Scope& scope);
 
 /// Everything wrong with `set` (sorted by line, rules without line last).
 [[nodiscard]] std::vector<Problem> validate(const Profile& profile, const ParameterSet& set,

@@ -16,10 +16,10 @@
 namespace hil::profiles {
 
 struct WireImage {
-  std::string text;                    ///< text form as sent ("03000 10.0", "8002 4537")
-  std::vector<std::uint16_t> words;    ///< word image, high word first (word devices)
-  std::optional<std::uint32_t> bcd;    ///< WF 725/726 "decimal" (BCD) format
-  std::optional<std::uint32_t> binary; ///< WF 725/726 binary (two's complement) format
+  std::string text;                     ///< text form as sent ("03000 10.0", "8002 4537")
+  std::vector<std::uint16_t> words;     ///< word image, high word first (word devices)
+  std::optional<std::uint32_t> bcd;     ///< WF 725/726 "decimal" (BCD) format
+  std::optional<std::uint32_t> binary;  ///< WF 725/726 binary (two's complement) format
   /// Multi-line human form for the CLI.
   [[nodiscard]] std::string describe() const;
 };

@@ -16,7 +16,7 @@
 namespace hil::can {
 
 class AsioBusRunner {
-public:
+ public:
   AsioBusRunner(asio::any_io_executor executor, VirtualBus& bus, const SteadyClock& clock);
   ~AsioBusRunner();
   AsioBusRunner(const AsioBusRunner&) = delete;
@@ -24,7 +24,7 @@ public:
 
   [[nodiscard]] std::uint64_t wakeups() const noexcept { return wakeups_; }
 
-private:
+ private:
   void arm(TimePoint due);
   VirtualBus& bus_;
   const SteadyClock& clock_;

@@ -18,8 +18,8 @@ namespace hil::can {
 struct BusUrl {
   enum class Kind : std::uint8_t { socketcan, socketcand, virtual_bus };
   Kind kind = Kind::socketcan;
-  std::string name;         ///< interface (socketcan), bus on the server (socketcand), bus name (virtual)
-  std::string host;         ///< socketcand only
+  std::string name;  ///< interface (socketcan), bus on the server (socketcand), bus name (virtual)
+  std::string host;  ///< socketcand only
   std::uint16_t port = 29536;
   /// Canonical text form (parse_bus_url(to_string()) gives the same BusUrl).
   [[nodiscard]] std::string to_string() const;

@@ -30,7 +30,9 @@ enum class ParseErrc {
   trailing_garbage,
 };
 [[nodiscard]] const std::error_category& parse_category() noexcept;
-[[nodiscard]] inline std::error_code make_error_code(ParseErrc e) noexcept { return {static_cast<int>(e), parse_category()}; }
+[[nodiscard]] inline std::error_code make_error_code(ParseErrc e) noexcept {
+  return {static_cast<int>(e), parse_category()};
+}
 
 struct LogRecord {
   socketcand::Timestamp time;

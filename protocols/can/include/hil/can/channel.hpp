@@ -17,14 +17,14 @@ namespace hil::can {
 struct ChannelStats {
   std::uint64_t tx_frames = 0;
   std::uint64_t rx_frames = 0;
-  std::uint64_t tx_dropped = 0;     ///< rejected because the transmit queue was full (ENOBUFS)
+  std::uint64_t tx_dropped = 0;  ///< rejected because the transmit queue was full (ENOBUFS)
   std::uint64_t rx_overruns = 0;
   std::uint64_t error_frames = 0;
   bool bus_off = false;
 };
 
 class Channel {
-public:
+ public:
   /// Called for every received frame with its receive time. Runs on the channel's executor:
   /// for the virtual bus inside VirtualBus::deliver(), for SocketCAN on the io_context thread.
   /// Must not block; may call send() (re-entrancy is allowed: the frame is queued).

@@ -16,10 +16,10 @@ enum class BusState : std::uint8_t { error_active, error_warning, error_passive,
 [[nodiscard]] const char* to_string(BusState s) noexcept;
 
 struct ErrorFrameInfo {
-  std::optional<BusState> state;   ///< new state if the frame announces one
-  bool rx_overflow = false;        ///< controller lost received frames
+  std::optional<BusState> state;  ///< new state if the frame announces one
+  bool rx_overflow = false;       ///< controller lost received frames
   bool tx_overflow = false;
-  bool no_ack = false;             ///< nobody acknowledged (alone on the bus / wrong bitrate)
+  bool no_ack = false;  ///< nobody acknowledged (alone on the bus / wrong bitrate)
   bool tx_timeout = false;
   bool lost_arbitration = false;
   bool protocol_violation = false;

@@ -10,11 +10,11 @@
 namespace hil::can {
 
 struct Frame {
-  std::uint32_t id = 0;     ///< 11-bit (standard) or 29-bit (extended) identifier; error class for error frames
-  bool extended = false;    ///< 29-bit identifier
-  bool rtr = false;         ///< remote transmission request (no data, dlc = requested length)
-  bool error = false;       ///< error frame (SocketCAN CAN_ERR_FLAG); `id` holds CAN_ERR_* class bits
-  std::uint8_t dlc = 0;     ///< 0..8
+  std::uint32_t id = 0;   ///< 11-bit (standard) or 29-bit (extended) identifier; error class for error frames
+  bool extended = false;  ///< 29-bit identifier
+  bool rtr = false;       ///< remote transmission request (no data, dlc = requested length)
+  bool error = false;     ///< error frame (SocketCAN CAN_ERR_FLAG); `id` holds CAN_ERR_* class bits
+  std::uint8_t dlc = 0;   ///< 0..8
   std::array<std::uint8_t, 8> data{};
 
   [[nodiscard]] std::span<const std::uint8_t> payload() const noexcept {
@@ -36,8 +36,8 @@ inline constexpr std::uint32_t err_flag = 0x20000000u;
 namespace error_class {
 inline constexpr std::uint32_t tx_timeout = 0x001;
 inline constexpr std::uint32_t lost_arbitration = 0x002;
-inline constexpr std::uint32_t controller = 0x004;    ///< data[1] holds CAN_ERR_CRTL_* bits
-inline constexpr std::uint32_t protocol = 0x008;      ///< data[2..3] type/location
+inline constexpr std::uint32_t controller = 0x004;  ///< data[1] holds CAN_ERR_CRTL_* bits
+inline constexpr std::uint32_t protocol = 0x008;    ///< data[2..3] type/location
 inline constexpr std::uint32_t transceiver = 0x010;
 inline constexpr std::uint32_t no_ack = 0x020;
 inline constexpr std::uint32_t bus_off = 0x040;

@@ -22,13 +22,13 @@ namespace hil::can {
 /// Named in-process buses for `virtual:NAME` URLs. Not a singleton: the owner (a run, a test, a
 /// CLI command) creates one and passes it to make_channel. Thread: the buses' thread.
 class VirtualBusRegistry {
-public:
+ public:
   explicit VirtualBusRegistry(const Clock& clock, VirtualBusOptions options = {}) : clock_(clock), options_(options) {}
   /// The bus called `name`, created on first use.
   VirtualBus& get(const std::string& name);
   [[nodiscard]] VirtualBus* find(const std::string& name) noexcept;
 
-private:
+ private:
   const Clock& clock_;
   VirtualBusOptions options_;
   std::map<std::string, std::unique_ptr<VirtualBus>, std::less<>> buses_;
@@ -47,7 +47,9 @@ struct ChannelRequest {
 };
 
 /// Parse `url` and open it. Blocks up to a few seconds for the socketcand handshake.
-[[nodiscard]] std::expected<std::unique_ptr<Channel>, BusError> make_channel(std::string_view url, const ChannelRequest& request);
-[[nodiscard]] std::expected<std::unique_ptr<Channel>, BusError> make_channel(const BusUrl& url, const ChannelRequest& request);
+[[nodiscard]] std::expected<std::unique_ptr<Channel>, BusError> make_channel(std::string_view url,
+                                                                             const ChannelRequest& request);
+[[nodiscard]] std::expected<std::unique_ptr<Channel>, BusError> make_channel(const BusUrl& url,
+                                                                             const ChannelRequest& request);
 
 }  // namespace hil::can

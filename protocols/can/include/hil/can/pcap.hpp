@@ -23,7 +23,7 @@ inline constexpr std::size_t frame_size = 16;
 
 [[nodiscard]] std::array<std::uint8_t, global_header_size> make_global_header() noexcept;
 /// Record header plus frame bytes (record_header_size + frame_size).
-[[nodiscard]] std::array<std::uint8_t, record_header_size + frame_size> make_record(const Frame& frame,
-                                                                                   socketcand::Timestamp time) noexcept;
+[[nodiscard]] std::array<std::uint8_t, record_header_size + frame_size> make_record(
+    const Frame& frame, socketcand::Timestamp time) noexcept;
 
 }  // namespace hil::can::pcap

@@ -27,7 +27,7 @@
 namespace hil::can::socketcand {
 
 inline constexpr std::uint16_t default_port = 29536;
-inline constexpr std::size_t max_bus_name = 16;      ///< socketcand: bus names <= 16 chars
+inline constexpr std::size_t max_bus_name = 16;       ///< socketcand: bus names <= 16 chars
 inline constexpr std::size_t max_element_size = 256;  ///< longer elements are garbage
 
 enum class ParseErrc {
@@ -36,12 +36,12 @@ enum class ParseErrc {
   unknown_command,
   missing_argument,
   extra_argument,
-  bad_id,              ///< not hex, too long, or out of the 11/29-bit range
-  bad_dlc,             ///< not a decimal 0..8
-  bad_data,            ///< not hex bytes, or more than 8 bytes, or count != dlc
-  bad_timestamp,       ///< not SECONDS.FRACTION
-  bad_bus_name,        ///< empty or longer than 16 characters
-  element_too_long,    ///< no `>` within max_element_size characters
+  bad_id,            ///< not hex, too long, or out of the 11/29-bit range
+  bad_dlc,           ///< not a decimal 0..8
+  bad_data,          ///< not hex bytes, or more than 8 bytes, or count != dlc
+  bad_timestamp,     ///< not SECONDS.FRACTION
+  bad_bus_name,      ///< empty or longer than 16 characters
+  element_too_long,  ///< no `>` within max_element_size characters
 };
 [[nodiscard]] const std::error_category& parse_category() noexcept;
 [[nodiscard]] inline std::error_code make_error_code(ParseErrc e) noexcept {
@@ -57,9 +57,15 @@ struct Timestamp {
 
 enum class Mode : std::uint8_t { bcm, raw, control, isotp };
 
-struct Hi { friend bool operator==(const Hi&, const Hi&) = default; };
-struct Ok { friend bool operator==(const Ok&, const Ok&) = default; };
-struct Echo { friend bool operator==(const Echo&, const Echo&) = default; };
+struct Hi {
+  friend bool operator==(const Hi&, const Hi&) = default;
+};
+struct Ok {
+  friend bool operator==(const Ok&, const Ok&) = default;
+};
+struct Echo {
+  friend bool operator==(const Echo&, const Echo&) = default;
+};
 struct Open {
   std::string bus;
   friend bool operator==(const Open&, const Open&) = default;
@@ -118,7 +124,7 @@ inline constexpr std::string_view ok_element = "< ok >";
 /// unterminated element restarts the element (the earlier part is garbage); an element longer
 /// than max_element_size is discarded and reported once. Thread: single owner.
 class ElementSplitter {
-public:
+ public:
   struct Item {
     std::string_view element;  ///< valid until the next feed()/next(); empty when `error` is set
     std::error_code error;     ///< element_too_long
@@ -130,7 +136,7 @@ public:
   [[nodiscard]] std::size_t skipped_bytes() const noexcept { return skipped_; }
   [[nodiscard]] std::size_t buffered() const noexcept { return buf_.size() - pos_; }
 
-private:
+ private:
   std::string buf_;
   std::size_t pos_ = 0;
   std::size_t skipped_ = 0;

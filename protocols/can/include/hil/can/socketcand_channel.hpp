@@ -28,7 +28,7 @@ struct ClientOptions {
 };
 
 class SocketcandChannel final : public Channel {
-public:
+ public:
   /// Connect, expect `< hi >`, `< open BUS >`, `< rawmode >`. Blocks the calling thread for at
   /// most options.handshake_timeout (the handshake runs on a private io_context), so call it at
   /// configuration time, not from the executor's own thread while it must serve others.
@@ -51,7 +51,7 @@ public:
 
   struct Impl;
 
-private:
+ private:
   SocketcandChannel(std::shared_ptr<Impl> impl, std::string name);
   std::shared_ptr<Impl> impl_;
   std::string name_;

@@ -44,7 +44,7 @@ struct ServerOptions {
 
 struct ServerStats {
   std::uint64_t accepted = 0;
-  std::uint64_t refused = 0;              ///< over max_clients
+  std::uint64_t refused = 0;  ///< over max_clients
   std::uint64_t active = 0;
   std::uint64_t bus_open_failures = 0;
   std::uint64_t protocol_errors = 0;      ///< malformed/unknown/overlong elements answered with < error >
@@ -52,12 +52,12 @@ struct ServerStats {
   std::uint64_t send_failures = 0;        ///< Channel::send refused (bus-off, queue full)
   std::uint64_t frames_to_clients = 0;
   std::uint64_t dropped_slow_client = 0;
-  std::uint64_t rtr_not_forwarded = 0;    ///< socketcand raw mode has no RTR form
-  std::uint64_t dropped_during_grace = 0; ///< see ServerOptions::raw_mode_grace
+  std::uint64_t rtr_not_forwarded = 0;     ///< socketcand raw mode has no RTR form
+  std::uint64_t dropped_during_grace = 0;  ///< see ServerOptions::raw_mode_grace
 };
 
 class Server {
-public:
+ public:
   Server(asio::any_io_executor executor, const Clock& clock, BusOpener opener, ServerOptions options = {});
   ~Server();
   Server(const Server&) = delete;
@@ -70,7 +70,7 @@ public:
   void close();
   [[nodiscard]] const ServerStats& stats() const noexcept;
 
-private:
+ private:
   struct Shared;
   class Session;
   void accept();

@@ -44,31 +44,31 @@ namespace hil::can {
 class VirtualChannel;
 
 struct VirtualBusOptions {
-  Duration latency{0};                          ///< send -> delivery delay for every frame
-  std::size_t max_in_flight = 1u << 16;         ///< bus-wide bound on queued frames (no_buffer_space beyond)
+  Duration latency{0};                             ///< send -> delivery delay for every frame
+  std::size_t max_in_flight = 1u << 16;            ///< bus-wide bound on queued frames (no_buffer_space beyond)
   std::size_t max_deliveries_per_call = 1u << 20;  ///< frames one deliver() call may hand out
 };
 
 struct ParticipantOptions {
-  bool receive_own = false;                 ///< loopback of own frames (CAN_RAW_RECV_OWN_MSGS)
-  FilterSet filters{};                      ///< CAN_RAW_FILTER / CAN_RAW_ERR_FILTER semantics
-  std::size_t tx_queue_capacity = 4096;     ///< this participant's frames in flight (txqueuelen)
+  bool receive_own = false;              ///< loopback of own frames (CAN_RAW_RECV_OWN_MSGS)
+  FilterSet filters{};                   ///< CAN_RAW_FILTER / CAN_RAW_ERR_FILTER semantics
+  std::size_t tx_queue_capacity = 4096;  ///< this participant's frames in flight (txqueuelen)
 };
 
 /// Bus-wide counters (per-participant ones are Channel::stats()).
 struct VirtualBusStats {
-  std::uint64_t sent = 0;              ///< frames accepted by send()
-  std::uint64_t delivered = 0;         ///< frames taken off the queue (each fans out to N receivers)
-  std::uint64_t receptions = 0;        ///< handler calls
-  std::uint64_t filtered = 0;          ///< receptions suppressed by a receiver's filters
-  std::uint64_t rejected_full = 0;     ///< send() refused: participant or bus queue full
-  std::uint64_t rejected_bus_off = 0;  ///< send() refused: sender or bus in bus-off
-  std::uint64_t lost_bus_off = 0;      ///< receptions lost because the receiver was bus-off
-  std::uint64_t dropped = 0;           ///< fault: dropped
-  std::uint64_t delayed = 0;           ///< fault: delayed
-  std::uint64_t duplicated = 0;        ///< fault: extra copies queued
-  std::uint64_t reordered = 0;         ///< fault: held behind the next frame
-  std::uint64_t corrupted = 0;         ///< fault: payload/id altered
+  std::uint64_t sent = 0;                ///< frames accepted by send()
+  std::uint64_t delivered = 0;           ///< frames taken off the queue (each fans out to N receivers)
+  std::uint64_t receptions = 0;          ///< handler calls
+  std::uint64_t filtered = 0;            ///< receptions suppressed by a receiver's filters
+  std::uint64_t rejected_full = 0;       ///< send() refused: participant or bus queue full
+  std::uint64_t rejected_bus_off = 0;    ///< send() refused: sender or bus in bus-off
+  std::uint64_t lost_bus_off = 0;        ///< receptions lost because the receiver was bus-off
+  std::uint64_t dropped = 0;             ///< fault: dropped
+  std::uint64_t delayed = 0;             ///< fault: delayed
+  std::uint64_t duplicated = 0;          ///< fault: extra copies queued
+  std::uint64_t reordered = 0;           ///< fault: held behind the next frame
+  std::uint64_t corrupted = 0;           ///< fault: payload/id altered
   std::uint64_t deliver_limit_hits = 0;  ///< deliver() calls that stopped at max_deliveries_per_call
 };
 
@@ -94,7 +94,7 @@ struct FrameFault {
 };
 
 class VirtualBus {
-public:
+ public:
   /// `clock` stamps send times; it must outlive the bus. Thread: see the executor contract above.
   explicit VirtualBus(const Clock& clock, std::string name = "vbus", VirtualBusOptions options = {});
   ~VirtualBus();
@@ -141,7 +141,7 @@ public:
   [[nodiscard]] std::size_t participant_count() const noexcept;
   void set_latency(Duration latency) noexcept { options_.latency = latency; }
 
-private:
+ private:
   friend class VirtualChannel;
   static constexpr std::uint32_t broadcast = std::numeric_limits<std::uint32_t>::max();
   struct Pending {
@@ -191,7 +191,7 @@ private:
 
 /// One participant of a VirtualBus. Thread: the bus's thread.
 class VirtualChannel final : public Channel {
-public:
+ public:
   ~VirtualChannel() override;
   VirtualChannel(const VirtualChannel&) = delete;
   VirtualChannel& operator=(const VirtualChannel&) = delete;
@@ -215,7 +215,7 @@ public:
   [[nodiscard]] std::size_t in_flight() const noexcept { return in_flight_; }
   [[nodiscard]] VirtualBus* bus() const noexcept { return bus_; }
 
-private:
+ private:
   friend class VirtualBus;
   VirtualChannel(VirtualBus& bus, std::uint32_t index, std::string name, ParticipantOptions options);
 

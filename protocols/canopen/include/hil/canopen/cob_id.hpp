@@ -24,7 +24,9 @@ inline constexpr std::uint32_t cob_sdo_tx_base = 0x580;  ///< server -> client
 inline constexpr std::uint32_t cob_sdo_rx_base = 0x600;  ///< client -> server
 inline constexpr std::uint32_t cob_heartbeat_base = 0x700;
 
-[[nodiscard]] constexpr bool is_valid_node_id(unsigned id) noexcept { return id >= 1 && id <= 127; }
+[[nodiscard]] constexpr bool is_valid_node_id(unsigned id) noexcept {
+  return id >= 1 && id <= 127;
+}
 
 /// Where services put the frames they produce. Called synchronously from on_frame()/step();
 /// the callee queues or sends the frame and must not re-enter the calling service.

@@ -50,7 +50,11 @@ enum class DataType : std::uint16_t {
 enum class Access : std::uint8_t { ro, wo, rw, rwr, rww, const_ };
 [[nodiscard]] std::optional<Access> access_from_string(std::string_view s) noexcept;  ///< case-insensitive
 [[nodiscard]] std::string_view to_string(Access a) noexcept;
-[[nodiscard]] constexpr bool readable(Access a) noexcept { return a != Access::wo; }
-[[nodiscard]] constexpr bool writable(Access a) noexcept { return a == Access::wo || a == Access::rw || a == Access::rwr || a == Access::rww; }
+[[nodiscard]] constexpr bool readable(Access a) noexcept {
+  return a != Access::wo;
+}
+[[nodiscard]] constexpr bool writable(Access a) noexcept {
+  return a == Access::wo || a == Access::rw || a == Access::rwr || a == Access::rww;
+}
 
 }  // namespace hil::canopen

@@ -49,7 +49,7 @@ struct DeviceDescription {
 /// Parse EDS/DCF text. `node_id` replaces $NODEID (a DCF's own NodeID wins when `node_id` is 0).
 /// ConfigError::key is "[section] Key".
 [[nodiscard]] std::expected<DeviceDescription, ConfigError> parse_eds(std::string_view text, std::string_view file_name,
-                                                                     NodeId node_id);
+                                                                      NodeId node_id);
 [[nodiscard]] std::expected<DeviceDescription, ConfigError> load_eds(const std::filesystem::path& path, NodeId node_id);
 
 /// Evaluate an EDS integer expression: literals (decimal, 0x hex, leading-0 octal, optional

@@ -32,7 +32,7 @@ inline constexpr std::uint8_t manufacturer = 0x80;
 namespace emcy_code {
 inline constexpr std::uint16_t error_reset = 0x0000;
 inline constexpr std::uint16_t can_overrun = 0x8110;
-inline constexpr std::uint16_t heartbeat = 0x8130;  ///< life guard or heartbeat error
+inline constexpr std::uint16_t heartbeat = 0x8130;   ///< life guard or heartbeat error
 inline constexpr std::uint16_t pdo_length = 0x8210;  ///< PDO not processed due to length error
 inline constexpr std::uint16_t pdo_length_exceeded = 0x8220;
 inline constexpr std::uint16_t rpdo_timeout = 0x8250;
@@ -53,7 +53,7 @@ struct EmcyMessage {
 /// EMCY producer with inhibit time (0x1015, multiples of 100 µs): messages raised inside the
 /// inhibit window are queued (bounded, oldest kept) and sent by step().
 class EmcyProducer {
-public:
+ public:
   EmcyProducer(NodeId node, FrameSink sink) : node_(node), sink_(std::move(sink)) {}
   void set_inhibit(Duration inhibit) noexcept { inhibit_ = inhibit; }
   void set_muted(bool muted) noexcept { muted_ = muted; }
@@ -61,7 +61,7 @@ public:
   void step(TimePoint now);
   [[nodiscard]] std::size_t pending() const noexcept { return queue_.size(); }
 
-private:
+ private:
   NodeId node_;
   FrameSink sink_;
   Duration inhibit_{};

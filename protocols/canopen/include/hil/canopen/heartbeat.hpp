@@ -17,7 +17,7 @@ namespace hil::canopen {
 
 /// Produces `7xx#<state>` every producer time (object 0x1017, ms; 0 = off).
 class HeartbeatProducer {
-public:
+ public:
   HeartbeatProducer(NodeId node, FrameSink sink) : node_(node), sink_(std::move(sink)) {}
   /// Change the period (0 disables). The next heartbeat is due one period after `now`.
   void set_period(Duration period, TimePoint now) noexcept;
@@ -27,7 +27,7 @@ public:
   /// Suppress output (fault injection: heartbeat loss) without changing the period.
   void set_muted(bool muted) noexcept { muted_ = muted; }
 
-private:
+ private:
   NodeId node_;
   FrameSink sink_;
   Duration period_{};
@@ -45,7 +45,7 @@ enum class HeartbeatEvent : std::uint8_t {
 /// Heartbeat consumer (object 0x1016). Monitoring of a node starts with its first heartbeat
 /// (a node that never sent one never times out, CiA 301 §7.2.8.3.2.3).
 class HeartbeatConsumer {
-public:
+ public:
   using Handler = std::function<void(NodeId, HeartbeatEvent, NmtState)>;
   explicit HeartbeatConsumer(Handler handler) : handler_(std::move(handler)) {}
 
@@ -65,7 +65,7 @@ public:
   /// Forget the first-heartbeat latch (e.g. after an NMT reset of that node).
   void rearm(NodeId node) noexcept;
 
-private:
+ private:
   struct Entry {
     NodeId node;
     Duration timeout;
@@ -84,7 +84,7 @@ private:
 /// answer for life-time factor (0x100D) x guard time raises `lost`. Legacy drives only:
 /// heartbeat is preferred.
 class NodeGuardMaster {
-public:
+ public:
   enum class Event : std::uint8_t { lost, toggle_error, state, resumed };
   using Handler = std::function<void(NodeId, Event, NmtState)>;
   NodeGuardMaster(FrameSink sink, Handler handler) : sink_(std::move(sink)), handler_(std::move(handler)) {}
@@ -92,7 +92,7 @@ public:
   bool on_frame(const can::Frame& f, TimePoint now);
   void step(TimePoint now);
 
-private:
+ private:
   struct Entry {
     NodeId node;
     Duration guard_time;

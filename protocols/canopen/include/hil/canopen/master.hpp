@@ -35,59 +35,61 @@ namespace hil::canopen {
 /// CiA 302-2 boot-up error status letters (0x1F82 / NMT boot errors); the enum value is the letter.
 enum class BootError : int {
   none = 0,
-  no_response = 'B',        ///< no boot-up / no answer to the 0x1000 upload
-  device_type = 'C',        ///< 0x1000 differs from the configured device type
-  vendor_id = 'D',          ///< 0x1018:1 differs
-  heartbeat = 'E',          ///< heartbeat event during boot
-  configuration = 'J',      ///< configuration download failed
-  product_code = 'M',       ///< 0x1018:2 differs
-  revision = 'N',           ///< 0x1018:3 differs
-  serial = 'O',             ///< 0x1018:4 differs
+  no_response = 'B',    ///< no boot-up / no answer to the 0x1000 upload
+  device_type = 'C',    ///< 0x1000 differs from the configured device type
+  vendor_id = 'D',      ///< 0x1018:1 differs
+  heartbeat = 'E',      ///< heartbeat event during boot
+  configuration = 'J',  ///< configuration download failed
+  product_code = 'M',   ///< 0x1018:2 differs
+  revision = 'N',       ///< 0x1018:3 differs
+  serial = 'O',         ///< 0x1018:4 differs
 };
 const std::error_category& boot_category() noexcept;
-inline std::error_code make_error_code(BootError e) noexcept { return {static_cast<int>(e), boot_category()}; }
+inline std::error_code make_error_code(BootError e) noexcept {
+  return {static_cast<int>(e), boot_category()};
+}
 
 struct NodeConfig {
   NodeId id = 0;
-  std::optional<std::uint32_t> device_type;  ///< expected 0x1000 (0x1F84)
-  std::optional<std::uint32_t> vendor_id;    ///< expected 0x1018:1 (0x1F85)
-  std::optional<std::uint32_t> product_code; ///< 0x1018:2 (0x1F86)
-  std::optional<std::uint32_t> revision;     ///< 0x1018:3 (0x1F87)
-  std::optional<std::uint32_t> serial;       ///< 0x1018:4 (0x1F88)
-  std::vector<ParameterValue> configuration; ///< SDO downloads in order (DCF ParameterValues, PDO remap)
-  Duration heartbeat_consumer{};             ///< monitor the node's heartbeat (0 = off)
-  bool reset_communication = true;           ///< send NMT reset communication and wait for boot-up first
-  bool start = true;                         ///< NMT start after a successful boot
+  std::optional<std::uint32_t> device_type;   ///< expected 0x1000 (0x1F84)
+  std::optional<std::uint32_t> vendor_id;     ///< expected 0x1018:1 (0x1F85)
+  std::optional<std::uint32_t> product_code;  ///< 0x1018:2 (0x1F86)
+  std::optional<std::uint32_t> revision;      ///< 0x1018:3 (0x1F87)
+  std::optional<std::uint32_t> serial;        ///< 0x1018:4 (0x1F88)
+  std::vector<ParameterValue> configuration;  ///< SDO downloads in order (DCF ParameterValues, PDO remap)
+  Duration heartbeat_consumer{};              ///< monitor the node's heartbeat (0 = off)
+  bool reset_communication = true;            ///< send NMT reset communication and wait for boot-up first
+  bool start = true;                          ///< NMT start after a successful boot
   /// Image of the node's OD for PDO exchange (usually from its EDS). Empty = no PDOs.
   ObjectDictionary image;
-  std::vector<PdoConfig> rx_pdos;            ///< node TPDOs the master receives (mapping into `image`)
-  std::vector<PdoConfig> tx_pdos;            ///< node RPDOs the master sends (from `image`)
+  std::vector<PdoConfig> rx_pdos;  ///< node TPDOs the master receives (mapping into `image`)
+  std::vector<PdoConfig> tx_pdos;  ///< node RPDOs the master sends (from `image`)
 };
 
 struct MasterOptions {
-  NodeId node_id = 0;                         ///< the master's own node-ID (0 = none: no heartbeat)
-  Duration heartbeat_period{};                ///< master heartbeat (nodes may monitor it)
-  Duration sync_period{};                     ///< 0 = no SYNC
-  std::uint8_t sync_overflow = 0;             ///< 0x1019 of the master
+  NodeId node_id = 0;              ///< the master's own node-ID (0 = none: no heartbeat)
+  Duration heartbeat_period{};     ///< master heartbeat (nodes may monitor it)
+  Duration sync_period{};          ///< 0 = no SYNC
+  std::uint8_t sync_overflow = 0;  ///< 0x1019 of the master
   SdoClientOptions sdo{};
   Duration boot_timeout{std::chrono::seconds(2)};  ///< wait for boot-up after reset communication
-  int boot_retries = 2;                       ///< extra reset-communication attempts without boot-up
+  int boot_retries = 2;                            ///< extra reset-communication attempts without boot-up
 };
 
 enum class NodeBootState : std::uint8_t { idle, waiting_boot_up, identifying, configuring, started, failed };
 
 struct NodeStatus {
   NodeBootState boot = NodeBootState::idle;
-  std::error_code boot_error;       ///< BootError, with the SDO abort in `detail` when one caused it
+  std::error_code boot_error;  ///< BootError, with the SDO abort in `detail` when one caused it
   std::string detail;
-  std::optional<NmtState> nmt;      ///< last state seen in a heartbeat
+  std::optional<NmtState> nmt;  ///< last state seen in a heartbeat
   bool heartbeat_lost = false;
-  std::uint64_t rpdos = 0;          ///< PDOs received from the node
+  std::uint64_t rpdos = 0;  ///< PDOs received from the node
   std::optional<TimePoint> last_rpdo;
 };
 
 class Master {
-public:
+ public:
   Master(FrameSink sink, MasterOptions options = {});
   Master(const Master&) = delete;
   Master& operator=(const Master&) = delete;
@@ -119,7 +121,7 @@ public:
   /// Right after a SYNC was sent (before the synchronous TPDOs): update set-points here.
   std::function<void(TimePoint)> on_sync;
 
-private:
+ private:
   struct Node {
     NodeConfig config;
     NodeStatus status;
@@ -150,4 +152,5 @@ private:
 
 }  // namespace hil::canopen
 
-template <> struct std::is_error_code_enum<hil::canopen::BootError> : std::true_type {};
+template <>
+struct std::is_error_code_enum<hil::canopen::BootError> : std::true_type {};

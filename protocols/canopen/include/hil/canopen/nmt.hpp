@@ -55,7 +55,7 @@ struct NmtRequest {
 struct ErrorControlMessage {
   NodeId node;
   NmtState state;
-  bool toggle;   ///< bit 7 (guarding responses only; false in heartbeats)
+  bool toggle;  ///< bit 7 (guarding responses only; false in heartbeats)
 };
 /// A data frame on 0x701..0x77F with DLC >= 1 and a known state; nullopt otherwise.
 [[nodiscard]] std::optional<ErrorControlMessage> parse_error_control(const can::Frame& f) noexcept;

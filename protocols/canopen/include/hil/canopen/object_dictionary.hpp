@@ -30,8 +30,8 @@ struct Variable {
   DataType type = DataType::unsigned8;
   Access access = Access::rw;
   bool pdo_mappable = false;
-  std::vector<std::uint8_t> value;          ///< wire bytes (LE); fixed types hold exactly data_type_size()
-  std::optional<std::int64_t> low, high;    ///< inclusive limits for integer types (EDS LowLimit/HighLimit)
+  std::vector<std::uint8_t> value;        ///< wire bytes (LE); fixed types hold exactly data_type_size()
+  std::optional<std::int64_t> low, high;  ///< inclusive limits for integer types (EDS LowLimit/HighLimit)
 
   [[nodiscard]] std::uint32_t key() const noexcept { return (std::uint32_t{index} << 8) | sub; }
   /// Value as a signed/unsigned integer (sign-extended for signed types); 0 for non-integers.
@@ -45,7 +45,7 @@ void encode_int(std::int64_t v, std::size_t size, std::uint8_t* out) noexcept;
 [[nodiscard]] std::int64_t decode_int(std::span<const std::uint8_t> bytes, bool sign) noexcept;
 
 class ObjectDictionary {
-public:
+ public:
   /// Checks an SDO write of `bytes` to `var` before it is stored; return SdoAbort::none to accept.
   using Validator = std::function<SdoAbort(const Variable& var, std::span<const std::uint8_t> bytes)>;
   /// Told after a value changed through write() or write_mapped().
@@ -66,7 +66,8 @@ public:
   [[nodiscard]] const std::map<std::uint32_t, Variable>& variables() const noexcept { return vars_; }
 
   /// SDO upload: the value, or no_object / no_sub_index / write_only.
-  [[nodiscard]] std::expected<std::span<const std::uint8_t>, SdoAbort> read(std::uint16_t index, std::uint8_t sub) const;
+  [[nodiscard]] std::expected<std::span<const std::uint8_t>, SdoAbort> read(std::uint16_t index,
+                                                                            std::uint8_t sub) const;
   /// SDO download: access, length (type_mismatch / length_too_high / length_too_low), limits
   /// (value_too_high / value_too_low), then the index's validator; stores and notifies on success.
   SdoAbort write(std::uint16_t index, std::uint8_t sub, std::span<const std::uint8_t> bytes);
@@ -86,7 +87,7 @@ public:
   void set_max_value_size(std::size_t n) noexcept { max_value_size_ = n; }
   [[nodiscard]] std::size_t max_value_size() const noexcept { return max_value_size_; }
 
-private:
+ private:
   void notify(const Variable& v) const;
   void rebuild_index();
   std::map<std::uint32_t, Variable> vars_;

@@ -24,9 +24,9 @@
 
 namespace hil::canopen {
 
-inline constexpr std::uint32_t pdo_cob_invalid = 0x80000000u;  ///< COB-ID bit 31: PDO does not exist / not valid
-inline constexpr std::uint32_t pdo_cob_no_rtr = 0x40000000u;   ///< bit 30: no RTR allowed
-inline constexpr std::uint32_t pdo_cob_extended = 0x20000000u; ///< bit 29: 29-bit identifier
+inline constexpr std::uint32_t pdo_cob_invalid = 0x80000000u;   ///< COB-ID bit 31: PDO does not exist / not valid
+inline constexpr std::uint32_t pdo_cob_no_rtr = 0x40000000u;    ///< bit 30: no RTR allowed
+inline constexpr std::uint32_t pdo_cob_extended = 0x20000000u;  ///< bit 29: 29-bit identifier
 
 struct PdoMappingEntry {
   std::uint16_t index = 0;
@@ -56,7 +56,7 @@ using PdoErrorHandler = std::function<void(std::uint16_t emcy_code, std::uint32_
 using RpdoHandler = std::function<void(std::uint32_t cob_id, TimePoint now)>;
 
 class PdoEngine {
-public:
+ public:
   PdoEngine(ObjectDictionary& od, FrameSink sink);
 
   /// Slave: build all PDOs from 0x1400..0x15FF / 0x1600.. / 0x1800.. / 0x1A00.. and install the
@@ -95,10 +95,10 @@ public:
 
   /// Check a mapping against `od` (CiA 301 rules); `receive` = RPDO (objects must be writable).
   /// `check_access` false: a master's image of a remote node (directions are mirrored there).
-  [[nodiscard]] static SdoAbort check_mapping(const ObjectDictionary& od, const std::vector<PdoMappingEntry>& m, bool receive,
-                                              bool check_access = true);
+  [[nodiscard]] static SdoAbort check_mapping(const ObjectDictionary& od, const std::vector<PdoMappingEntry>& m,
+                                              bool receive, bool check_access = true);
 
-private:
+ private:
   struct Slot {
     Variable* var = nullptr;  ///< nullptr: dummy entry (skipped bytes)
     std::size_t bytes = 0;

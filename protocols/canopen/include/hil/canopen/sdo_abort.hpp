@@ -11,23 +11,23 @@ namespace hil::canopen {
 
 enum class SdoAbort : std::uint32_t {
   none = 0,
-  toggle_bit = 0x05030000,            ///< toggle bit not alternated
-  timeout = 0x05040000,               ///< SDO protocol timed out
-  command_specifier = 0x05040001,     ///< client/server command specifier not valid or unknown
-  block_size = 0x05040002,            ///< invalid block size (block mode only)
-  sequence_number = 0x05040003,       ///< invalid sequence number (block mode only)
-  crc = 0x05040004,                   ///< CRC error (block mode only)
+  toggle_bit = 0x05030000,         ///< toggle bit not alternated
+  timeout = 0x05040000,            ///< SDO protocol timed out
+  command_specifier = 0x05040001,  ///< client/server command specifier not valid or unknown
+  block_size = 0x05040002,         ///< invalid block size (block mode only)
+  sequence_number = 0x05040003,    ///< invalid sequence number (block mode only)
+  crc = 0x05040004,                ///< CRC error (block mode only)
   out_of_memory = 0x05040005,
   unsupported_access = 0x06010000,
-  write_only = 0x06010001,            ///< attempt to read a write-only object
-  read_only = 0x06010002,             ///< attempt to write a read-only object
-  no_object = 0x06020000,             ///< object does not exist in the object dictionary
-  not_mappable = 0x06040041,          ///< object cannot be mapped to the PDO
-  pdo_length = 0x06040042,            ///< number and length of mapped objects exceed PDO length
+  write_only = 0x06010001,    ///< attempt to read a write-only object
+  read_only = 0x06010002,     ///< attempt to write a read-only object
+  no_object = 0x06020000,     ///< object does not exist in the object dictionary
+  not_mappable = 0x06040041,  ///< object cannot be mapped to the PDO
+  pdo_length = 0x06040042,    ///< number and length of mapped objects exceed PDO length
   parameter_incompatible = 0x06040043,
   internal_incompatible = 0x06040047,
   hardware = 0x06060000,
-  type_mismatch = 0x06070010,         ///< data type does not match, length of service parameter does not match
+  type_mismatch = 0x06070010,  ///< data type does not match, length of service parameter does not match
   length_too_high = 0x06070012,
   length_too_low = 0x06070013,
   no_sub_index = 0x06090011,
@@ -57,4 +57,5 @@ inline std::error_code make_error_code(SdoAbort a) noexcept {
 
 }  // namespace hil::canopen
 
-template <> struct std::is_error_code_enum<hil::canopen::SdoAbort> : std::true_type {};
+template <>
+struct std::is_error_code_enum<hil::canopen::SdoAbort> : std::true_type {};

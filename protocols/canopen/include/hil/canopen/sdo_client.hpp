@@ -38,7 +38,7 @@ using SdoCompletion = std::function<void(std::error_code ec, std::vector<std::ui
 using SdoProgress = std::function<void(std::size_t done, std::size_t total)>;
 
 class SdoClient {
-public:
+ public:
   SdoClient(NodeId server, FrameSink sink, SdoClientOptions options = {});
 
   void async_upload(std::uint16_t index, std::uint8_t sub, TimePoint now, SdoCompletion done);
@@ -58,7 +58,7 @@ public:
   void set_progress(SdoProgress p) { progress_ = std::move(p); }
   [[nodiscard]] NodeId server() const noexcept { return node_; }
 
-private:
+ private:
   enum class Phase : std::uint8_t {
     upload_initiate,
     upload_segment,

@@ -23,7 +23,7 @@ struct SdoServerOptions {
 };
 
 class SdoServer {
-public:
+ public:
   SdoServer(ObjectDictionary& od, NodeId node, FrameSink sink, SdoServerOptions options = {});
 
   /// Handle a frame; returns true when it was addressed to this server (COB-ID 0x600+node by
@@ -32,7 +32,10 @@ public:
   /// Transfer timeouts and delayed responses.
   void step(TimePoint now);
   /// Change the COB-IDs (object 0x1200 sub 1/2).
-  void set_cob_ids(std::uint32_t rx, std::uint32_t tx) noexcept { rx_cob_ = rx; tx_cob_ = tx; }
+  void set_cob_ids(std::uint32_t rx, std::uint32_t tx) noexcept {
+    rx_cob_ = rx;
+    tx_cob_ = tx;
+  }
   void set_node(NodeId node) noexcept;
   [[nodiscard]] bool busy() const noexcept { return state_ != State::idle; }
 
@@ -40,7 +43,7 @@ public:
   void set_response_delay(Duration delay) noexcept { delay_ = delay; }
   void set_muted(bool muted) noexcept { muted_ = muted; }
 
-private:
+ private:
   enum class State : std::uint8_t {
     idle,
     download_segment,

@@ -20,7 +20,7 @@
 namespace hil::canopen {
 
 class Slave {
-public:
+ public:
   /// `od` is copied as the power-on defaults for NMT reset node / reset communication.
   Slave(ObjectDictionary od, NodeId node, FrameSink sink, SdoServerOptions sdo = {});
   Slave(const Slave&) = delete;
@@ -54,7 +54,7 @@ public:
     heartbeat_.set_muted(m);
   }
 
-private:
+ private:
   void enter(NmtState s);
   void reset(bool application, TimePoint now);
   void apply_comm_parameters(TimePoint now);

@@ -23,7 +23,7 @@ struct SyncMessage {
 /// SYNC producer: period (0x1006, µs) and counter overflow (0x1019). step(now) emits SYNC frames
 /// at now >= due, keeping the phase (due += period); missed periods are skipped, not burst.
 class SyncProducer {
-public:
+ public:
   explicit SyncProducer(FrameSink sink) : sink_(std::move(sink)) {}
   /// `overflow` 0 = no counter; 1 and 241..255 are reserved and treated as 0... per CiA 301
   /// only 2..240 enable the counter.
@@ -34,7 +34,7 @@ public:
   [[nodiscard]] std::uint8_t last_counter() const noexcept { return counter_; }
   [[nodiscard]] TimePoint next_due() const noexcept { return next_; }
 
-private:
+ private:
   FrameSink sink_;
   Duration period_{};
   std::uint8_t overflow_ = 0;

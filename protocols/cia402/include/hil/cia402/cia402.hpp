@@ -79,7 +79,8 @@ inline constexpr std::uint16_t state_mask = 0x006F;
 /// `fault_reset_edge` = bit 7 rose since the previous controlword). Transitions 0/1 (power-up),
 /// 13/14 (fault) and the automatic end of a quick stop are driven by the device itself.
 /// `quick_stop_stays` = quick-stop option code 5..8 (stay in Quick Stop Active, transition 16 allowed).
-[[nodiscard]] DriveState next_state(DriveState s, std::uint16_t cw, bool fault_reset_edge, bool quick_stop_stays) noexcept;
+[[nodiscard]] DriveState next_state(DriveState s, std::uint16_t cw, bool fault_reset_edge,
+                                    bool quick_stop_stays) noexcept;
 
 /// Master side: the controlword (state bits only) that moves a drive in `s` one transition
 /// toward `goal` (operation_enabled, switch_on_disabled or quick_stop_active). For a fault

@@ -10,7 +10,7 @@
 namespace hil::gpio {
 
 class EdgeSink {
-public:
+ public:
   virtual ~EdgeSink() = default;
   /// Take a time-ordered batch. Motion thread; non-blocking; never throws.
   virtual void output(std::span<const Edge> edges) noexcept = 0;

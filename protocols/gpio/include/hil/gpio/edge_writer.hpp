@@ -26,9 +26,9 @@
 namespace hil::gpio {
 
 struct EdgeWriterOptions {
-  Duration spin_window{std::chrono::microseconds(200)};  ///< spin (not sleep) this close to an edge
-  Duration late_threshold{std::chrono::microseconds(50)}; ///< error above this counts as late
-  Duration resync_gap{std::chrono::milliseconds(1)};      ///< gaps at least this long absorb slip
+  Duration spin_window{std::chrono::microseconds(200)};    ///< spin (not sleep) this close to an edge
+  Duration late_threshold{std::chrono::microseconds(50)};  ///< error above this counts as late
+  Duration resync_gap{std::chrono::milliseconds(1)};       ///< gaps at least this long absorb slip
   int realtime_priority = 0;  ///< AsyncEdgeWriter: SCHED_FIFO priority for its thread (0 = normal scheduling)
 };
 
@@ -36,12 +36,12 @@ struct EdgeWriterOptions {
 struct EdgeWriterStats {
   static constexpr std::size_t buckets = 16;  ///< bucket i: error < 2^i µs (last: everything above)
   std::uint64_t edges = 0;
-  std::uint64_t late = 0;              ///< edges whose lateness vs. the schedule exceeded late_threshold
-  std::uint64_t io_errors = 0;         ///< set_value failures (edge still counted, level unknown)
+  std::uint64_t late = 0;       ///< edges whose lateness vs. the schedule exceeded late_threshold
+  std::uint64_t io_errors = 0;  ///< set_value failures (edge still counted, level unknown)
   std::int64_t max_error_ns = 0;
   std::int64_t sum_error_ns = 0;
-  std::int64_t max_slip_ns = 0;        ///< largest shift of the schedule caused by late edges
-  std::int64_t slip_ns = 0;            ///< current shift
+  std::int64_t max_slip_ns = 0;  ///< largest shift of the schedule caused by late edges
+  std::int64_t slip_ns = 0;      ///< current shift
   std::array<std::uint64_t, buckets> histogram{};
 
   [[nodiscard]] double mean_error_ns() const noexcept {
@@ -55,7 +55,7 @@ struct EdgeWriterStats {
 /// Synchronous writer. `write` blocks until the last edge of the batch is out.
 /// Thread: one thread at a time; uses real time only (SteadyClock), never a VirtualClock.
 class EdgeWriter {
-public:
+ public:
   EdgeWriter(LineBank& lines, const SteadyClock& clock, EdgeWriterOptions options = {}) noexcept
       : lines_(lines), clock_(clock), options_(options) {}
 
@@ -64,7 +64,7 @@ public:
   [[nodiscard]] const EdgeWriterStats& stats() const noexcept { return stats_; }
   void reset_stats() noexcept { stats_ = {}; }
 
-private:
+ private:
   LineBank& lines_;
   const SteadyClock& clock_;
   EdgeWriterOptions options_;
@@ -76,7 +76,7 @@ private:
 /// Call drain() before destruction: the destructor stops after the batch in progress.
 /// Thread: submit/stats/drain from any thread; the lines are touched only by the writer thread.
 class AsyncEdgeWriter final : public EdgeSink {
-public:
+ public:
   AsyncEdgeWriter(LineBank& lines, const SteadyClock& clock, EdgeWriterOptions options = {});
   ~AsyncEdgeWriter() override;
   AsyncEdgeWriter(const AsyncEdgeWriter&) = delete;
@@ -94,7 +94,7 @@ public:
   /// Result of the SCHED_FIFO request (empty when not asked or granted; EPERM without CAP_SYS_NICE).
   [[nodiscard]] std::error_code realtime_error() const;
 
-private:
+ private:
   void run();
   EdgeWriter writer_;
   mutable std::mutex mutex_;

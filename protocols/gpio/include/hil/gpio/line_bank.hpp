@@ -11,7 +11,7 @@
 namespace hil::gpio {
 
 class LineBank {
-public:
+ public:
   virtual ~LineBank() = default;
 
   [[nodiscard]] virtual std::size_t size() const noexcept = 0;

@@ -19,13 +19,13 @@ enum class Bias : std::uint8_t { as_is, disabled, pull_up, pull_down };
 
 /// One line: by chip offset, or by line name (looked up on the chip at open time).
 struct LineSpec {
-  std::string role;                  ///< what the line is for ("step", "ready"); used in messages
-  std::optional<unsigned> offset;    ///< chip offset; exactly one of offset/name is set
-  std::string name;                  ///< line name as the kernel reports it (gpioinfo)
+  std::string role;                ///< what the line is for ("step", "ready"); used in messages
+  std::optional<unsigned> offset;  ///< chip offset; exactly one of offset/name is set
+  std::string name;                ///< line name as the kernel reports it (gpioinfo)
   LineDirection direction = LineDirection::output;
-  bool active_low = false;           ///< the backend inverts: logical 1 = physical low
+  bool active_low = false;  ///< the backend inverts: logical 1 = physical low
   Bias bias = Bias::as_is;
-  bool initial = false;              ///< outputs: logical level at request time
+  bool initial = false;  ///< outputs: logical level at request time
 };
 
 }  // namespace hil::gpio

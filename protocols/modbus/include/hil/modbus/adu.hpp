@@ -15,9 +15,9 @@ namespace hil::modbus {
 inline constexpr std::size_t kMbapSize = 7;
 inline constexpr std::size_t kMaxPduSize = 253;
 inline constexpr std::size_t kMaxAduSize = kMbapSize + kMaxPduSize;  // 260
-inline constexpr std::uint16_t kMaxReadRegisters = 125;    // FC 3/4
-inline constexpr std::uint16_t kMaxWriteRegisters = 123;   // FC 16
-inline constexpr std::uint16_t kMaxRwWriteRegisters = 121; // FC 23 write part
+inline constexpr std::uint16_t kMaxReadRegisters = 125;              // FC 3/4
+inline constexpr std::uint16_t kMaxWriteRegisters = 123;             // FC 16
+inline constexpr std::uint16_t kMaxRwWriteRegisters = 121;           // FC 23 write part
 inline constexpr std::uint16_t kDefaultPort = 502;
 
 namespace fc {

@@ -24,18 +24,22 @@ enum class ModbusError : int {
   gateway_path_unavailable = 0x0A,
   gateway_target_failed = 0x0B,
   // Link-level (not on the wire).
-  timeout = 0x101,            ///< no (complete) response within the response timeout
-  connection_lost = 0x102,    ///< peer closed or reset the TCP connection
-  connect_failed = 0x103,     ///< TCP connect refused / unreachable
-  invalid_response = 0x104,   ///< reply with wrong TID, unit, function or length
-  invalid_request = 0x105,    ///< malformed MBAP header (server side: connection closed)
+  timeout = 0x101,           ///< no (complete) response within the response timeout
+  connection_lost = 0x102,   ///< peer closed or reset the TCP connection
+  connect_failed = 0x103,    ///< TCP connect refused / unreachable
+  invalid_response = 0x104,  ///< reply with wrong TID, unit, function or length
+  invalid_request = 0x105,   ///< malformed MBAP header (server side: connection closed)
 };
 
 const std::error_category& modbus_category() noexcept;
-inline std::error_code make_error_code(ModbusError e) noexcept { return {static_cast<int>(e), modbus_category()}; }
+inline std::error_code make_error_code(ModbusError e) noexcept {
+  return {static_cast<int>(e), modbus_category()};
+}
 
 /// True for the values that are Modbus exception codes (1..8, 10, 11).
-[[nodiscard]] constexpr bool is_exception_code(int v) noexcept { return (v >= 1 && v <= 8) || v == 10 || v == 11; }
+[[nodiscard]] constexpr bool is_exception_code(int v) noexcept {
+  return (v >= 1 && v <= 8) || v == 10 || v == 11;
+}
 
 /// The exception for a wire byte, or nullopt when the byte is not a defined exception code.
 [[nodiscard]] constexpr std::optional<ModbusError> exception_from_code(std::uint8_t code) noexcept {
@@ -49,7 +53,8 @@ inline std::error_code make_error_code(ModbusError e) noexcept { return {static_
 
 }  // namespace hil::modbus
 
-template <> struct std::is_error_code_enum<hil::modbus::ModbusError> : std::true_type {};
+template <>
+struct std::is_error_code_enum<hil::modbus::ModbusError> : std::true_type {};
 
 namespace hil::modbus {
 /// Category "modbus-drive": the value is the drive's own fault-code register (CiA 402 error

@@ -56,7 +56,8 @@ constexpr void pack_value(std::int64_t v, const ValueFormat& f, std::span<std::u
     return f.is_signed ? static_cast<std::int64_t>(static_cast<std::int32_t>(u)) : static_cast<std::int64_t>(u);
   }
   if (regs.empty()) return 0;
-  return f.is_signed ? static_cast<std::int64_t>(static_cast<std::int16_t>(regs[0])) : static_cast<std::int64_t>(regs[0]);
+  return f.is_signed ? static_cast<std::int64_t>(static_cast<std::int16_t>(regs[0]))
+                     : static_cast<std::int64_t>(regs[0]);
 }
 
 }  // namespace hil::modbus

@@ -6,9 +6,9 @@
 // §6.3 control/status words, or vendor bits) and the function codes the drive accepts.
 // The same profile drives both ends: ModbusDrive (client) and the simulated drive server.
 
+#include <array>
 #include <cstdint>
 #include <expected>
-#include <array>
 #include <map>
 #include <optional>
 #include <string>
@@ -34,7 +34,9 @@ inline constexpr std::size_t kFieldRoleCount = 8;
 [[nodiscard]] std::string_view to_string(FieldRole r) noexcept;
 /// Command fields are written by the client (read-write holding registers); the others are
 /// feedback (read-only, in the space the read function code addresses).
-[[nodiscard]] constexpr bool is_command(FieldRole r) noexcept { return r <= FieldRole::target_velocity; }
+[[nodiscard]] constexpr bool is_command(FieldRole r) noexcept {
+  return r <= FieldRole::target_velocity;
+}
 
 struct RegisterField {
   bool present = false;
@@ -62,9 +64,9 @@ struct VendorBits {
 };
 
 struct FunctionCodes {
-  std::uint8_t read = 3;        ///< 3 (feedback in holding registers) or 4 (input registers)
-  std::uint8_t write = 16;      ///< 6 (one register per request; 16-bit fields only) or 16
-  bool read_write = false;      ///< use FC 23 (write command block, read feedback block) per cycle
+  std::uint8_t read = 3;    ///< 3 (feedback in holding registers) or 4 (input registers)
+  std::uint8_t write = 16;  ///< 6 (one register per request; 16-bit fields only) or 16
+  bool read_write = false;  ///< use FC 23 (write command block, read feedback block) per cycle
 };
 
 struct Profile {

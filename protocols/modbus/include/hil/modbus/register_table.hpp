@@ -16,7 +16,7 @@ enum class RegisterSpace : std::uint8_t { holding, input };
 enum class Access : std::uint8_t { absent = 0, read_only = 1, read_write = 2 };
 
 class RegisterTable {
-public:
+ public:
   RegisterTable();
 
   /// Define `count` registers from `first` (overwrites earlier definitions). Values start at 0.
@@ -39,12 +39,14 @@ public:
   [[nodiscard]] std::span<const std::uint16_t> values(RegisterSpace space) const noexcept { return bank(space).values; }
   [[nodiscard]] std::span<std::uint16_t> values(RegisterSpace space) noexcept { return bank(space).values; }
 
-private:
+ private:
   struct Bank {
     std::vector<std::uint16_t> values;
     std::vector<std::uint8_t> access;
   };
-  [[nodiscard]] const Bank& bank(RegisterSpace s) const noexcept { return s == RegisterSpace::holding ? holding_ : input_; }
+  [[nodiscard]] const Bank& bank(RegisterSpace s) const noexcept {
+    return s == RegisterSpace::holding ? holding_ : input_;
+  }
   [[nodiscard]] Bank& bank(RegisterSpace s) noexcept { return s == RegisterSpace::holding ? holding_ : input_; }
   Bank holding_;
   Bank input_;

@@ -23,8 +23,8 @@ struct HandlerOptions {
 };
 
 struct HandleResult {
-  std::size_t size = 0;          ///< response ADU bytes in `out`; 0 = no response (malformed ADU)
-  std::uint8_t function = 0;     ///< request function code (0 when the ADU was malformed)
+  std::size_t size = 0;                   ///< response ADU bytes in `out`; 0 = no response (malformed ADU)
+  std::uint8_t function = 0;              ///< request function code (0 when the ADU was malformed)
   ModbusError error = ModbusError::none;  ///< exception sent, or invalid_request for a bad ADU
   std::uint16_t written_first = 0;        ///< holding registers written by this request
   std::uint16_t written_count = 0;

@@ -14,8 +14,8 @@
 #include <system_error>
 
 #include "hil/core/clock.hpp"
-#include "hil/serial/line_format.hpp"
 #include "hil/serial/line_error.hpp"
+#include "hil/serial/line_format.hpp"
 
 namespace hil::serial {
 
@@ -27,7 +27,7 @@ struct ReadResult {
 /// Lowest layer: bytes as the OS or the test line delivers them (8 bit, PARMRK marks included
 /// on a tty, parity bits included on a pty with software parity, XON/XOFF not filtered).
 class RawLine {
-public:
+ public:
   virtual ~RawLine() = default;
   /// Wait at most `timeout` (0 = poll) for at least one byte. Returns size 0 + timeout when none.
   virtual ReadResult read_some(std::span<std::uint8_t> buf, Duration timeout) = 0;
@@ -43,7 +43,7 @@ public:
 
 /// Character stream for device protocols, after line discipline (parity, PARMRK, XON/XOFF).
 class ByteStream {
-public:
+ public:
   virtual ~ByteStream() = default;
   /// Read at least one byte, waiting at most `timeout`. Line errors (parity/framing/overrun)
   /// end the read: `size` bytes before the bad character are valid, the bad character is

@@ -30,7 +30,7 @@ struct ItemError {
 
 /// One device, item by item. Blocking; one thread.
 class ItemDevice {
-public:
+ public:
   virtual ~ItemDevice() = default;
   /// Write one item; success means the device confirmed it.
   virtual std::expected<void, ItemError> write_item(const Item& item) = 0;
@@ -47,9 +47,9 @@ public:
 using ProgressFn = std::function<void(std::size_t done, std::size_t total)>;
 
 struct UploadReport {
-  std::size_t total = 0;      ///< items in the file
-  std::size_t start = 0;      ///< index the upload started at (resume)
-  std::size_t confirmed = 0;  ///< items [start, start + confirmed) confirmed by the device
+  std::size_t total = 0;                ///< items in the file
+  std::size_t start = 0;                ///< index the upload started at (resume)
+  std::size_t confirmed = 0;            ///< items [start, start + confirmed) confirmed by the device
   std::optional<std::string> in_doubt;  ///< key sent but not confirmed (may or may not be stored)
   std::vector<std::string> confirmed_keys;
   bool cancelled = false;
@@ -66,8 +66,10 @@ struct UploadReport {
                                         const std::function<void(std::size_t)>& on_confirmed = {});
 
 /// Read the given keys.
-[[nodiscard]] std::expected<std::vector<Item>, ItemError> download_items(ItemDevice& device, const std::vector<std::string>& keys,
-                                                                       const ProgressFn& progress, const std::atomic<bool>* cancel);
+[[nodiscard]] std::expected<std::vector<Item>, ItemError> download_items(ItemDevice& device,
+                                                                         const std::vector<std::string>& keys,
+                                                                         const ProgressFn& progress,
+                                                                         const std::atomic<bool>* cancel);
 
 struct Difference {
   std::string key;
@@ -75,8 +77,9 @@ struct Difference {
   std::string actual;    ///< on the device
 };
 /// Read every item back and list every one that differs.
-[[nodiscard]] std::expected<std::vector<Difference>, ItemError> verify_items(ItemDevice& device, const std::vector<Item>& items,
-                                                                           const ProgressFn& progress);
+[[nodiscard]] std::expected<std::vector<Difference>, ItemError> verify_items(ItemDevice& device,
+                                                                             const std::vector<Item>& items,
+                                                                             const ProgressFn& progress);
 
 /// FNV-1a 64 of a text (stable content hash for the resume journal).
 [[nodiscard]] std::uint64_t content_hash(std::string_view text) noexcept;
@@ -84,9 +87,9 @@ struct Difference {
 /// Resume journal "<file>.hilbridge-resume": which upload of which file content to which
 /// device reached which index. Written atomically; removed after a complete upload.
 struct ResumeJournal {
-  std::string device;     ///< "clm14 program on /dev/ttyUSB0 station 0"
-  std::uint64_t hash = 0; ///< content_hash of the file
-  std::size_t next = 0;   ///< first item not confirmed
+  std::string device;      ///< "clm14 program on /dev/ttyUSB0 station 0"
+  std::uint64_t hash = 0;  ///< content_hash of the file
+  std::size_t next = 0;    ///< first item not confirmed
 
   [[nodiscard]] static std::filesystem::path path_for(const std::filesystem::path& file);
   [[nodiscard]] static std::optional<ResumeJournal> load(const std::filesystem::path& file);
@@ -101,6 +104,6 @@ struct ResumeJournal {
 /// Write `text` to `path` atomically; when `path` exists and differs, keep the old content as
 /// `path.bak` (or .bak.1, .bak.2 ... if that exists too). Returns the backup path ("" if none).
 [[nodiscard]] std::expected<std::filesystem::path, std::error_code> write_with_backup(const std::filesystem::path& path,
-                                                                                    const std::string& text);
+                                                                                      const std::string& text);
 
 }  // namespace hil::serial

@@ -18,8 +18,8 @@ enum class FlowControl : std::uint8_t { none, rts_cts, xon_xoff };
 
 /// A line format. Defaults: 9600 8N1, no flow control, XON 0x11 / XOFF 0x13.
 struct LineFormat {
-  std::uint32_t baud = 9600;          ///< bit/s, 110..115200 (any integer, not only the standard rates)
-  std::uint8_t data_bits = 8;         ///< 7 or 8
+  std::uint32_t baud = 9600;   ///< bit/s, 110..115200 (any integer, not only the standard rates)
+  std::uint8_t data_bits = 8;  ///< 7 or 8
   Parity parity = Parity::none;
   StopBits stop_bits = StopBits::one;
   FlowControl flow = FlowControl::none;
@@ -27,7 +27,7 @@ struct LineFormat {
   /// (pty/TCP, software parity) they may carry the parity bit, e.g. 0x93 for DC3 with even parity.
   std::uint8_t xon = 0x11;
   std::uint8_t xoff = 0x13;
-  bool use_dtr_dsr = false;           ///< raise DTR while open and require DSR before sending
+  bool use_dtr_dsr = false;  ///< raise DTR while open and require DSR before sending
 
   friend bool operator==(const LineFormat&, const LineFormat&) = default;
 

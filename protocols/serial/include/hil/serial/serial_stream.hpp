@@ -24,7 +24,7 @@ struct Discipline {
 };
 
 class SerialStream final : public ByteStream {
-public:
+ public:
   /// `raw` is owned. `clock` measures the XOFF stall and the remaining wait of read/write.
   SerialStream(std::unique_ptr<RawLine> raw, LineFormat format, Discipline discipline, const Clock& clock);
 
@@ -39,7 +39,7 @@ public:
   [[nodiscard]] bool paused_by_peer() const noexcept { return paused_; }
   [[nodiscard]] RawLine& raw() noexcept { return *raw_; }
 
-private:
+ private:
   // Pull raw bytes (waiting at most `timeout`) through the discipline into pending_.
   std::error_code fill(Duration timeout);
   void decode(std::span<const std::uint8_t> raw);

@@ -11,44 +11,50 @@ namespace hil::stepdir {
 
 enum class Ip247Error : int {
   none = 0,
-  speed_out_of_range = 7,           ///< warning: frequency clamped to 1 Hz..fmax, move still runs
-  reference_missing = 10,           ///< absolute move without a reference point
-  no_machine_data = 14,             ///< no or wrong MD (no valid configuration)
-  faulty_machine_data = 15,         ///< MD rejected (detail: Ip247MdError)
+  speed_out_of_range = 7,    ///< warning: frequency clamped to 1 Hz..fmax, move still runs
+  reference_missing = 10,    ///< absolute move without a reference point
+  no_machine_data = 14,      ///< no or wrong MD (no valid configuration)
+  faulty_machine_data = 15,  ///< MD rejected (detail: Ip247MdError)
   traversing_range_exceeded = 23,
-  limit_start_overrun = 25,         ///< HW limit "Anfang" (backward side) seen while moving toward it
-  limit_end_overrun = 26,           ///< HW limit "Ende" (forward side)
+  limit_start_overrun = 25,  ///< HW limit "Anfang" (backward side) seen while moving toward it
+  limit_end_overrun = 26,    ///< HW limit "Ende" (forward side)
   external_stop = 27,
   sw_limit_start_overrun = 28,
   sw_limit_end_overrun = 29,
-  pulse_generator_defective = 34,   ///< we use it for a GPIO write failure on the step/dir lines
-  power_section_off = 53,           ///< BB (ready) input low: switch the power section on
-  ramp_table_generation = 54,       ///< fmax/fss/a cannot form a ramp
-  reference_cam_defective = 59,     ///< cam not left within 2500 single steps
+  pulse_generator_defective = 34,  ///< we use it for a GPIO write failure on the step/dir lines
+  power_section_off = 53,          ///< BB (ready) input low: switch the power section on
+  ramp_table_generation = 54,      ///< fmax/fss/a cannot form a ramp
+  reference_cam_defective = 59,    ///< cam not left within 2500 single steps
 };
 
 enum class Ip247MdError : int {
   none = 0,
-  pulse_duration = 2,        ///< not 1..31 µs, or more than half the period of fmax
-  max_frequency = 3,         ///< fmax outside 12 Hz..100 kHz (see docs/stepdir.md on the range)
-  speed = 4,                 ///< jog/incremental speed frequency not within 1 Hz..fmax
-  frequency_increase = 6,    ///< a not 20..2 599 999 Hz/s (= mHz/ms), or tau not 5..2600 ms
-  reference_direction = 15,  ///< reference direction / synchronisation value invalid
-  ramp_generation = 16,      ///< ramp table could not be generated (e.g. fss >= fmax)
-  reference_speed = 17,      ///< f_ref <= fss or > fmax
-  edge_polarity = 18,        ///< polarity not positive/negative edge
-  limit_polarity = 19,       ///< the configured limit switches are not present (read as actuated)
-  backlash = 20,             ///< not 0..64 999
-  start_stop_frequency = 22, ///< fss not 1 Hz..10 kHz
-  patterns = 10,             ///< energisation patterns not 4..40
+  pulse_duration = 2,         ///< not 1..31 µs, or more than half the period of fmax
+  max_frequency = 3,          ///< fmax outside 12 Hz..100 kHz (see docs/stepdir.md on the range)
+  speed = 4,                  ///< jog/incremental speed frequency not within 1 Hz..fmax
+  frequency_increase = 6,     ///< a not 20..2 599 999 Hz/s (= mHz/ms), or tau not 5..2600 ms
+  reference_direction = 15,   ///< reference direction / synchronisation value invalid
+  ramp_generation = 16,       ///< ramp table could not be generated (e.g. fss >= fmax)
+  reference_speed = 17,       ///< f_ref <= fss or > fmax
+  edge_polarity = 18,         ///< polarity not positive/negative edge
+  limit_polarity = 19,        ///< the configured limit switches are not present (read as actuated)
+  backlash = 20,              ///< not 0..64 999
+  start_stop_frequency = 22,  ///< fss not 1 Hz..10 kHz
+  patterns = 10,              ///< energisation patterns not 4..40
 };
 
 const std::error_category& ip247_category() noexcept;
 const std::error_category& ip247_md_category() noexcept;
-inline std::error_code make_error_code(Ip247Error e) noexcept { return {static_cast<int>(e), ip247_category()}; }
-inline std::error_code make_error_code(Ip247MdError e) noexcept { return {static_cast<int>(e), ip247_md_category()}; }
+inline std::error_code make_error_code(Ip247Error e) noexcept {
+  return {static_cast<int>(e), ip247_category()};
+}
+inline std::error_code make_error_code(Ip247MdError e) noexcept {
+  return {static_cast<int>(e), ip247_md_category()};
+}
 
 }  // namespace hil::stepdir
 
-template <> struct std::is_error_code_enum<hil::stepdir::Ip247Error> : std::true_type {};
-template <> struct std::is_error_code_enum<hil::stepdir::Ip247MdError> : std::true_type {};
+template <>
+struct std::is_error_code_enum<hil::stepdir::Ip247Error> : std::true_type {};
+template <>
+struct std::is_error_code_enum<hil::stepdir::Ip247MdError> : std::true_type {};

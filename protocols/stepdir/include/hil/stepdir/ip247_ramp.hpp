@@ -22,13 +22,13 @@
 namespace hil::stepdir {
 
 struct Ip247RampParams {
-  double f_max_hz = 5'000.0;        ///< MD n+5/6
-  double f_ss_hz = 200.0;           ///< MD n+7/8
-  double accel_hz_per_s = 50'000.0; ///< MD n+9/10 "frequency increase" a; mHz/ms == Hz/s
+  double f_max_hz = 5'000.0;         ///< MD n+5/6
+  double f_ss_hz = 200.0;            ///< MD n+7/8
+  double accel_hz_per_s = 50'000.0;  ///< MD n+9/10 "frequency increase" a; mHz/ms == Hz/s
 };
 
 class Ip247Ramp {
-public:
+ public:
   /// Validate (MD errors 3, 6, 16, 22) and build the table. `min_period_ns` is the shortest step
   /// period the timing rules allow (StepTiming::min_period_ns()).
   [[nodiscard]] static std::expected<Ip247Ramp, Ip247MdError> make(const Ip247RampParams& p,
@@ -54,7 +54,7 @@ public:
   /// First index whose interval is <= period_ns (the index where the commanded speed is reached).
   [[nodiscard]] std::size_t index_for_period(std::int64_t period_ns) const noexcept;
 
-private:
+ private:
   Ip247RampParams p_;
   double big_f_ = 0.0;
   double tau_ = 0.0;

@@ -46,7 +46,7 @@ struct StepLineIndex {
 inline constexpr std::int64_t plan_forever_ns = INT64_MAX / 4;
 
 class StepPlanner {
-public:
+ public:
   StepPlanner(const StepTiming& timing, std::shared_ptr<const Ip247Ramp> ramp, std::int64_t backlash_steps = 0,
               StepLineIndex lines = {}) noexcept;
 
@@ -89,7 +89,7 @@ public:
   /// the first move then takes up no backlash), else the direction the axis came from.
   void set_position(std::int64_t position, int last_direction) noexcept;
 
-private:
+ private:
   struct Candidate {
     std::int64_t rise = 0;
     std::int64_t dir_edge = -1;  ///< time of a dir edge before the step, or -1
@@ -116,12 +116,12 @@ private:
   std::int64_t pos_ = 0;
   std::int64_t motor_pos_ = 0;
   std::int64_t target_ = 0;
-  std::int64_t v_period_ = 0;   ///< ramp mode: period of the commanded frequency
-  std::int64_t cap_idx_ = 0;    ///< ramp mode: table index where f_v is reached
+  std::int64_t v_period_ = 0;  ///< ramp mode: period of the commanded frequency
+  std::int64_t cap_idx_ = 0;   ///< ramp mode: table index where f_v is reached
   bool moving_ = false;
   int dir_ = 0;
   int last_dir_ = 0;
-  int dir_line_ = 1;            ///< direction the dir line shows now
+  int dir_line_ = 1;  ///< direction the dir line shows now
   std::int64_t last_idx_ = -1;
   std::int64_t backlash_pending_ = 0;
 

@@ -18,25 +18,25 @@
 namespace hil::stepdir {
 
 enum class Rule : std::uint8_t {
-  time_order,      ///< an edge earlier than the one before it
-  redundant_edge,  ///< an "edge" that does not change the line's level
-  pulse_width,     ///< active edge to trailing edge shorter than step_len
-  step_space,      ///< trailing edge to next active edge shorter than step_space
-  max_frequency,   ///< active edge to active edge shorter than 1/fmax
-  dir_setup,       ///< dir change to next active edge shorter than dir_setup
-  dir_hold,        ///< trailing edge to dir change shorter than dir_hold
-  dir_during_pulse,///< dir changed while the step line was active
-  step_count,      ///< net steps differ from the expected count
-  unknown_line,    ///< an edge on a line that is neither step nor dir
+  time_order,        ///< an edge earlier than the one before it
+  redundant_edge,    ///< an "edge" that does not change the line's level
+  pulse_width,       ///< active edge to trailing edge shorter than step_len
+  step_space,        ///< trailing edge to next active edge shorter than step_space
+  max_frequency,     ///< active edge to active edge shorter than 1/fmax
+  dir_setup,         ///< dir change to next active edge shorter than dir_setup
+  dir_hold,          ///< trailing edge to dir change shorter than dir_hold
+  dir_during_pulse,  ///< dir changed while the step line was active
+  step_count,        ///< net steps differ from the expected count
+  unknown_line,      ///< an edge on a line that is neither step nor dir
 };
 [[nodiscard]] std::string_view to_string(Rule r) noexcept;
 
 struct Violation {
   Rule rule = Rule::time_order;
-  std::size_t index = 0;       ///< index of the offending edge in the stream
+  std::size_t index = 0;  ///< index of the offending edge in the stream
   std::int64_t t_ns = 0;
-  std::int64_t measured = 0;   ///< ns, or steps for step_count
-  std::int64_t limit = 0;      ///< ns, or steps
+  std::int64_t measured = 0;  ///< ns, or steps for step_count
+  std::int64_t limit = 0;     ///< ns, or steps
   /// "edge 41 at 1.234567 ms: pulse_width 1000 ns < 2000 ns (step_len)"
   [[nodiscard]] std::string describe() const;
 };
@@ -54,7 +54,7 @@ struct VerifyStats {
 };
 
 class StepVerifier {
-public:
+ public:
   /// Initial levels: step idle, dir = `initial_dir` (+1 forward / -1 backward).
   explicit StepVerifier(const StepTiming& rules, StepLineIndex lines = {}, int initial_dir = 1) noexcept;
 
@@ -71,7 +71,7 @@ public:
   [[nodiscard]] const VerifyStats& stats() const noexcept { return stats_; }
   bool ignore_other_lines = true;
 
-private:
+ private:
   void fail(Rule r, std::int64_t t, std::int64_t measured, std::int64_t limit) noexcept;
   StepTiming rules_;
   StepLineIndex lines_;

@@ -29,11 +29,20 @@
 namespace hil::drives::stepdir {
 
 enum class HomingPhase : std::uint8_t {
-  idle, reset_pulse, away, away_on_cam, search, search_on_cam, creep, leave_cam, sync, done,
+  idle,
+  reset_pulse,
+  away,
+  away_on_cam,
+  search,
+  search_on_cam,
+  creep,
+  leave_cam,
+  sync,
+  done,
 };
 
 class StepDirDrive final : public Drive, public FaultInjectable {
-public:
+ public:
   /// `outputs`: [step, dir, enable?]; `inputs`: [ready?, limit_start?, limit_end?, reference?] in
   /// that order with absent lines skipped (null when there are no inputs). All must outlive the drive.
   StepDirDrive(std::string name, const StepDirConfig& config, std::shared_ptr<const hil::stepdir::Ip247Ramp> ramp,
@@ -47,9 +56,7 @@ public:
   bool request(DriveRequest r) override;
 
   [[nodiscard]] std::vector<std::string> injectable_faults() const override { return injector_names_; }
-  bool inject_fault(std::string_view name, bool active) override {
-    return injector_ ? injector_(name, active) : false;
-  }
+  bool inject_fault(std::string_view name, bool active) override { return injector_ ? injector_(name, active) : false; }
   void set_fault_injector(std::vector<std::string> names, std::function<bool(std::string_view, bool)> f) {
     injector_names_ = std::move(names);
     injector_ = std::move(f);
@@ -63,7 +70,7 @@ public:
   /// Energisation-pattern counter (0..patterns-1), zeroed by the reset pulse and by ready rising.
   [[nodiscard]] int pattern_counter() const noexcept;
 
-private:
+ private:
   enum class Power : std::uint8_t { disabled, resetting, wait_ready, enabled };
   struct Inputs {
     bool ready = true, limit_start = false, limit_end = false, cam = false;
@@ -101,8 +108,8 @@ private:
   std::vector<gpio::Edge> batch_;
 
   HomingPhase homing_ = HomingPhase::idle;
-  bool homing_tail_ = false;         ///< report homing_active for one more image after success
-  bool homing_braking_ = false;      ///< waiting for the planner to stop before the next phase
+  bool homing_tail_ = false;     ///< report homing_active for one more image after success
+  bool homing_braking_ = false;  ///< waiting for the planner to stop before the next phase
   HomingPhase after_brake_ = HomingPhase::idle;
   std::int64_t single_steps_ = 0;
   hil::stepdir::PlannerMode mode_before_homing_ = hil::stepdir::PlannerMode::follow;

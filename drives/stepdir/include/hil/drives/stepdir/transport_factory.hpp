@@ -18,7 +18,7 @@ namespace hil::drives::stepdir {
 class StepDirDrive;
 
 class StepDirTransportFactory final : public TransportFactory {
-public:
+ public:
   StepDirTransportFactory();
   ~StepDirTransportFactory() override;
   std::expected<DrivePtr, ConfigError> make_drive(const std::string& axis_name, const YAML::Node& drive_node,
@@ -28,7 +28,7 @@ public:
   struct Axis;  ///< per-axis lines, sink, verifier (defined in the .cpp)
   [[nodiscard]] const std::vector<std::unique_ptr<Axis>>& axes() const noexcept { return axes_; }
 
-private:
+ private:
   std::vector<std::unique_ptr<Axis>> axes_;
   bool verify_ = false;
 };

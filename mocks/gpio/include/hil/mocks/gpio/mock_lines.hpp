@@ -29,7 +29,7 @@ struct InputScript {
 };
 
 class MockLines final : public LineBank, public EdgeSink {
-public:
+ public:
   /// Thread: single-threaded unless used as the target of an EdgeWriter (then one writer thread).
   MockLines(std::vector<LineSpec> specs, const Clock& clock);
 
@@ -57,7 +57,7 @@ public:
   [[nodiscard]] bool output_level(std::size_t index) const noexcept { return index < levels_.size() && levels_[index]; }
   [[nodiscard]] const LineSpec& spec(std::size_t index) const { return specs_.at(index); }
 
-private:
+ private:
   void record(const Edge& e) noexcept;
   std::vector<LineSpec> specs_;
   const Clock& clock_;
@@ -76,13 +76,13 @@ private:
 /// time: the plant side of the closed loop. Edges are applied lazily up to the asked time,
 /// because a drive records a whole window of edges ahead of the clock.
 class StepDirDecoder {
-public:
+ public:
   StepDirDecoder(MockLines& outputs, std::uint16_t step_line, std::uint16_t dir_line, bool active_level,
                  bool dir_forward_level, std::int64_t initial_position = 0);
   [[nodiscard]] std::int64_t position_at(std::int64_t t_ns);
   [[nodiscard]] std::int64_t position() const noexcept { return position_; }
 
-private:
+ private:
   void on_edge(const Edge& e);
   std::uint16_t step_line_, dir_line_;
   bool active_level_, dir_forward_level_;

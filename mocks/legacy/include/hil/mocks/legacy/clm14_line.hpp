@@ -17,7 +17,7 @@
 namespace hil::mocks::legacy {
 
 class Clm14Line final : public Endpoint {
-public:
+ public:
   /// `stations` = 0: one RS-232 station; 1..32: RS-485 stations 1..N on one line.
   Clm14Line(std::shared_ptr<const serial::clm14::DeviceData> data, int stations, int axes = 2);
 
@@ -36,7 +36,7 @@ public:
   /// Lines received in total (for tests and the emulator's log).
   [[nodiscard]] std::uint64_t lines() const noexcept { return lines_; }
 
-private:
+ private:
   std::vector<std::unique_ptr<Clm14Station>> stations_;
   serial::clm14::LineSplitter splitter_;
   bool line_corrupt_ = false;

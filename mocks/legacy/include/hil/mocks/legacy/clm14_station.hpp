@@ -8,11 +8,11 @@
 
 #include <array>
 #include <expected>
-#include <utility>
 #include <map>
 #include <memory>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 #include <nlohmann/json_fwd.hpp>
@@ -27,7 +27,7 @@ namespace hil::mocks::legacy {
 enum class ClmMode { parameter, manual, automatic };
 
 class Clm14Station {
-public:
+ public:
   static constexpr int program_lines = 3000;
   static constexpr int logic_lines = 1000;
   static constexpr int variables = 1000;
@@ -65,7 +65,7 @@ public:
   /// Restore from to_json(); unknown keys are ignored, bad entries reported.
   [[nodiscard]] std::expected<void, std::string> from_json(const nlohmann::json& j);
 
-private:
+ private:
   [[nodiscard]] std::string reply(char lead, std::string_view body) const;
   [[nodiscard]] std::string error(int code) const;
   [[nodiscard]] std::string confirm() const;

@@ -7,10 +7,10 @@
 // given remotely by a DC2 byte (our convention, see docs/serial.md) or by the console.
 
 #include <functional>
-#include <utility>
 #include <map>
 #include <optional>
 #include <string>
+#include <utility>
 
 #include "hil/mocks/legacy/endpoint.hpp"
 #include "hil/serial/tape/elg_tape.hpp"
@@ -18,7 +18,8 @@
 namespace hil::mocks::legacy {
 
 /// Checks one datum against the device profile: empty = valid, else the reason.
-using ElgDatumCheck = std::function<std::optional<std::string>(serial::tape::ElgSectionKind, int number, const std::string& value)>;
+using ElgDatumCheck =
+    std::function<std::optional<std::string>(serial::tape::ElgSectionKind, int number, const std::string& value)>;
 
 struct ElgEndpointOptions {
   serial::tape::TapeReaderOptions reader{.accept_eia = false};  ///< MD/SD only in ISO (§9.3)
@@ -27,7 +28,7 @@ struct ElgEndpointOptions {
 };
 
 class ElgTapeEndpoint final : public Endpoint {
-public:
+ public:
   ElgTapeEndpoint(ElgDatumCheck check, ElgEndpointOptions o = {});
 
   std::string on_bytes(std::span<const std::uint8_t> data, TimePoint now) override;
@@ -43,12 +44,15 @@ public:
   /// Current alarm number (0 = none) and its reason.
   [[nodiscard]] int alarm() const noexcept { return alarm_; }
   [[nodiscard]] const std::string& alarm_text() const noexcept { return alarm_text_; }
-  void clear_alarm() { alarm_ = 0; alarm_text_.clear(); }
+  void clear_alarm() {
+    alarm_ = 0;
+    alarm_text_.clear();
+  }
   [[nodiscard]] const std::map<int, std::string>& machine_data() const noexcept { return md_; }
   [[nodiscard]] const std::map<int, std::string>& setting_data() const noexcept { return sd_; }
   void set_datum(serial::tape::ElgSectionKind k, int number, std::string value);
 
-private:
+ private:
   void finish_tape();
   void raise(int alarm, std::string text);
 

@@ -19,7 +19,7 @@
 namespace hil::mocks::legacy {
 
 class Endpoint {
-public:
+ public:
   virtual ~Endpoint() = default;
   /// Bytes received from the line (after line discipline). Returns bytes to send.
   virtual std::string on_bytes(std::span<const std::uint8_t> data, TimePoint now) = 0;
@@ -36,10 +36,11 @@ public:
 };
 
 class EndpointHost {
-public:
+ public:
   /// `state_file` may be empty (no persistence). Thread: run() on one thread; stop() and
   /// with_endpoint() from any thread.
-  EndpointHost(Endpoint& endpoint, serial::ByteStream& stream, const Clock& clock, std::filesystem::path state_file = {});
+  EndpointHost(Endpoint& endpoint, serial::ByteStream& stream, const Clock& clock,
+               std::filesystem::path state_file = {});
 
   /// Serve until stop(). Persists state whenever the line is quiet after changes.
   void run();
@@ -59,7 +60,7 @@ public:
     drop_replies_ = count;
   }
 
-private:
+ private:
   void send(const std::string& bytes);
 
   Endpoint& endpoint_;

@@ -7,10 +7,10 @@
 
 #include <cstdint>
 #include <functional>
-#include <utility>
 #include <map>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "hil/mocks/legacy/endpoint.hpp"
@@ -23,10 +23,11 @@ using DbStore = std::map<std::uint8_t, std::vector<std::uint16_t>>;
 
 /// Device rules for DB access.
 class DbPolicy {
-public:
+ public:
   virtual ~DbPolicy() = default;
   /// A complete SEND job (all continuations assembled).
-  virtual serial::s5::Rk512Error on_write(DbStore& store, std::uint8_t db, std::uint8_t dw, const std::vector<std::uint16_t>& words) = 0;
+  virtual serial::s5::Rk512Error on_write(DbStore& store, std::uint8_t db, std::uint8_t dw,
+                                          const std::vector<std::uint16_t>& words) = 0;
   /// A FETCH job; fills `out` with exactly `length` words on success.
   virtual serial::s5::Rk512Error on_read(const DbStore& store, std::uint8_t db, std::uint8_t dw, std::uint16_t length,
                                          std::vector<std::uint16_t>& out) = 0;
@@ -46,7 +47,8 @@ using ImageCheck = std::function<int(std::uint8_t db, const std::vector<std::uin
 /// 50 machine data as 100 words (32-bit, high word first), writable by area (the resulting
 /// image is checked as a whole); other known codes are read-only status values; 0 and unknown
 /// codes are refused (WF errors 112/113 via 0C).
-[[nodiscard]] std::unique_ptr<DbPolicy> make_wf725_policy(std::function<bool(const std::vector<std::uint16_t>& md_words)> md_image_ok);
+[[nodiscard]] std::unique_ptr<DbPolicy> make_wf725_policy(
+    std::function<bool(const std::vector<std::uint16_t>& md_words)> md_image_ok);
 
 struct S5EndpointOptions {
   serial::s5::ProcedureOptions procedure{.high_priority = false};  ///< the module yields to the PC
@@ -54,7 +56,7 @@ struct S5EndpointOptions {
 };
 
 class S5BlockEndpoint final : public Endpoint {
-public:
+ public:
   S5BlockEndpoint(std::unique_ptr<DbPolicy> policy, S5EndpointOptions o = {});
 
   std::string on_bytes(std::span<const std::uint8_t> data, TimePoint now) override;
@@ -69,7 +71,7 @@ public:
   [[nodiscard]] const std::string& last_error() const noexcept { return last_error_; }
   [[nodiscard]] serial::s5::Procedure3964& procedure() noexcept { return proc_; }
 
-private:
+ private:
   std::string drain(TimePoint now);
   void execute(const serial::s5::Rk512Telegram& job);
 

@@ -21,12 +21,12 @@
 namespace hil::serial::clm14 {
 
 struct ClientOptions {
-  int station = 0;                                      ///< 0 = RS-232, 1..32 = RS-485 station
+  int station = 0;                                              ///< 0 = RS-232, 1..32 = RS-485 station
   Duration response_timeout = std::chrono::milliseconds(1000);  ///< request sent -> first reply byte
   Duration char_timeout = std::chrono::milliseconds(200);       ///< between two reply bytes
   Duration write_timeout = std::chrono::seconds(5);             ///< incl. time held by XOFF
-  int retries = 2;                                      ///< repeats after a checksum error/timeout
-  bool expect_confirmation = true;                      ///< B003/B005 C = 1: writes answered by "Y"
+  int retries = 2;                                              ///< repeats after a checksum error/timeout
+  bool expect_confirmation = true;                              ///< B003/B005 C = 1: writes answered by "Y"
 };
 
 struct ClientError {
@@ -36,7 +36,7 @@ struct ClientError {
 };
 
 class Client {
-public:
+ public:
   /// `stream`, `clock` and `data` must outlive the client. `data` may be null (no texts).
   Client(ByteStream& stream, const Clock& clock, ClientOptions options, std::shared_ptr<const DeviceData> data = {});
 
@@ -60,7 +60,7 @@ public:
   /// Retries performed so far (for reports and tests).
   [[nodiscard]] int retries_used() const noexcept { return retries_used_; }
 
-private:
+ private:
   [[nodiscard]] std::expected<std::string, ClientError> read_line(Duration first_byte_timeout);
   void drain();
 

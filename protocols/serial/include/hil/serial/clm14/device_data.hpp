@@ -20,7 +20,7 @@ struct FieldRejection {
 };
 
 class DeviceData {
-public:
+ public:
   virtual ~DeviceData() = default;
   /// Every parameter number in transfer order: B000..B019, then A100..A142 for each axis 1..axes
   /// (axis x uses Ax00..Ax42), then C000..C008.
@@ -30,7 +30,7 @@ public:
   /// Check a parameter's data text against the profile's fields and ranges; returns the
   /// canonical text (exact field widths) on success.
   [[nodiscard]] virtual std::expected<std::string, FieldRejection> check_parameter(std::string_view number,
-                                                                                 std::string_view data) const = 0;
+                                                                                   std::string_view data) const = 0;
   /// Check a program line "MNE data" (mnemonic and operands); canonical text on success.
   [[nodiscard]] virtual std::expected<std::string, FieldRejection> check_program_line(std::string_view line) const = 0;
   /// The device's 20-character text for serial error `code` (status 01).
@@ -42,6 +42,7 @@ public:
 };
 
 /// Load the CLM1.4 profile (profiles/devices/clm14.yaml, or `path` if not empty).
-[[nodiscard]] std::expected<std::shared_ptr<const DeviceData>, std::string> load_device_data(const std::string& path = {});
+[[nodiscard]] std::expected<std::shared_ptr<const DeviceData>, std::string> load_device_data(
+    const std::string& path = {});
 
 }  // namespace hil::serial::clm14

@@ -19,8 +19,8 @@ namespace hil::serial::clm14 {
 enum class FileKind { program, parameters };
 
 struct FileItem {
-  std::string key;   ///< "0101" (program line) or "B002" (parameter number)
-  std::string text;  ///< "AEA Q1.00.3 1" / "019200 0 1 8 1" (no trailing spaces)
+  std::string key;      ///< "0101" (program line) or "B002" (parameter number)
+  std::string text;     ///< "AEA Q1.00.3 1" / "019200 0 1 8 1" (no trailing spaces)
   int source_line = 0;  ///< 1-based line in the file (0 when not from a file)
   friend bool operator==(const FileItem& a, const FileItem& b) { return a.key == b.key && a.text == b.text; }
 };
@@ -35,8 +35,8 @@ using FileProblems = std::vector<std::string>;
 
 /// Parse and validate a file. `axes` limits the A-parameters (A1xx..A4xx). `name` appears in messages.
 [[nodiscard]] std::expected<DeviceFile, FileProblems> parse_device_file(std::string_view text, FileKind kind,
-                                                                      const DeviceData& data, int axes,
-                                                                      std::string_view name);
+                                                                        const DeviceData& data, int axes,
+                                                                        std::string_view name);
 /// Text of a file (header comment + one item per line), the inverse of parse_device_file.
 [[nodiscard]] std::string make_device_file(const DeviceFile& file, std::string_view header_comment);
 

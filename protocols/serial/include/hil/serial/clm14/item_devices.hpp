@@ -12,7 +12,7 @@
 namespace hil::serial::clm14 {
 
 class ProgramDevice final : public ItemDevice {
-public:
+ public:
   explicit ProgramDevice(Client& c) : client_(c) {}
   std::expected<void, ItemError> write_item(const Item& item) override;
   std::expected<std::string, ItemError> read_item(const std::string& key) override;
@@ -20,18 +20,18 @@ public:
   /// "0000".."2999"
   [[nodiscard]] static std::vector<std::string> all_keys();
 
-private:
+ private:
   Client& client_;
 };
 
 class ParameterDevice final : public ItemDevice {
-public:
+ public:
   explicit ParameterDevice(Client& c) : client_(c) {}
   std::expected<void, ItemError> write_item(const Item& item) override;
   std::expected<std::string, ItemError> read_item(const std::string& key) override;
   [[nodiscard]] std::string normalise(const std::string& key, const std::string& text) const override;
 
-private:
+ private:
   Client& client_;
 };
 

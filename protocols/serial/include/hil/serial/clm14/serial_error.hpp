@@ -13,12 +13,12 @@
 namespace hil::serial::clm14 {
 
 enum class SerialError : std::uint8_t {
-  block_number_wrong = 1,     ///< instruction number not decimal
-  format_error = 2,           ///< data format wrong
-  block_data_error = 3,       ///< instruction data wrong
-  checksum_error = 4,         ///< checksum wrong
-  invalid_mode = 5,           ///< parameter write outside Parameter mode
-  wrong_param_number = 6,     ///< parameter number not decimal
+  block_number_wrong = 1,  ///< instruction number not decimal
+  format_error = 2,        ///< data format wrong
+  block_data_error = 3,    ///< instruction data wrong
+  checksum_error = 4,      ///< checksum wrong
+  invalid_mode = 5,        ///< parameter write outside Parameter mode
+  wrong_param_number = 6,  ///< parameter number not decimal
   param_number_too_large = 7,
   wrong_status_number = 8,
   status_illegal = 9,

@@ -31,9 +31,9 @@ namespace hil::serial::clm14 {
 [[nodiscard]] std::optional<int> parse_station(char c) noexcept;
 
 struct Telegram {
-  char lead = '#';       ///< '?', '#', '!', ':', 'X', 'V', 'P', 'Y'
-  char station = ' ';    ///< station character (not present in a "Y" confirmation: ' ')
-  std::string body;      ///< everything after the station character up to '$' (or CR LF)
+  char lead = '#';                       ///< '?', '#', '!', ':', 'X', 'V', 'P', 'Y'
+  char station = ' ';                    ///< station character (not present in a "Y" confirmation: ' ')
+  std::string body;                      ///< everything after the station character up to '$' (or CR LF)
   std::optional<std::uint8_t> checksum;  ///< as received; nullopt when sent without "$hh"
 
   friend bool operator==(const Telegram&, const Telegram&) = default;
@@ -67,15 +67,19 @@ inline constexpr std::size_t max_line_length = 128;
 
 /// Splits a byte stream into lines ended by LF (a preceding CR is dropped). Pure, incremental.
 class LineSplitter {
-public:
+ public:
   enum class Event { none, line, overflow };
   /// Feed one byte. On `line`, take_line() returns the line without CR LF.
   Event feed(char c);
   [[nodiscard]] std::string take_line() { return std::exchange(line_, {}); }
-  void reset() noexcept { cur_.clear(); line_.clear(); overflow_ = false; }
+  void reset() noexcept {
+    cur_.clear();
+    line_.clear();
+    overflow_ = false;
+  }
   [[nodiscard]] bool mid_line() const noexcept { return !cur_.empty(); }
 
-private:
+ private:
   std::string cur_;
   std::string line_;
   bool overflow_ = false;

@@ -25,8 +25,9 @@ struct OpenError {
 
 /// Open `path` (e.g. /dev/ttyUSB0 or a /dev/pts/N slave) as a raw serial port with `format`.
 /// On a pty (no UART) the discipline uses software parity; on a real tty PARMRK marks.
-[[nodiscard]] std::expected<std::unique_ptr<SerialStream>, OpenError> open_tty(const std::string& path, const LineFormat& format,
-                                                                              const Clock& clock);
+[[nodiscard]] std::expected<std::unique_ptr<SerialStream>, OpenError> open_tty(const std::string& path,
+                                                                               const LineFormat& format,
+                                                                               const Clock& clock);
 
 /// Raw (unconfigured) line for an already-open file descriptor; takes ownership of `fd`.
 [[nodiscard]] std::unique_ptr<RawLine> adopt_fd(int fd);
@@ -34,7 +35,7 @@ struct OpenError {
 /// Master side of a new pseudo-terminal pair. The slave is kept open by this object too, so
 /// clients may open and close the slave path any number of times without hanging up the master.
 class PtyEndpoint {
-public:
+ public:
   [[nodiscard]] static std::expected<PtyEndpoint, OpenError> create();
   PtyEndpoint(PtyEndpoint&&) noexcept;
   PtyEndpoint& operator=(PtyEndpoint&&) noexcept;
@@ -44,7 +45,7 @@ public:
   /// The master as a raw line (ownership of the master fd moves into it; call once).
   [[nodiscard]] std::unique_ptr<RawLine> take_master();
 
-private:
+ private:
   PtyEndpoint() = default;
   int master_fd_ = -1;
   int slave_keepalive_fd_ = -1;
@@ -52,14 +53,14 @@ private:
 };
 
 /// Connect to a serial-over-IP adapter at host:port (raw TCP, the bytes are the line).
-[[nodiscard]] std::expected<std::unique_ptr<RawLine>, OpenError> connect_tcp(const std::string& host, std::uint16_t port,
-                                                                            Duration timeout);
+[[nodiscard]] std::expected<std::unique_ptr<RawLine>, OpenError> connect_tcp(const std::string& host,
+                                                                             std::uint16_t port, Duration timeout);
 
 /// Listen on 127.0.0.1/0.0.0.0:port for one client at a time (emulators behind "TCP").
 class TcpListener {
-public:
+ public:
   [[nodiscard]] static std::expected<std::unique_ptr<TcpListener>, OpenError> create(const std::string& bind_address,
-                                                                                   std::uint16_t port);
+                                                                                     std::uint16_t port);
   virtual ~TcpListener() = default;
   [[nodiscard]] virtual std::uint16_t port() const noexcept = 0;
   /// Wait at most `timeout` for a client; nullptr on timeout.

@@ -26,7 +26,7 @@ struct DbImage {
 
 /// Every problem as "name:line: message".
 [[nodiscard]] std::expected<std::vector<DbImage>, std::vector<std::string>> parse_db_listing(std::string_view text,
-                                                                                         std::string_view name);
+                                                                                             std::string_view name);
 [[nodiscard]] std::string make_db_listing(const std::vector<DbImage>& dbs, std::string_view header_comment);
 
 }  // namespace hil::serial::s5

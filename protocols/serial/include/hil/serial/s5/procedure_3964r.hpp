@@ -11,9 +11,9 @@
 #include <deque>
 #include <optional>
 #include <span>
-#include <utility>
 #include <string>
 #include <system_error>
+#include <utility>
 #include <vector>
 
 #include "hil/core/clock.hpp"
@@ -27,12 +27,12 @@ inline constexpr std::uint8_t nak = 0x15;
 
 /// Why a block could not be sent or received (values are ours; the manuals number none).
 enum class ProcedureError : std::uint8_t {
-  no_connection = 1,      ///< no DLE after STX within QVZ on every connection attempt
-  not_acknowledged = 2,   ///< NAK or no DLE after the block on every transmission attempt
-  char_timeout = 3,       ///< receiving: gap longer than ZVZ inside a block (we answered NAK)
-  bcc_error = 4,          ///< receiving: BCC wrong (we answered NAK)
-  framing = 5,            ///< receiving: DLE followed by neither DLE nor ETX (we answered NAK)
-  block_too_long = 6,     ///< receiving: more than max_block bytes (we answered NAK)
+  no_connection = 1,     ///< no DLE after STX within QVZ on every connection attempt
+  not_acknowledged = 2,  ///< NAK or no DLE after the block on every transmission attempt
+  char_timeout = 3,      ///< receiving: gap longer than ZVZ inside a block (we answered NAK)
+  bcc_error = 4,         ///< receiving: BCC wrong (we answered NAK)
+  framing = 5,           ///< receiving: DLE followed by neither DLE nor ETX (we answered NAK)
+  block_too_long = 6,    ///< receiving: more than max_block bytes (we answered NAK)
 };
 [[nodiscard]] const std::error_category& procedure_category() noexcept;
 [[nodiscard]] inline std::error_code make_error_code(ProcedureError e) noexcept {
@@ -40,20 +40,20 @@ enum class ProcedureError : std::uint8_t {
 }
 
 struct ProcedureOptions {
-  bool with_bcc = true;                                   ///< 3964R (true) or 3964 (false)
-  Duration ack_timeout = std::chrono::milliseconds(2000); ///< QVZ: 2 s for 3964R, 550 ms (or 500) for 3964
-  Duration char_timeout = std::chrono::milliseconds(220); ///< ZVZ
-  int connect_attempts = 6;                               ///< STX tries per block
-  int transmit_attempts = 6;                              ///< block tries per block
-  bool high_priority = true;                              ///< wins an initialisation conflict
-  std::size_t max_block = 1024;                           ///< payload bytes accepted per block
+  bool with_bcc = true;                                    ///< 3964R (true) or 3964 (false)
+  Duration ack_timeout = std::chrono::milliseconds(2000);  ///< QVZ: 2 s for 3964R, 550 ms (or 500) for 3964
+  Duration char_timeout = std::chrono::milliseconds(220);  ///< ZVZ
+  int connect_attempts = 6;                                ///< STX tries per block
+  int transmit_attempts = 6;                               ///< block tries per block
+  bool high_priority = true;                               ///< wins an initialisation conflict
+  std::size_t max_block = 1024;                            ///< payload bytes accepted per block
 };
 
 /// Wire form of a block: escaped payload, DLE ETX, BCC (if 3964R). Without the leading STX.
 [[nodiscard]] std::vector<std::uint8_t> make_block(const std::vector<std::uint8_t>& payload, bool with_bcc);
 
 class Procedure3964 {
-public:
+ public:
   explicit Procedure3964(ProcedureOptions o = {}) : o_(o) {}
 
   /// Queue a payload to send. Sending starts at the next poll().
@@ -80,7 +80,7 @@ public:
   /// Counters for reports.
   [[nodiscard]] int retries() const noexcept { return retries_; }
 
-private:
+ private:
   enum class State { idle, tx_wait_dle, tx_wait_ack, rx_data, rx_bcc };
   void start_receive(TimePoint now);
   void start_connect(TimePoint now);

@@ -29,14 +29,16 @@ enum class Rk512Error : std::uint8_t {
   image_rejected = 0x10,           ///< device validation failed (MD error written into the image)
 };
 [[nodiscard]] const std::error_category& rk512_category() noexcept;
-[[nodiscard]] inline std::error_code make_error_code(Rk512Error e) noexcept { return {static_cast<int>(e), rk512_category()}; }
+[[nodiscard]] inline std::error_code make_error_code(Rk512Error e) noexcept {
+  return {static_cast<int>(e), rk512_category()};
+}
 
 struct Rk512Header {
   Rk512Command command = Rk512Command::send_db;
-  char data_type = 'D';          ///< 'D' DB, 'X' DX, 'E' inputs, 'A' outputs, 'M' flags, 'T', 'Z'
-  std::uint8_t db = 0;           ///< DB number (byte 5)
-  std::uint8_t dw = 0;           ///< start data word (byte 6)
-  std::uint16_t length = 0;      ///< words for DB/DX
+  char data_type = 'D';      ///< 'D' DB, 'X' DX, 'E' inputs, 'A' outputs, 'M' flags, 'T', 'Z'
+  std::uint8_t db = 0;       ///< DB number (byte 5)
+  std::uint8_t dw = 0;       ///< start data word (byte 6)
+  std::uint16_t length = 0;  ///< words for DB/DX
   std::uint8_t coord_flag_byte = 0xFF;
   std::uint8_t coord_flag_bit_cpu = 0xFF;
   friend bool operator==(const Rk512Header&, const Rk512Header&) = default;
@@ -45,10 +47,12 @@ struct Rk512Header {
 inline constexpr std::size_t rk512_default_max_data = 128;
 
 /// Telegrams of a SEND (header + data, then continuations) or of a FETCH request (one header).
-[[nodiscard]] std::vector<std::vector<std::uint8_t>> make_rk512_request(const Rk512Header& h, std::span<const std::uint8_t> data,
+[[nodiscard]] std::vector<std::vector<std::uint8_t>> make_rk512_request(const Rk512Header& h,
+                                                                        std::span<const std::uint8_t> data,
                                                                         std::size_t max_data = rk512_default_max_data);
 /// Reaction telegram(s): "00 00 00 err" + data; continuations "FF 00 00 err" + data.
-[[nodiscard]] std::vector<std::vector<std::uint8_t>> make_rk512_reaction(Rk512Error err, std::span<const std::uint8_t> data,
+[[nodiscard]] std::vector<std::vector<std::uint8_t>> make_rk512_reaction(Rk512Error err,
+                                                                         std::span<const std::uint8_t> data,
                                                                          std::size_t max_data = rk512_default_max_data);
 
 struct Rk512ParseError {
@@ -58,7 +62,7 @@ struct Rk512ParseError {
 /// A telegram as received: a command (first or continuation) or a reaction.
 struct Rk512Telegram {
   enum class Kind { command, continuation, reaction, reaction_continuation } kind = Kind::command;
-  Rk512Header header;             ///< command: full; continuation: command + type only
+  Rk512Header header;                 ///< command: full; continuation: command + type only
   Rk512Error error = Rk512Error::ok;  ///< reaction
   std::vector<std::uint8_t> data;
 };
@@ -67,7 +71,7 @@ struct Rk512Telegram {
 /// Collects the telegrams of one job (command + continuations, or reaction + continuations)
 /// until `expected_bytes` data bytes arrived.
 class Rk512Assembler {
-public:
+ public:
   enum class Status { need_more, complete, error };
   /// Feed one telegram. For a command, the expected size comes from its header (SEND: length
   /// words * 2; FETCH: 0). For reactions call expect() first with the FETCH size.
@@ -77,7 +81,7 @@ public:
   [[nodiscard]] const std::string& error() const noexcept { return error_; }
   void reset() { *this = Rk512Assembler{}; }
 
-private:
+ private:
   Rk512Telegram job_;
   std::size_t expected_ = 0;
   bool started_ = false;

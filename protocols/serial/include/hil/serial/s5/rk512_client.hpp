@@ -29,15 +29,17 @@ struct Rk512ClientOptions {
 };
 
 class Rk512Client {
-public:
+ public:
   Rk512Client(ByteStream& stream, const Clock& clock, Rk512ClientOptions o = {});
   /// SEND `words` (big-endian data words) to DB `db` from data word `dw`.
-  [[nodiscard]] std::expected<void, LinkError> send_db(std::uint8_t db, std::uint8_t dw, const std::vector<std::uint16_t>& words);
+  [[nodiscard]] std::expected<void, LinkError> send_db(std::uint8_t db, std::uint8_t dw,
+                                                       const std::vector<std::uint16_t>& words);
   /// FETCH `length` words of DB `db` from data word `dw`.
-  [[nodiscard]] std::expected<std::vector<std::uint16_t>, LinkError> fetch_db(std::uint8_t db, std::uint8_t dw, std::uint16_t length);
+  [[nodiscard]] std::expected<std::vector<std::uint16_t>, LinkError> fetch_db(std::uint8_t db, std::uint8_t dw,
+                                                                              std::uint16_t length);
   [[nodiscard]] int procedure_retries() const noexcept { return proc_.retries(); }
 
-private:
+ private:
   std::expected<void, LinkError> transmit(const std::vector<std::uint8_t>& telegram);
   std::expected<Rk512Telegram, LinkError> receive_reaction(std::size_t expected_bytes);
   void pump(Duration max_wait);

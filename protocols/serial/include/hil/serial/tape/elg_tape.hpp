@@ -20,8 +20,8 @@ namespace hil::serial::tape {
 enum class ElgSectionKind { machine_data, setting_data };
 
 struct ElgEntry {
-  int number = 0;       ///< MD / SD number (e.g. 396, 5011)
-  std::string value;    ///< "180000", "-25", "00100010"
+  int number = 0;     ///< MD / SD number (e.g. 396, 5011)
+  std::string value;  ///< "180000", "-25", "00100010"
   friend bool operator==(const ElgEntry&, const ElgEntry&) = default;
 };
 
@@ -42,7 +42,8 @@ struct ElgTapeError {
 
 /// Sections from the blocks of one or more tapes (each starting with its '%' header and
 /// ending with M02/M30). Comments "( ... )" are removed. Alarm 32 for a malformed datum.
-[[nodiscard]] std::expected<std::vector<ElgSection>, ElgTapeError> parse_elg_blocks(const std::vector<std::string>& blocks);
+[[nodiscard]] std::expected<std::vector<ElgSection>, ElgTapeError> parse_elg_blocks(
+    const std::vector<std::string>& blocks);
 /// Blocks of one section: header, one block per entry, "M02".
 [[nodiscard]] std::vector<std::string> make_elg_blocks(const ElgSection& s);
 

@@ -9,8 +9,8 @@
 
 #include <cstdint>
 #include <expected>
-#include <span>
 #include <optional>
+#include <span>
 #include <string>
 #include <system_error>
 #include <vector>
@@ -26,36 +26,38 @@ enum class TapeError : std::uint16_t {
   data_format = 32,       ///< "V.24 DATA FORMAT ERROR"
 };
 [[nodiscard]] const std::error_category& tape_category() noexcept;
-[[nodiscard]] inline std::error_code make_error_code(TapeError e) noexcept { return {static_cast<int>(e), tape_category()}; }
+[[nodiscard]] inline std::error_code make_error_code(TapeError e) noexcept {
+  return {static_cast<int>(e), tape_category()};
+}
 
 struct TapeReaderOptions {
-  std::optional<Code> code{};            ///< nullopt = detect from the first '%' / EOR
-  bool accept_eia = true;                ///< false: an EIA tape is rejected (ELG MD/SD: ISO only)
-  bool parity_in_data = true;            ///< the bytes carry the ISO/EIA parity bit (8-bit reader)
-  std::size_t max_block_length = 254;    ///< characters incl. CR and LF
-  bool even_block_check = false;         ///< count of characters per block incl. LF must be even
-  bool even_check_header = false;        ///< apply the even check to the '%' header block too
-  bool end_at_m02_m30 = true;            ///< a block "M02"/"M30" ends the tape
-  std::optional<char> end_character{};   ///< e.g. ETX (0x03) ends the tape (SD 5016 bit 3)
+  std::optional<Code> code{};           ///< nullopt = detect from the first '%' / EOR
+  bool accept_eia = true;               ///< false: an EIA tape is rejected (ELG MD/SD: ISO only)
+  bool parity_in_data = true;           ///< the bytes carry the ISO/EIA parity bit (8-bit reader)
+  std::size_t max_block_length = 254;   ///< characters incl. CR and LF
+  bool even_block_check = false;        ///< count of characters per block incl. LF must be even
+  bool even_check_header = false;       ///< apply the even check to the '%' header block too
+  bool end_at_m02_m30 = true;           ///< a block "M02"/"M30" ends the tape
+  std::optional<char> end_character{};  ///< e.g. ETX (0x03) ends the tape (SD 5016 bit 3)
 };
 
 struct TapeEvent {
   enum class Kind { block, end, error } kind = Kind::block;
-  std::string text;   ///< block text without CR/LF (the '%' header block is "%TEA1")
+  std::string text;  ///< block text without CR/LF (the '%' header block is "%TEA1")
   std::error_code error;
   std::size_t offset = 0;  ///< byte offset in the stream where the event happened
   std::string message;
 };
 
 class TapeReader {
-public:
+ public:
   explicit TapeReader(TapeReaderOptions o = {}) : o_(o) {}
   /// Feed bytes; events are appended to `out`. After `end` or `error` further bytes are ignored.
   void feed(std::span<const std::uint8_t> bytes, std::vector<TapeEvent>& out);
   [[nodiscard]] bool finished() const noexcept { return done_; }
   [[nodiscard]] std::optional<Code> code() const noexcept { return code_; }
 
-private:
+ private:
   void fail(TapeError e, std::string msg, std::vector<TapeEvent>& out);
   void end_block(std::vector<TapeEvent>& out);
 
@@ -82,15 +84,15 @@ struct TapeRead {
 struct TapeWriterOptions {
   Code code = Code::iso;
   bool parity_in_data = true;
-  std::size_t leader = 20;      ///< NUL feed holes before the first '%'
-  std::size_t trailer = 20;     ///< NUL feed holes after the end (ELG: unless SD 5016 bit 1)
+  std::size_t leader = 20;   ///< NUL feed holes before the first '%'
+  std::size_t trailer = 20;  ///< NUL feed holes after the end (ELG: unless SD 5016 bit 1)
   enum class BlockEnd { lf, cr_lf, lf_cr_cr } block_end = BlockEnd::lf;
-  bool pad_even_blocks = false; ///< add a space where a block would have an odd character count
+  bool pad_even_blocks = false;  ///< add a space where a block would have an odd character count
 };
 /// Punch blocks ("%TEA1", "N396=180000", "M02") as a tape image. Fails on a character the code
 /// cannot carry (e.g. '=' in EIA).
 [[nodiscard]] std::expected<std::vector<std::uint8_t>, std::string> make_tape(const std::vector<std::string>& blocks,
-                                                                             const TapeWriterOptions& o);
+                                                                              const TapeWriterOptions& o);
 
 }  // namespace hil::serial::tape
 

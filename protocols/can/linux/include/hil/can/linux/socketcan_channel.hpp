@@ -16,12 +16,12 @@
 // functions and the destructor may be called from any thread; once the destructor returns no
 // handler runs. The io_context must outlive the channel.
 
+#include <sys/types.h>
 #include <cstdint>
 #include <expected>
 #include <functional>
 #include <memory>
 #include <string>
-#include <sys/types.h>
 
 #include <asio/any_io_executor.hpp>
 
@@ -33,12 +33,12 @@
 namespace hil::can::socketcan {
 
 struct SocketCanOptions {
-  bool receive_own = false;     ///< CAN_RAW_RECV_OWN_MSGS
-  bool loopback = true;         ///< CAN_RAW_LOOPBACK: other sockets on this host see our frames
+  bool receive_own = false;  ///< CAN_RAW_RECV_OWN_MSGS
+  bool loopback = true;      ///< CAN_RAW_LOOPBACK: other sockets on this host see our frames
   FilterSet filters{.filters = {Filter{}}, .error_mask = error_class::all, .join = false};
-  bool deliver_error_frames = true;  ///< pass error frames to the receive handler (stats always)
+  bool deliver_error_frames = true;     ///< pass error frames to the receive handler (stats always)
   std::size_t tx_queue_capacity = 256;  ///< user-space frames waiting for the kernel
-  int sndbuf_bytes = 0;         ///< SO_SNDBUF (0: kernel default); small values make EAGAIN come before ENOBUFS
+  int sndbuf_bytes = 0;                 ///< SO_SNDBUF (0: kernel default); small values make EAGAIN come before ENOBUFS
   Duration enobufs_backoff_min{std::chrono::microseconds(200)};
   Duration enobufs_backoff_max{std::chrono::milliseconds(20)};
   /// Fault-injection seam for tests: replaces ::write for frames (return -1 and set errno).
@@ -48,20 +48,20 @@ struct SocketCanOptions {
 struct SocketCanStats {
   ChannelStats channel;
   BusState state = BusState::error_active;
-  std::uint64_t enobufs = 0;         ///< ENOBUFS answers from the kernel (retried)
-  std::uint64_t eagain = 0;          ///< EAGAIN answers (waited for writability)
-  std::uint64_t tx_errors = 0;       ///< frames lost to other write errors (ENETDOWN, ...)
+  std::uint64_t enobufs = 0;    ///< ENOBUFS answers from the kernel (retried)
+  std::uint64_t eagain = 0;     ///< EAGAIN answers (waited for writability)
+  std::uint64_t tx_errors = 0;  ///< frames lost to other write errors (ENETDOWN, ...)
   std::uint64_t tx_queue_high_water = 0;
   std::uint64_t controller_rx_overflows = 0;
   std::uint64_t controller_tx_overflows = 0;
   std::uint64_t no_ack = 0;
   std::uint64_t bus_errors = 0;
-  std::uint64_t short_reads = 0;     ///< reads that were not a whole can_frame (ignored)
+  std::uint64_t short_reads = 0;  ///< reads that were not a whole can_frame (ignored)
   std::error_code last_error;
 };
 
 class SocketCanChannel final : public Channel {
-public:
+ public:
   /// Open and bind a raw socket on `interface` ("vcan0", "can0"). Errors: address_family_not_supported
   /// (kernel without CAN), no_such_device (no such interface), permission_denied...;
   /// `diagnostic` gets a sentence with what to do.
@@ -90,7 +90,7 @@ public:
 
   struct Impl;
 
-private:
+ private:
   SocketCanChannel(std::shared_ptr<Impl> impl, std::string name);
   std::shared_ptr<Impl> impl_;
   std::string name_;

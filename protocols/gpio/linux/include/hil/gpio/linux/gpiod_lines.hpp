@@ -19,12 +19,12 @@ namespace hil::gpio::linux_gpiod {
 
 /// An error at open time: what, which chip/line, the errno.
 struct OpenError {
-  std::string message;   ///< "gpiochip3: line 'step' (offset 9): Device or resource busy"
+  std::string message;  ///< "gpiochip3: line 'step' (offset 9): Device or resource busy"
   std::error_code code;
 };
 
 class GpiodLines final : public LineBank {
-public:
+ public:
   /// Open `chip` ("gpiochip0", "/dev/gpiochip0", a label or a number, as gpiod_chip_open_lookup
   /// accepts) and request every line in `specs` with `consumer` as the consumer label.
   /// Blocking (a few ioctls). Thread: any.
@@ -43,7 +43,7 @@ public:
   [[nodiscard]] unsigned offset(std::size_t index) const noexcept;
   [[nodiscard]] const std::string& chip_name() const noexcept { return chip_name_; }
 
-private:
+ private:
   GpiodLines() = default;
   gpiod_chip* chip_ = nullptr;
   std::string chip_name_;
