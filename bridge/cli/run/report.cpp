@@ -3,6 +3,8 @@
 
 #include <fmt/format.h>
 
+#include "hil/runtime/latency_report.hpp"
+
 namespace hil::cli {
 
 std::string describe_scheduler(const runtime::SchedulerStats& s) {
@@ -42,6 +44,10 @@ void print_summary(std::FILE* out, const runtime::RunResult& r) {
                  e.passed ? "" : ": " + e.detail);
   }
   fmt::print(out, "scheduler: {}\n", describe_scheduler(r.scheduler));
+  if (r.realtime) fmt::print(out, "real time: {}\n", r.realtime->describe());
+  if (!r.scheduler.virtual_time && r.scheduler.wake_latency.count() > 0)
+    fmt::print(out, "wake-up latency histogram:\n{}",
+               runtime::format_latency_histogram(r.scheduler.wake_latency, "  "));
   for (const auto& rep : r.reports) {
     fmt::print(out, "transport {}: {}\n", rep.transport, rep.report.ok ? "ok" : "FAILED");
     for (const auto& l : rep.report.lines) fmt::print(out, "  {}\n", l);

@@ -1,5 +1,7 @@
 // SPDX-License-Identifier: MIT
 // CLI module `run`: `hilbridge run [scenario.yaml]` (and `hilbridge test`, test_command.cpp).
+#include <algorithm>
+
 #include <fmt/format.h>
 
 #include "examples.hpp"
@@ -8,11 +10,13 @@
 #include "hil/runtime/scenario_loader.hpp"
 #include "live_status.hpp"
 #include "report.hpp"
+#include "run_json.hpp"
 #include "run_outputs.hpp"
 
 namespace hil::cli {
 
 void register_test_command(Context& ctx);
+void register_latency_command(Context& ctx);
 
 namespace {
 
@@ -21,9 +25,28 @@ struct RunArgs {
   bool virtual_time = false;
   bool verify_steps = false;
   bool quiet = false;
+  bool json = false;
   std::string trace;
   std::string plot;
+  std::string duration;
+  int realtime_priority = 0;  ///< --realtime[=PRIO]; 0 = not given
+  int realtime_cpu = -1;      ///< --realtime-cpu; -1 = not given
+  bool realtime_fallback = false;
+  bool no_realtime = false;
 };
+
+// The scenario's `realtime:` key, then the command line on top of it.
+runtime::RealtimeOptions realtime_options(const runtime::Scenario& s, const RunArgs& args) {
+  runtime::RealtimeOptions o = s.realtime.value_or(runtime::RealtimeOptions{});
+  if (args.realtime_priority > 0) {
+    o.enabled = true;
+    o.priority = args.realtime_priority;
+  }
+  if (args.realtime_cpu >= 0) o.cpu = args.realtime_cpu;
+  if (args.realtime_fallback) o.fallback = true;
+  if (args.no_realtime) o.enabled = false;
+  return o;
+}
 
 int run_command(Context& ctx, const RunArgs& args) {
   std::filesystem::path file = args.scenario;
@@ -45,7 +68,22 @@ int run_command(Context& ctx, const RunArgs& args) {
     fmt::print(stderr, "error: {}\n", scenario.error().describe());
     return 2;
   }
-  LiveStatus live(stdout);
+  if (!args.duration.empty()) {
+    const auto d = runtime::parse_duration(args.duration);
+    if (!d || *d <= Duration::zero()) {
+      fmt::print(stderr, "error: --duration: expected a duration > 0 (seconds, or '250ms', '60s'), got '{}'\n",
+                 args.duration);
+      return 2;
+    }
+    scenario->duration = *d;
+    scenario->timeout = std::max(scenario->timeout, *d);
+  }
+  const runtime::RealtimeOptions realtime = realtime_options(*scenario, args);
+  if (realtime.enabled && args.virtual_time && args.realtime_priority > 0) {
+    fmt::print(stderr, "error: --realtime and --virtual exclude each other (virtual time never waits)\n");
+    return 2;
+  }
+  LiveStatus live(args.json ? stderr : stdout);
   RunOutputs outputs;
   if (auto e = outputs.open(args.trace, args.plot)) {
     fmt::print(stderr, "error: {}\n", *e);
@@ -55,20 +93,27 @@ int run_command(Context& ctx, const RunArgs& args) {
   options.virtual_time = args.virtual_time;
   options.verify_steps = args.verify_steps;
   options.handle_signals = true;
+  options.realtime = realtime;
+  if (args.virtual_time) options.realtime.enabled = false;
   if (!args.quiet) options.observers.push_back(&live);
   for (auto* o : outputs.observers()) options.observers.push_back(o);
   auto result = runtime::run_scenario(*scenario, ctx.transports, options);
   if (!result) {
     fmt::print(stderr, "error: {}\n", result.error().describe());
+    if (result.error().key == "realtime")
+      fmt::print(stderr, "Run without --realtime, or add --realtime-fallback to run on normal scheduling.\n");
     return 2;
   }
-  print_summary(stdout, *result);
+  if (args.json)
+    fmt::print(stdout, "{}", run_json(*result));
+  else
+    print_summary(stdout, *result);
   bool ok = result->ok;
   if (auto e = outputs.close(*result)) {
     fmt::print(stderr, "error: {}\n", *e);
     ok = false;
   }
-  for (const auto& f : outputs.written()) fmt::print("wrote {}\n", f);
+  for (const auto& f : outputs.written()) fmt::print(args.json ? stderr : stdout, "wrote {}\n", f);
   return ok ? 0 : 1;
 }
 
@@ -101,8 +146,26 @@ void register_run(Context& ctx) {
                 "Ask step/direction transports to verify their edge streams (timing rules); a violation fails "
                 "the run");
   run->add_flag("-q,--quiet", args->quiet, "No live status, only the summary");
+  run->add_flag("--json", args->json,
+                "Print the result as JSON on stdout instead of the summary (scheduler statistics with the "
+                "wake-up latency histogram, real-time settings); the live status goes to stderr");
+  run->add_option("--duration", args->duration,
+                  "Run this long (e.g. 60s), whatever the program does; overrides the scenario's duration:");
+  run->add_flag("--realtime{80}", args->realtime_priority,
+                "Run the cycle thread on real time: SCHED_FIFO at PRIO (default 80; --realtime=90), memory "
+                "locked, pinned to its own CPU, /dev/cpu_dma_latency held at 0, clock_nanosleep wake-ups. "
+                "Needs root or CAP_SYS_NICE + CAP_IPC_LOCK (docs/runtime.md); fails with what to do otherwise")
+      ->check(CLI::Range(1, 99));
+  run->add_option("--realtime-cpu", args->realtime_cpu,
+                  "CPU for the cycle thread (default: the first isolated CPU, else the last one); other threads "
+                  "keep off it")
+      ->check(CLI::Range(0, 1023));
+  run->add_flag("--realtime-fallback", args->realtime_fallback,
+                "When a real-time setting is refused, report it and run without it instead of failing");
+  run->add_flag("--no-realtime", args->no_realtime, "Ignore the scenario's realtime: key (normal scheduling)");
   run->callback([&ctx, args] { ctx.exit_code = run_command(ctx, *args); });
   register_test_command(ctx);
+  register_latency_command(ctx);
 }
 
 }  // namespace hil::cli

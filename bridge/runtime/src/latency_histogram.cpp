@@ -42,4 +42,14 @@ Duration LatencyHistogram::percentile(double fraction) const noexcept {
   return max_;
 }
 
+std::uint64_t LatencyHistogram::count_between(Duration lo, Duration hi) const noexcept {
+  const auto index = [](Duration d) {
+    if (d <= Duration::zero()) return std::size_t{0};
+    return static_cast<std::size_t>(std::min<Duration::rep>(d / bucket_width, bucket_count + 1));
+  };
+  std::uint64_t n = 0;
+  for (std::size_t i = index(lo), end = index(hi); i < end && i <= bucket_count; ++i) n += buckets_[i];
+  return n;
+}
+
 }  // namespace hil::runtime

@@ -8,6 +8,8 @@
 #include <asio/io_context.hpp>
 #include <asio/signal_set.hpp>
 
+#include "hil/runtime/linux/absolute_sleeper.hpp"
+#include "hil/runtime/linux/realtime_session.hpp"
 #include "hil/runtime/program.hpp"
 #include "hil/runtime/run_monitor.hpp"
 #include "hil/runtime/scheduler.hpp"
@@ -154,6 +156,14 @@ std::expected<RunResult, ConfigError> run_scenario(const Scenario& scenario, con
     const auto stats = scheduler.run([&](const CycleTime& c) { return session.cycle(c); });
     return session.finish(stats);
   }
+  // Real time: settle the cycle thread's environment before the transports start their threads
+  // (they inherit the CPUs other than the cycle CPU), then move this thread onto its CPU.
+  std::unique_ptr<linux_rt::RealtimeSession> realtime;
+  if (options.realtime.enabled) {
+    auto rt = linux_rt::RealtimeSession::begin(options.realtime);
+    if (!rt) return std::unexpected(ConfigError{"", 0, 0, "realtime", rt.error().message});
+    realtime = std::move(*rt);
+  }
   asio::io_context io;
   SteadyClock clock;
   RunEnvironment env{clock, false, &io, scenario.file, scenario.period, options.verify_steps, {}};
@@ -161,8 +171,13 @@ std::expected<RunResult, ConfigError> run_scenario(const Scenario& scenario, con
   if (!machine) return std::unexpected(machine.error());
   Session session(scenario, *machine, options);
   if (auto e = session.check()) return std::unexpected(*e);
+  std::optional<linux_rt::AbsoluteSleeper> sleeper;
+  if (realtime) {
+    realtime->enter_cycle_cpu();
+    sleeper.emplace(clock);
+  }
   for (auto* o : options.observers) o->on_start(scenario, *machine);
-  AsioScheduler scheduler(io, clock, scenario.period);
+  AsioScheduler scheduler(io, clock, scenario.period, sleeper ? &*sleeper : nullptr);
   std::optional<asio::signal_set> signals;
   if (options.handle_signals) {
     signals.emplace(io, SIGINT, SIGTERM);
@@ -171,18 +186,16 @@ std::expected<RunResult, ConfigError> run_scenario(const Scenario& scenario, con
     });
   }
   SchedulerStats stats;
-  bool done = false;
   scheduler.async_run([&](const CycleTime& c) { return session.cycle(c); },
                       [&](const SchedulerStats& s) {
                         stats = s;
-                        done = true;
                         if (signals) signals->cancel();
                       });
   // Transports may keep work (pending socket reads) on the context: run only until the scheduler
   // is done, let the factories finish, then flush what is ready.
-  while (!done && io.run_one() > 0) {
-  }
+  scheduler.run_until_done();
   RunResult r = session.finish(stats);
+  if (realtime) r.realtime = realtime->report();
   io.poll();
   return r;
 }

@@ -35,7 +35,8 @@ class Loader {
     const Field top(file_, root, "", YAML::Mark{});
     if (!root.IsMap())
       top.fail(fmt::format("a scenario is a map with 'machine:' and 'program:', got {}", top.describe()));
-    top.expect_map({"name", "description", "period", "duration", "timeout", "machine", "program", "expect"});
+    top.expect_map(
+        {"name", "description", "period", "duration", "timeout", "realtime", "machine", "program", "expect"});
     if (auto f = top.child("name"); f.present()) s.name = f.as_string("a scenario name");
     if (auto f = top.child("description"); f.present()) s.description = f.as_string("a text");
     if (auto f = top.child("period"); f.present()) {
@@ -52,6 +53,7 @@ class Loader {
       s.timeout = *d;
     }
     if (s.duration && *s.duration > s.timeout) s.timeout = *s.duration;
+    if (auto f = top.child("realtime"); f.present()) s.realtime = load_realtime(f);
 
     const Field machine = top.required("machine", "the machine: a map with 'axes:'");
     machine.expect_map({"axes"});
@@ -68,6 +70,34 @@ class Loader {
   }
 
  private:
+  // `realtime: true` or a map {priority, cpu, lock_memory, dma_latency, fallback}.
+  static RealtimeOptions load_realtime(const Field& f) {
+    RealtimeOptions o;
+    if (!f.node().IsMap()) {
+      o.enabled = f.as_bool();
+      return o;
+    }
+    f.expect_map({"enabled", "priority", "cpu", "lock_memory", "dma_latency", "fallback"});
+    o.enabled = true;
+    if (auto e = f.child("enabled"); e.present()) o.enabled = e.as_bool();
+    if (auto p = f.child("priority"); p.present()) {
+      const double v = p.as_number("a SCHED_FIFO priority 1..99");
+      if (v < 1 || v > 99 || v != std::floor(v))
+        p.fail(fmt::format("expected a SCHED_FIFO priority 1..99, got {}", p.describe()));
+      o.priority = static_cast<int>(v);
+    }
+    if (auto c = f.child("cpu"); c.present()) {
+      const double v = c.as_number("a CPU number");
+      if (v < 0 || v > 1023 || v != std::floor(v))
+        c.fail(fmt::format("expected a CPU number 0..1023, got {}", c.describe()));
+      o.cpu = static_cast<int>(v);
+    }
+    if (auto b = f.child("lock_memory"); b.present()) o.lock_memory = b.as_bool();
+    if (auto b = f.child("dma_latency"); b.present()) o.dma_latency = b.as_bool();
+    if (auto b = f.child("fallback"); b.present()) o.fallback = b.as_bool();
+    return o;
+  }
+
   AxisSpec load_axis(const Field& f, const Scenario& s) {
     f.expect_map({"name", "units", "inc_per_unit", "rotary", "modulo", "limits", "soft_limits", "backlash",
                   "supervision", "fault_reaction", "drive"});

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 #include "hil/runtime/scheduler.hpp"
 
+#include <asio/executor_work_guard.hpp>
 #include <asio/io_context.hpp>
 #include <asio/steady_timer.hpp>
 
@@ -29,9 +30,11 @@ SchedulerStats VirtualScheduler::run(const CycleFunction& fn, std::uint64_t max_
 }
 
 struct AsioScheduler::Impl {
-  Impl(asio::io_context& io, const SteadyClock& c, Duration p) : timer(io), clock(c), period(p) {}
+  Impl(asio::io_context& io, const SteadyClock& c, Duration p, DeadlineSleeper* s)
+      : timer(io), clock(c), period(p), sleeper(s) {}
 
   void arm() {
+    if (sleeper) return;  // run_until_done() sleeps to the deadline itself
     timer.expires_at(clock.to_steady(deadline));
     timer.async_wait([this](const std::error_code& ec) { on_timer(ec); });
   }
@@ -41,7 +44,15 @@ struct AsioScheduler::Impl {
       finish();
       return;
     }
-    const TimePoint woke = clock.now();
+    on_wake(clock.now());
+  }
+
+  // `woke`: when the thread came back from the wait (the latency sample).
+  void on_wake(TimePoint woke) {
+    if (stop_requested) {
+      finish();
+      return;
+    }
     stats.wake_latency.add(woke - deadline);
     ++stats.cycles;
     const CycleControl c = fn(CycleTime{deadline, period});
@@ -71,9 +82,38 @@ struct AsioScheduler::Impl {
     if (on_done) on_done(stats);
   }
 
+  asio::io_context& io() { return static_cast<asio::io_context&>(timer.get_executor().context()); }
+
+  void run_until_done() {
+    auto& ctx = io();
+    ctx.restart();
+    if (!sleeper) {
+      while (!finished && ctx.run_one() > 0) {
+      }
+      return;
+    }
+    // Keep the context from running out of work (which would stop it, and a stopped context
+    // runs no handler posted later) while the sleeper, not the context, waits for deadlines.
+    auto guard = asio::make_work_guard(ctx);
+    while (!finished) {
+      ctx.poll();  // I/O that became ready during the cycle (and the signal handlers)
+      if (finished) break;
+      if (stop_requested) {
+        finish();
+        break;
+      }
+      sleeper->sleep_until(deadline);
+      const TimePoint woke = clock.now();
+      ctx.poll();  // what arrived during the sleep, so the cycle sees the freshest data
+      if (finished) break;
+      on_wake(woke);
+    }
+  }
+
   asio::steady_timer timer;
   const SteadyClock& clock;
   Duration period;
+  DeadlineSleeper* sleeper = nullptr;
   CycleFunction fn;
   std::function<void(const SchedulerStats&)> on_done;
   std::uint64_t max_cycles = 0;
@@ -84,8 +124,9 @@ struct AsioScheduler::Impl {
   bool finished = true;
 };
 
-AsioScheduler::AsioScheduler(asio::io_context& io, const SteadyClock& clock, Duration period)
-    : impl_(std::make_unique<Impl>(io, clock, period > Duration::zero() ? period : std::chrono::milliseconds(1))) {}
+AsioScheduler::AsioScheduler(asio::io_context& io, const SteadyClock& clock, Duration period, DeadlineSleeper* sleeper)
+    : impl_(std::make_unique<Impl>(io, clock, period > Duration::zero() ? period : std::chrono::milliseconds(1),
+                                   sleeper)) {}
 
 AsioScheduler::~AsioScheduler() = default;
 
@@ -114,11 +155,12 @@ SchedulerStats AsioScheduler::run(CycleFunction fn, std::uint64_t max_cycles) {
   SchedulerStats out;
   async_run(
       std::move(fn), [&out](const SchedulerStats& s) { out = s; }, max_cycles);
-  auto& io = static_cast<asio::io_context&>(impl_->timer.get_executor().context());
-  io.restart();
-  while (!impl_->finished && io.run_one() > 0) {
-  }
+  run_until_done();
   return out;
+}
+
+void AsioScheduler::run_until_done() {
+  impl_->run_until_done();
 }
 
 const SchedulerStats& AsioScheduler::stats() const noexcept {

@@ -27,6 +27,9 @@ class LatencyHistogram {
   /// The smallest bucket upper edge below which `fraction` (0..1) of the samples lie, clamped to
   /// [min, max]; exact to one bucket (1 µs). 0 when empty.
   [[nodiscard]] Duration percentile(double fraction) const noexcept;
+  /// Samples in [lo, hi) at bucket resolution (lo and hi are rounded down to a bucket edge);
+  /// samples of 20 ms and more count in [20 ms, hi) when hi is beyond it.
+  [[nodiscard]] std::uint64_t count_between(Duration lo, Duration hi) const noexcept;
 
  private:
   std::array<std::uint32_t, bucket_count + 1> buckets_{};

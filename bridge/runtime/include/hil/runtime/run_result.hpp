@@ -4,11 +4,13 @@
 // statistics and the transports' reports. Printed by `hilbridge run`, turned into JUnit XML by
 // `hilbridge test`.
 
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "hil/core/fault.hpp"
 #include "hil/runtime/machine.hpp"
+#include "hil/runtime/realtime.hpp"
 #include "hil/runtime/scheduler.hpp"
 
 namespace hil::runtime {
@@ -50,7 +52,8 @@ struct RunResult {
   std::vector<ExpectationResult> expectations;
   std::vector<NamedReport> reports;
   SchedulerStats scheduler;
-  Duration simulated{};  ///< scenario time at the last cycle
+  std::optional<RealtimeReport> realtime;  ///< set when the run asked for real-time operation
+  Duration simulated{};                    ///< scenario time at the last cycle
   bool interrupted = false;
 };
 

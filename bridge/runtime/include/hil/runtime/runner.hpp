@@ -15,6 +15,7 @@
 
 #include "hil/core/config_error.hpp"
 #include "hil/core/transport.hpp"
+#include "hil/runtime/realtime.hpp"
 #include "hil/runtime/run_observer.hpp"
 #include "hil/runtime/run_result.hpp"
 #include "hil/runtime/scenario.hpp"
@@ -25,11 +26,16 @@ struct RunOptions {
   bool virtual_time = true;
   bool verify_steps = false;    ///< RunEnvironment::verify_steps
   bool handle_signals = false;  ///< real time: SIGINT/SIGTERM stop the run in a controlled way
+  /// Real time only: SCHED_FIFO, memory lock, CPU affinity, cpu_dma_latency and absolute
+  /// clock_nanosleep wake-ups for the cycle thread (the calling thread). A refused setting is a
+  /// ConfigError (key "realtime", with what to do) unless `realtime.fallback`.
+  RealtimeOptions realtime;
   std::vector<RunObserver*> observers;
 };
 
 /// Blocking. ConfigError when the machine cannot be built (unknown transport, a factory's
-/// error, an invalid axis configuration, a fault name the drive does not know).
+/// error, an invalid axis configuration, a fault name the drive does not know) or a real-time
+/// setting is refused.
 [[nodiscard]] std::expected<RunResult, ConfigError> run_scenario(const Scenario& scenario,
                                                                  const TransportRegistry& registry,
                                                                  const RunOptions& options);

@@ -14,6 +14,7 @@
 #include <yaml-cpp/yaml.h>
 
 #include "hil/core/clock.hpp"
+#include "hil/runtime/realtime.hpp"
 
 namespace hil::runtime {
 
@@ -187,6 +188,9 @@ struct Scenario {
   Duration period{std::chrono::milliseconds(1)};
   std::optional<Duration> duration;             ///< fixed run length; default: until the program is done and axes rest
   Duration timeout{std::chrono::seconds(600)};  ///< the run fails when it lasts longer
+  /// `realtime:` (true/false or a map); applies to runs on real time only (`hilbridge run`
+  /// options override it). Unset: normal scheduling.
+  std::optional<RealtimeOptions> realtime;
   std::vector<AxisSpec> axes;
   std::vector<Step> program;
   std::vector<Expectation> expectations;

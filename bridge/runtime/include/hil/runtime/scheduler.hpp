@@ -7,7 +7,10 @@
 // - AsioScheduler: on an Asio io_context with a steady timer against hil::SteadyClock (real
 //   time). Deadlines are absolute (start + k * period), so the cadence never drifts; a cycle
 //   that ends after the next deadline is an overrun and the deadlines it missed are skipped
-//   (counted). Wake-up latency (actual wake - deadline) goes into a LatencyHistogram.
+//   (counted). Wake-up latency (actual wake - deadline) goes into a LatencyHistogram. With a
+//   DeadlineSleeper (real-time mode: clock_nanosleep(TIMER_ABSTIME), linux/absolute_sleeper.hpp)
+//   the cycle thread sleeps to each deadline itself and polls the io_context before and after
+//   the sleep instead of waiting in epoll for a timer.
 //
 // Both hand the cycle function the same CycleTime (`now` = the cycle's nominal deadline,
 // `period` = the nominal period), so the same cycle code runs on either.
@@ -59,10 +62,20 @@ class VirtualScheduler {
   Duration period_;
 };
 
+/// Blocks the cycle thread until a deadline (real-time wake-ups). Thread: the cycle thread.
+class DeadlineSleeper {
+ public:
+  virtual ~DeadlineSleeper() = default;
+  /// Return at `deadline` (as soon after as the system allows); at once when it has passed.
+  virtual void sleep_until(TimePoint deadline) noexcept = 0;
+};
+
 class AsioScheduler {
  public:
   /// `io` runs the timer (and, typically, the transports' sockets); `clock` gives the deadlines.
-  AsioScheduler(asio::io_context& io, const SteadyClock& clock, Duration period);
+  /// `sleeper` (optional, must outlive the scheduler): wait for deadlines with it instead of an
+  /// Asio timer; ready I/O handlers then run right before and right after each sleep.
+  AsioScheduler(asio::io_context& io, const SteadyClock& clock, Duration period, DeadlineSleeper* sleeper = nullptr);
   ~AsioScheduler();
   AsioScheduler(const AsioScheduler&) = delete;
   AsioScheduler& operator=(const AsioScheduler&) = delete;
@@ -75,7 +88,10 @@ class AsioScheduler {
   /// Ask the run to end before the next cycle. Call on the io_context's thread (e.g. from a
   /// signal_set handler on the same context).
   void stop() noexcept;
-  /// async_run, then io.run() until done. Blocking.
+  /// Run the io_context (and, with a sleeper, the sleeps) on this thread until the run started
+  /// by async_run is done. Blocking.
+  void run_until_done();
+  /// async_run, then run_until_done(). Blocking.
   SchedulerStats run(CycleFunction fn, std::uint64_t max_cycles = std::numeric_limits<std::uint64_t>::max());
 
   [[nodiscard]] const SchedulerStats& stats() const noexcept;
