@@ -5,6 +5,8 @@
 //   1 kHz loop, 64 axes on SimDrive            < 5 % of one core (counter cpu_percent)
 #include <benchmark/benchmark.h>
 
+#include <algorithm>
+#include <chrono>
 #include <memory>
 #include <random>
 #include <vector>
@@ -59,6 +61,80 @@ void BM_PlanFromMotion(benchmark::State& state) {
   }
 }
 BENCHMARK(BM_PlanFromMotion);
+
+// The re-planning cases of issue 18 and docs/performance anchors (the same as the Ruckig
+// comparison): start and target in [-10, 10], V in [0.5, 5], A in [0.5, 10], J in [1, 100];
+// "from motion" = start velocity uniform in +/- V/2, acceleration 0, target at rest.
+struct ReplanCase {
+  State from;
+  double target;
+  Limits limits;
+};
+
+std::vector<ReplanCase> replan_cases(std::size_t n, bool moving) {
+  std::mt19937_64 rng(18);
+  std::uniform_real_distribution<double> pos(-10.0, 10.0), lv(0.5, 5.0), la(0.5, 10.0), lj(1.0, 100.0), u(-0.5, 0.5);
+  std::vector<ReplanCase> out(n);
+  for (auto& c : out) {
+    c.limits = {lv(rng), la(rng), lj(rng)};
+    c.from = {pos(rng), moving ? u(rng) * c.limits.velocity : 0.0, 0.0, 0.0};
+    c.target = pos(rng);
+  }
+  return out;
+}
+
+constexpr std::size_t replan_count = 100'000;
+
+void BM_ReplanRestToRest(benchmark::State& state) {
+  const auto cases = replan_cases(replan_count, false);
+  Profile p;
+  std::size_t i = 0;
+  for (auto _ : state) {
+    const auto& c = cases[i];
+    i = i + 1 == replan_count ? 0 : i + 1;
+    plan_rest_to_rest(c.from.p, c.target, c.limits, p);
+    benchmark::DoNotOptimize(p);
+  }
+}
+BENCHMARK(BM_ReplanRestToRest);
+
+void BM_ReplanFromMotion(benchmark::State& state) {
+  const auto cases = replan_cases(replan_count, true);
+  Profile p;
+  std::size_t i = 0;
+  for (auto _ : state) {
+    const auto& c = cases[i];
+    i = i + 1 == replan_count ? 0 : i + 1;
+    plan_position(c.from, c.target, c.limits, p);
+    benchmark::DoNotOptimize(p);
+  }
+}
+BENCHMARK(BM_ReplanFromMotion);
+
+// Per-call distribution: every call timed with steady_clock (about 20 ns of timer overhead
+// included, as in the anchors' per-call columns); counters mean_ns, p50_ns, p99_ns, max_ns.
+void BM_ReplanFromMotionPerCall(benchmark::State& state) {
+  const auto cases = replan_cases(replan_count, true);
+  std::vector<double> ns(replan_count);
+  Profile p;
+  for (auto _ : state) {
+    for (std::size_t i = 0; i < replan_count; ++i) {
+      const auto t0 = std::chrono::steady_clock::now();
+      plan_position(cases[i].from, cases[i].target, cases[i].limits, p);
+      benchmark::DoNotOptimize(p);
+      const auto t1 = std::chrono::steady_clock::now();
+      ns[i] = std::chrono::duration<double, std::nano>(t1 - t0).count();
+    }
+  }
+  double sum = 0.0;
+  for (double v : ns) sum += v;
+  std::sort(ns.begin(), ns.end());
+  state.counters["mean_ns"] = sum / static_cast<double>(replan_count);
+  state.counters["p50_ns"] = ns[replan_count / 2];
+  state.counters["p99_ns"] = ns[replan_count * 99 / 100];
+  state.counters["max_ns"] = ns.back();
+}
+BENCHMARK(BM_ReplanFromMotionPerCall)->Iterations(3)->Unit(benchmark::kMillisecond);
 
 // The drive does nothing but report the command back (ideal, instant).
 class EchoDrive final : public hil::Drive {

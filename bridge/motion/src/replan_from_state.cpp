@@ -7,8 +7,10 @@
 //     ramp(v0, a0 -> dir vc), cruise, ramp(dir vc -> 0)
 // covers, for vc >= max(dir v_stop, 0) (v_stop = velocity after zeroing a0 at once), a distance
 // D(vc) that grows monotonically with vc (every ramp accelerates towards dir; a higher vc gives a
-// pointwise higher speed). So: vc = V if D(V) <= d (cruise fills the rest); else bisection on vc
-// (D is continuous) and the cruise absorbs the last residual so the end is exact. When even the
+// pointwise higher speed). So: vc = V if D(V) <= d (cruise fills the rest); else the crossing
+// D(vc) = d, solved by safeguarded Newton steps on D in closed form with its exact slope
+// (ramp_distance.hpp; 3-6 steps, no bisection over the range), and the cruise absorbs the last
+// residual so the end is exact. When even the
 // smallest of those members overshoots (the axis is already decelerating and the target sits
 // between the braking point and D(vc_min)), vc is searched below v_stop instead: the axis slows
 // to vc without stopping (D(0) is the braking distance, so a crossing exists). Never exceeds the
@@ -17,72 +19,123 @@
 #include <cmath>
 
 #include "hil/motion/plan.hpp"
+#include "ramp_distance.hpp"
 #include "velocity_ramp.hpp"
 
 namespace hil::motion {
 
 using detail::append_ramp;
+using detail::DistanceSlope;
 using detail::plan_ramp;
+using detail::ramp_from;
+using detail::ramp_to;
 
 namespace {
 
-// Appends the move from out.current() to rest at `target` under `limits`.
-void append_position(Profile& out, double target, const Limits& limits) noexcept {
-  const State from = out.current();
-  if (from.v == 0.0 && from.a == 0.0) {
+struct Crossing {
+  double v = 0.0;         ///< cruise velocity with D(v) <= d (as close as doubles allow)
+  double distance = 0.0;  ///< D(v)
+};
+
+// Root of the monotone, continuous D(v) = d on [lo, hi] with D(lo) <= d < D(hi): Newton steps
+// on the closed-form D and its exact slope, kept inside the shrinking bracket (a step that
+// would leave it, or a flat or infinite slope, falls back to the secant of the bracket, then
+// to halving). D is piecewise a quadratic or a polynomial in sqrt(v - v_branch), so Newton
+// converges in 3-6 steps; the 60-step cap is a guard for degenerate limits only.
+template <class F>
+Crossing solve_crossing(const F& distance, double d, double lo, double hi, double dlo, double dhi,
+                        double scale) noexcept {
+  Crossing best{lo, dlo};
+  const double tol_x = 1e-15 * scale;
+  const double tol_d = 4e-16 * std::max(1.0, std::fabs(d));
+  double v = dhi > dlo ? lo + (hi - lo) * (d - dlo) / (dhi - dlo) : 0.5 * (lo + hi);
+  bool secant_last = true;
+  for (int i = 0; i < 60; ++i) {
+    const DistanceSlope e = distance(v);
+    const double f = e.distance - d;
+    if (f <= 0.0) {
+      lo = v;
+      dlo = e.distance;
+      best = {v, e.distance};
+      if (f >= -tol_d) break;
+    } else {
+      hi = v;
+      dhi = e.distance;
+      if (f <= tol_d) {  // a hair beyond: the cruise is skipped and finish() absorbs it
+        best = {v, e.distance};
+        break;
+      }
+    }
+    if (hi - lo <= tol_x) break;
+    double next = v - f / e.slope;
+    if (!(e.slope > 0.0) || !(next > lo && next < hi)) {
+      // Secant of the bracket once, halving if the secant stalls twice in a row.
+      next = (!secant_last && dhi > dlo) ? lo + (hi - lo) * (d - dlo) / (dhi - dlo) : 0.5 * (lo + hi);
+      secant_last = !secant_last;
+      if (!(next > lo && next < hi)) next = 0.5 * (lo + hi);
+    }
+    v = next;
+  }
+  return best;
+}
+
+// Appends the move from out.current() onto the target that is at `target` at profile time 0 and
+// moves at `target_v` (0: a target at rest), under `limits` (|target_v| < limits.velocity).
+// Solved in the target's frame: relative position x = p - target(t), relative velocity
+// u = v - target_v, same acceleration and jerk; there the target is at rest at 0, and the
+// velocity limit towards dir is V - dir target_v (so the absolute velocity stays within +-V).
+// The jerk and cruise segments appended are the same in both frames.
+void append_position(Profile& out, double target, double target_v, const Limits& limits) noexcept {
+  const State cur = out.current();
+  if (target_v == 0.0 && cur.v == 0.0 && cur.a == 0.0) {
     detail::append_rest_to_rest(out, target, limits);
     return;
   }
-  const detail::Ramp brake = plan_ramp(from.v, from.a, 0.0, limits);
-  const double p_stop = from.p + brake.distance;
-  const double gap = target - p_stop;
+  const State from{cur.p - (target + target_v * out.duration()), cur.v - target_v, cur.a, 0.0};
+  const double p_stop = from.p + ramp_to(from.v, from.a, 0.0, limits).distance;
+  const double gap = -p_stop;
   if (std::fabs(gap) <= 1e-12 * std::max(1.0, std::fabs(target))) {
-    append_ramp(brake, out);
+    append_ramp(plan_ramp(from.v, from.a, 0.0, limits), out);
     return;
   }
   const double dir = gap > 0 ? 1.0 : -1.0;
-  const double dn = dir * (target - from.p);
-  // D(vc): normalised distance of ramp to dir*vc and back to rest, no cruise.
+  const double dn = -dir * from.p;
+  // D(vc): normalised distance of ramp to dir*vc and back to rest, no cruise; with its slope.
   const auto distance = [&](double vc) {
-    return dir *
-           (plan_ramp(from.v, from.a, dir * vc, limits).distance + plan_ramp(dir * vc, 0.0, 0.0, limits).distance);
+    const DistanceSlope r1 = ramp_to(from.v, from.a, dir * vc, limits);
+    const DistanceSlope r2 = ramp_from(dir * vc, 0.0, limits);
+    // d/dvc of dir * (x1(dir vc) + x2(dir vc)) = slope1 + slope2 (dir^2 = 1).
+    return DistanceSlope{dir * (r1.distance + r2.distance), r1.slope + r2.slope};
   };
   const double vn = dir * from.v, an = dir * from.a;
   const double v_stop = limits.jerk_limited() ? vn + an * std::fabs(an) / (2.0 * limits.jerk) : vn;
-  const double vmax = limits.velocity;
+  const double vmax = std::max(limits.velocity - dir * target_v, 0.0);
   const double vlo = std::clamp(v_stop, 0.0, vmax);
   // Bracket the crossing D(vc) = d. D(vlo) <= d: search [vlo, V] (monotone there). D(vlo) > d
   // (already decelerating, target just beyond the braking point): search [0, vlo], where
-  // D(0) = braking distance < d; D is continuous, so bisection keeps D(lo) <= d < D(hi) and
-  // converges on a crossing: the axis slows to vc without stopping, cruises, and stops on target.
-  double lo = vlo, hi = vmax;
-  double dlo = distance(vlo);
-  if (dlo > dn) {
-    const double d0 = distance(0.0);
-    if (d0 > dn) {  // cannot happen analytically (d0 is the braking distance); stay safe
-      append_ramp(brake, out);
-      detail::append_rest_to_rest(out, target, limits);
-      return;
-    }
-    lo = 0.0;
-    hi = vlo;
-    dlo = d0;
-  }
+  // D(0) = braking distance < d; D is continuous, so a crossing exists: the axis slows to vc
+  // without stopping, cruises, and stops on target.
+  // D(V) <= d (the common case): the cruise at V fills the rest, nothing to solve.
   double vc = vmax;
-  double dvc = hi == vmax ? distance(vmax) : dn + 1.0;
+  double dvc = distance(vmax).distance;
   if (dvc > dn) {
-    dvc = dlo;
-    for (int i = 0; i < 200 && hi - lo > 1e-15 * vmax; ++i) {
-      const double mid = 0.5 * (lo + hi);
-      const double dm = distance(mid);
-      if (dm <= dn) {
-        lo = mid;
-        dvc = dm;
-      } else {
-        hi = mid;
+    double lo = vlo, hi = vmax, dhi = dvc;
+    double dlo = distance(vlo).distance;
+    if (dlo > dn) {
+      const double d0 = distance(0.0).distance;
+      if (d0 > dn) {  // cannot happen analytically (d0 is the braking distance); stay safe
+        append_ramp(plan_ramp(from.v, from.a, 0.0, limits), out);
+        append_position(out, target, target_v, limits);
+        return;
       }
+      hi = vlo;
+      dhi = dlo;
+      lo = 0.0;
+      dlo = d0;
     }
-    vc = lo;
+    const Crossing c = solve_crossing(distance, dn, lo, hi, dlo, dhi, vmax);
+    vc = c.v;
+    dvc = c.distance;
   }
   append_ramp(plan_ramp(from.v, from.a, dir * vc, limits), out);
   if (vc > 0.0) {
@@ -141,8 +194,18 @@ void plan_position(const State& from, double target, const Limits& limits, Profi
 void plan_position(const State& from, double target, const Limits& limits, const Limits& entry, Profile& out) noexcept {
   out.reset(from);
   append_entry(out, limits, entry);
-  append_position(out, target, limits);
+  append_position(out, target, 0.0, limits);
   out.finish(State{target, 0.0, 0.0, 0.0});
+}
+
+void plan_moving_target(const State& from, double target, double target_velocity, const Limits& limits,
+                        Profile& out) noexcept {
+  const double vt = std::clamp(target_velocity, -limits.velocity, limits.velocity);
+  out.reset(from);
+  append_entry(out, limits, limits);
+  append_position(out, target, vt, limits);
+  const double t = out.duration();
+  out.finish(State{target + vt * t, vt, 0.0, 0.0});
 }
 
 }  // namespace hil::motion

@@ -18,10 +18,21 @@ void plan_rest_to_rest(double from, double to, const Limits& limits, Profile& ou
 
 /// Move from any state (p, v, a) to rest at `target`, never exceeding `limits` (`from` must be
 /// inside them; see the overload with `entry` otherwise). Time-optimal from rest; from motion it
-/// takes a profile of the family "ramp to a cruise velocity vc, cruise, ramp to rest" (vc by
-/// bisection; a target behind the braking point makes vc point backwards: the axis reverses).
-/// O(1) from rest; up to 200 closed-form evaluations from motion.
+/// takes the fastest profile of the family "ramp to a cruise velocity vc, cruise, ramp to rest"
+/// (vc from D(vc) = distance, solved by Newton steps on the closed-form D with its exact slope;
+/// a target behind the braking point makes vc point backwards: the axis reverses). O(1) from
+/// rest; typically 3-6 closed-form evaluations from motion, no bisection.
 void plan_position(const State& from, double target, const Limits& limits, Profile& out) noexcept;
+
+/// Catch a target that moves at constant velocity: it is at `target` at t = 0 and moves at
+/// `target_velocity` (|target_velocity| < limits.velocity; clamped into the limit). The profile
+/// ends on it (p = target + target_velocity * T, v = target_velocity, a = 0) and then follows
+/// it (a profile continues at its end velocity): synchronising to a master axis, a flying
+/// cut-off, cam engagement. Solved as plan_position in the target's frame, where the velocity
+/// limit towards direction d is limits.velocity - d * target_velocity (so |v| <= limits.velocity
+/// in the machine frame). `from` inside `limits`. target_velocity = 0 is plan_position.
+void plan_moving_target(const State& from, double target, double target_velocity, const Limits& limits,
+                        Profile& out) noexcept;
 
 /// Reach `velocity` (signed) with zero acceleration from any state, then cruise on.
 void plan_velocity(const State& from, double velocity, const Limits& limits, Profile& out) noexcept;
