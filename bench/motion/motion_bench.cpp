@@ -111,6 +111,24 @@ void BM_ReplanFromMotion(benchmark::State& state) {
 }
 BENCHMARK(BM_ReplanFromMotion);
 
+// A target moving at a velocity uniform in +/- V/2 (synchronising to a master), same cases.
+void BM_PlanMovingTarget(benchmark::State& state) {
+  const auto cases = replan_cases(replan_count, true);
+  std::vector<double> vt(replan_count);
+  std::mt19937_64 rng(19);
+  std::uniform_real_distribution<double> u(-0.5, 0.5);
+  for (std::size_t k = 0; k < replan_count; ++k) vt[k] = u(rng) * cases[k].limits.velocity;
+  Profile p;
+  std::size_t i = 0;
+  for (auto _ : state) {
+    const auto& c = cases[i];
+    plan_moving_target(c.from, c.target, vt[i], c.limits, p);
+    i = i + 1 == replan_count ? 0 : i + 1;
+    benchmark::DoNotOptimize(p);
+  }
+}
+BENCHMARK(BM_PlanMovingTarget);
+
 // Per-call distribution: every call timed with steady_clock (about 20 ns of timer overhead
 // included, as in the anchors' per-call columns); counters mean_ns, p50_ns, p99_ns, max_ns.
 void BM_ReplanFromMotionPerCall(benchmark::State& state) {
