@@ -17,6 +17,7 @@
 // limits; time-optimal from rest (then it is exactly plan_rest_to_rest).
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "hil/motion/plan.hpp"
 #include "ramp_distance.hpp"
@@ -79,6 +80,38 @@ Crossing solve_crossing(const F& distance, double d, double lo, double hi, doubl
   return best;
 }
 
+// The other candidate when the axis is decelerating towards a target just beyond its braking
+// point (normalised: vn >= 0 moving towards it, an < 0, D_brake < dn < D(v_stop)): instead of
+// slowing to vc, touching a = 0 and braking again (the family above), relax the deceleration
+// from an to am in [an, 0] at jerk +J, then brake to rest: E(am) = x_relax(am) + brake(v1, am),
+// E(an) = the braking distance < dn, E(0) = zero a then brake (>= dn), E continuous: solve
+// E(am) = dn. Appends it and returns true when it is faster than the family's member (vc).
+bool append_relaxed_brake(Profile& out, double vn, double an, double dn, double d_brake, double dir, double target_v,
+                          const Limits& limits, double vc, double dvc, const State& rel) noexcept {
+  const double J = limits.jerk;
+  const auto relax = [&](double am) {
+    const double t1 = (am - an) / J;
+    const double v1 = vn + (am * am - an * an) / (2.0 * J);
+    const double x1 = t1 * (vn + t1 * (an / 2.0 + t1 * J / 6.0));
+    return DistanceSlope{x1 + ramp_to(v1, am, 0.0, limits).distance, std::numeric_limits<double>::quiet_NaN()};
+  };
+  const double e0 = relax(0.0).distance;
+  if (!(e0 > dn) || !(d_brake < dn)) return false;
+  const Crossing c = solve_crossing(relax, dn, an, 0.0, d_brake, e0, limits.acceleration);
+  const double am = c.v;
+  const double t1 = (am - an) / J;
+  const double v1 = vn + (am * am - an * an) / (2.0 * J);
+  const double t_relaxed = t1 + plan_ramp(v1, am, 0.0, limits).duration;
+  const double cruise = vc > 0.0 ? std::max(0.0, (dn - dvc) / vc) : 0.0;
+  const double t_family =
+      plan_ramp(rel.v, rel.a, dir * vc, limits).duration + cruise + plan_ramp(dir * vc, 0.0, 0.0, limits).duration;
+  if (!(t_relaxed < t_family)) return false;
+  out.append(t1, dir * J);
+  const State cur = out.current();
+  append_ramp(plan_ramp(cur.v - target_v, cur.a, 0.0, limits), out);
+  return true;
+}
+
 // Appends the move from out.current() onto the target that is at `target` at profile time 0 and
 // moves at `target_v` (0: a target at rest), under `limits` (|target_v| < limits.velocity).
 // Solved in the target's frame: relative position x = p - target(t), relative velocity
@@ -118,10 +151,13 @@ void append_position(Profile& out, double target, double target_v, const Limits&
   // D(V) <= d (the common case): the cruise at V fills the rest, nothing to solve.
   double vc = vmax;
   double dvc = distance(vmax).distance;
+  double d_brake = 0.0;
+  bool slowing = false;
   if (dvc > dn) {
     double lo = vlo, hi = vmax, dhi = dvc;
     double dlo = distance(vlo).distance;
     if (dlo > dn) {
+      slowing = true;
       const double d0 = distance(0.0).distance;
       if (d0 > dn) {  // cannot happen analytically (d0 is the braking distance); stay safe
         append_ramp(plan_ramp(from.v, from.a, 0.0, limits), out);
@@ -132,11 +168,15 @@ void append_position(Profile& out, double target, double target_v, const Limits&
       dhi = dlo;
       lo = 0.0;
       dlo = d0;
+      d_brake = d0;
     }
     const Crossing c = solve_crossing(distance, dn, lo, hi, dlo, dhi, vmax);
     vc = c.v;
     dvc = c.distance;
   }
+  if (slowing && limits.jerk_limited() && an < 0.0 &&
+      append_relaxed_brake(out, vn, an, dn, d_brake, dir, target_v, limits, vc, dvc, from))
+    return;
   append_ramp(plan_ramp(from.v, from.a, dir * vc, limits), out);
   if (vc > 0.0) {
     const double cruise = (dn - dvc) / vc;

@@ -18,10 +18,11 @@ void plan_rest_to_rest(double from, double to, const Limits& limits, Profile& ou
 
 /// Move from any state (p, v, a) to rest at `target`, never exceeding `limits` (`from` must be
 /// inside them; see the overload with `entry` otherwise). Time-optimal from rest; from motion it
-/// takes the fastest profile of the family "ramp to a cruise velocity vc, cruise, ramp to rest"
-/// (vc from D(vc) = distance, solved by Newton steps on the closed-form D with its exact slope;
-/// a target behind the braking point makes vc point backwards: the axis reverses). O(1) from
-/// rest; typically 3-6 closed-form evaluations from motion, no bisection.
+/// takes the faster of "ramp to a cruise velocity vc, cruise, ramp to rest" (vc from
+/// D(vc) = distance, solved by Newton steps on the closed-form D with its exact slope; a target
+/// behind the braking point makes vc point backwards: the axis reverses) and, when decelerating
+/// towards a target just beyond the braking point, "relax the deceleration, then brake"
+/// (docs/motion.md). O(1) from rest; typically 3-6 closed-form evaluations from motion.
 void plan_position(const State& from, double target, const Limits& limits, Profile& out) noexcept;
 
 /// Catch a target that moves at constant velocity: it is at `target` at t = 0 and moves at
