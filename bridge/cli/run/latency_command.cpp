@@ -5,7 +5,9 @@
 // cpu_dma_latency 0, clock_nanosleep wake-ups, as `hilbridge run --realtime`), optionally under
 // a CPU and memory load, and prints the latency histogram and the minimum cycle period it
 // recommends for this machine.
+#include <algorithm>
 #include <atomic>
+#include <cmath>
 #include <csignal>
 #include <cstring>
 #include <optional>
@@ -85,7 +87,7 @@ int latency_command(const LatencyArgs& args) {
                args.period);
     return 2;
   }
-  const auto cycles = static_cast<std::uint64_t>(std::max(1.0, args.seconds / to_seconds(*period)));
+  const auto cycles = static_cast<std::uint64_t>(std::max(1.0, std::round(args.seconds / to_seconds(*period))));
 
   std::optional<LoadGenerator> load;
   if (args.load) load.emplace(std::max(1u, std::thread::hardware_concurrency()));
