@@ -15,6 +15,7 @@
 
 #include "hil/core/clock.hpp"
 #include "hil/runtime/realtime.hpp"
+#include "hil/runtime/coupling_spec.hpp"
 
 namespace hil::runtime {
 
@@ -142,7 +143,7 @@ struct ParallelStep {
 
 using StepAction = std::variant<EnableStep, DisableStep, ResetStep, HomeStep, MoveAbsoluteStep, MoveRelativeStep,
                                 MoveVelocityStep, JogStep, StopStep, QuickStopStep, WaitStep, WaitInPositionStep,
-                                WaitUntilStep, InjectFaultStep, ParallelStep>;
+                                WaitUntilStep, InjectFaultStep, ParallelStep, CoupleStep>;
 
 struct Step {
   StepAction action;
@@ -192,6 +193,9 @@ struct Scenario {
   /// options override it). Unset: normal scheduling.
   std::optional<RealtimeOptions> realtime;
   std::vector<AxisSpec> axes;
+  std::vector<VirtualMasterSpec> masters;  ///< machine.masters (coupling)
+  std::vector<CamSpec> cams;               ///< machine.cams (coupling)
+  std::vector<CouplingSpec> couplings;     ///< machine.couplings
   std::vector<Step> program;
   std::vector<Expectation> expectations;
   YAML::Node document;  ///< keeps the drive nodes' document alive
