@@ -125,7 +125,8 @@ void Controller::apply_reaction(const DeviceError& e) noexcept {
       case profiles::Reaction::message:
         break;
       case profiles::Reaction::stop:
-        if (ax.status().busy) (void)ax.stop();
+        // A stop under the normal limits, unless a (quick) stop already runs.
+        if (ax.status().state == motion::AxisState::moving) (void)ax.stop();
         break;
       case profiles::Reaction::drive_off:
       case profiles::Reaction::needs_reset:

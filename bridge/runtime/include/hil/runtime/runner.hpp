@@ -26,6 +26,8 @@ struct RunOptions {
   bool verify_steps = false;    ///< RunEnvironment::verify_steps
   bool handle_signals = false;  ///< real time: SIGINT/SIGTERM stop the run in a controlled way
   std::vector<RunObserver*> observers;
+  /// Device controllers for `controller:` blocks; nullptr = controllers::builtin_controllers().
+  const controllers::ControllerRegistry* controllers = nullptr;
 };
 
 /// Blocking. ConfigError when the machine cannot be built (unknown transport, a factory's
