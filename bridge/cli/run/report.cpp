@@ -4,6 +4,7 @@
 #include <fmt/format.h>
 
 #include "hil/runtime/latency_report.hpp"
+#include "hil/runtime/run_monitor.hpp"
 
 namespace hil::cli {
 
@@ -33,9 +34,19 @@ void print_summary(std::FILE* out, const runtime::RunResult& r) {
     std::string faults = a.faults.empty() ? "none" : "";
     for (const auto& f : a.faults)
       faults +=
-          fmt::format("{}t={:.3f} s {} {}", faults.empty() ? "" : "; ", to_seconds(f.t), f.source, f.fault.describe());
+          fmt::format("{}t={:.3f} s {} {}", faults.empty() ? "" : "; ", to_seconds(f.t), f.source,
+                      f.source == "device" ? runtime::fault_code_text(f) + " " + f.fault.text : f.fault.describe());
     fmt::print(out, "  {:<8} {:>12.4f} {:<3} {:>14} {:>10.4f} {:<3} at {:>7.3f} s  {}\n", a.name, a.final_position,
                a.units, a.final_state, a.max_following_error, a.units, to_seconds(a.max_following_error_t), faults);
+  }
+  if (!r.controller.empty()) {
+    fmt::print(out, "controller {}:\n", r.controller);
+    for (const auto& d : r.device_errors)
+      fmt::print(out, "  device error t={:.3f} s axis {}: {} (reaction {})\n", to_seconds(d.t), d.axis, d.describe(),
+                 d.reaction);
+    for (const auto& io : r.io)
+      fmt::print(out, "  io {:<16} {:<14} final {}  rising {}  falling {}\n", io.name, io.address,
+                 io.final_state ? 1 : 0, io.rising, io.falling);
   }
   if (!r.expectations.empty()) {
     fmt::print(out, "expectations:\n");

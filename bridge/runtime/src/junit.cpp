@@ -47,16 +47,25 @@ std::string make_junit_xml(const std::vector<ScenarioOutcome>& outcomes) {
     // failures are already their own cases).
     std::vector<std::string> run_failures;
     for (const auto& f : r.failures)
-      if (!f.starts_with("axis ") || f.find(": expected ") == std::string::npos) run_failures.push_back(f);
+      if ((!f.starts_with("axis ") || f.find(": expected ") == std::string::npos) && !f.starts_with("I/O: expected "))
+        run_failures.push_back(f);
+    // Device errors the controller raised, with the device's number and text (docs/controllers.md).
+    std::string device_errors;
+    for (const auto& d : r.device_errors)
+      device_errors += fmt::format("device error t={:.3f} s axis {}: {} (reaction {})\n", to_seconds(d.t), d.axis,
+                                   d.describe(), d.reaction);
+    const std::string system_out = device_errors.empty()
+                                       ? std::string()
+                                       : fmt::format("      <system-out>{}</system-out>\n", xml_escape(device_errors));
     cases += fmt::format("    <testcase classname=\"{}\" name=\"run\" time=\"{:.3f}\"", suite, o.wall_s);
     if (run_failures.empty()) {
-      cases += "/>\n";
+      cases += system_out.empty() ? std::string("/>\n") : ">\n" + system_out + "    </testcase>\n";
     } else {
       ++suite_failures;
       std::string text;
       for (const auto& f : run_failures) text += f + "\n";
-      cases += fmt::format(">\n      <failure message=\"{}\" type=\"run\">{}</failure>\n    </testcase>\n",
-                           xml_escape(run_failures.front()), xml_escape(text));
+      cases += fmt::format(">\n      <failure message=\"{}\" type=\"run\">{}</failure>\n{}    </testcase>\n",
+                           xml_escape(run_failures.front()), xml_escape(text), system_out);
     }
     const std::size_t suite_tests = r.expectations.size() + 1;
     tests += suite_tests;

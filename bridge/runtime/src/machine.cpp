@@ -52,12 +52,18 @@ std::expected<motion::AxisConfig, ConfigError> make_axis_config(const AxisSpec& 
 }
 
 std::expected<Machine, ConfigError> Machine::build(const Scenario& scenario, const TransportRegistry& registry,
-                                                   RunEnvironment& env) {
+                                                   RunEnvironment& env,
+                                                   const controllers::ControllerRegistry* controllers) {
   Machine m;
-  for (const AxisSpec& spec : scenario.axes) {
+  if (scenario.controller) {
+    if (auto e = m.build_controller(scenario, controllers)) return std::unexpected(*e);
+  }
+  for (const AxisSpec& scenario_spec : scenario.axes) {
+    const AxisSpec& spec = m.controller_spec(scenario_spec);
     const int drive_line = spec.drive.IsDefined() ? spec.drive.Mark().line + 1 : spec.source.line;
     const std::string drive_path = spec.source.path + ".drive";
-    auto config = make_axis_config(spec, scenario.file);
+    auto config =
+        spec.from_controller ? m.controller_axis_config(spec, scenario.file) : make_axis_config(spec, scenario.file);
     if (!config) return std::unexpected(config.error());
 
     TransportFactory* factory = nullptr;
@@ -95,6 +101,10 @@ std::expected<Machine, ConfigError> Machine::build(const Scenario& scenario, con
     m.axes_.push_back(std::move(a));
   }
   if (auto e = m.couplings_.build(scenario, m.axes_)) return std::unexpected(*e);
+  if (m.controller_) {
+    if (auto e = m.bind_controller(scenario)) return std::unexpected(*e);
+    if (auto e = m.attach_io(scenario)) return std::unexpected(*e);
+  }
   return m;
 }
 
@@ -106,6 +116,10 @@ void Machine::cycle(const CycleTime& cycle) noexcept {
     axes_[i].axis->update(cycle);
   }
   for (auto& f : factories_) f.factory->end_cycle(cycle);
+  if (controller_ && cycle_count_ % controller_every_ == 0) {
+    (void)controller_->step(CycleTime{cycle.now, controller_->cycle_period()});
+  }
+  ++cycle_count_;
 }
 
 std::vector<NamedReport> Machine::finish(const CycleTime& cycle) {

@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: MIT
 #include "hil/runtime/run_monitor.hpp"
 
+#include <algorithm>
+#include <cctype>
 #include <cmath>
 
 #include <fmt/format.h>
@@ -25,13 +27,37 @@ std::string fault_text(const Fault& f) {
                      f.text.empty() ? " " + f.code.message() : " " + f.text);
 }
 
-bool code_matches(const Fault& f, const std::string& code) {
+/// A device error's number as its manual writes it: the catalogue category's message starts with it.
+std::string device_code(const Fault& f) {
+  const std::string m = f.code.message();
+  return m.substr(0, m.find(' '));
+}
+
+std::string fault_text(const FaultEvent& e) {
+  if (e.source != "device") return fault_text(e.fault);
+  return fmt::format("{} {}", fault_code_text(e), e.fault.text);
+}
+
+bool same_text(std::string_view a, std::string_view b) {
+  return a.size() == b.size() && std::equal(a.begin(), a.end(), b.begin(), [](char x, char y) {
+           return std::toupper(static_cast<unsigned char>(x)) == std::toupper(static_cast<unsigned char>(y));
+         });
+}
+
+bool code_matches(const FaultEvent& e, const std::string& code) {
   if (code.empty()) return true;
   const auto c = parse_fault_code(code);
-  return c && f.code.value() == c->value && c->category == f.code.category().name();
+  if (!c || c->category != e.fault.code.category().name()) return false;
+  if (c->value < 0) return e.source == "device" && same_text(c->text, device_code(e.fault));
+  return e.fault.code.value() == c->value;
 }
 
 }  // namespace
+
+std::string fault_code_text(const FaultEvent& e) {
+  if (e.source != "device") return fmt::format("{}:{}", e.fault.code.category().name(), e.fault.code.value());
+  return fmt::format("{}:{}", e.fault.code.category().name(), device_code(e.fault));
+}
 
 std::string describe(const Expectation& e, const AxisSpec& axis) {
   return std::visit(
@@ -59,7 +85,8 @@ std::string describe(const Expectation& e, const AxisSpec& axis) {
       e.kind);
 }
 
-RunMonitor::RunMonitor(const Scenario& scenario, const Machine& machine) : scenario_(scenario), machine_(machine) {
+RunMonitor::RunMonitor(const Scenario& scenario, const Machine& machine)
+    : scenario_(scenario), machine_(machine), io_(scenario, machine) {
   for (const auto& a : machine.axes()) tracks_.push_back(AxisTrack{&a, 0.0, {}, {}, {}});
   for (const auto& e : scenario.expectations) {
     ExpectationState s;
@@ -143,6 +170,19 @@ void RunMonitor::observe(Duration t) noexcept {
       if (df) faults_.push_back(FaultEvent{t, tr.axis->spec->name, "drive", df});
     }
   }
+  if (const auto* c = machine_.controller()) {
+    const auto history = c->errors().history();
+    for (; device_errors_seen_ < history.size(); ++device_errors_seen_) {
+      const auto& e = history[device_errors_seen_];
+      const bool on_axis = e.axis >= 0 && static_cast<std::size_t>(e.axis) < c->axis_specs().size();
+      faults_.push_back(FaultEvent{t, on_axis ? c->axis_specs()[static_cast<std::size_t>(e.axis)].name : "controller",
+                                   "device", e.fault});
+      device_events_.push_back(DeviceErrorEvent{t, faults_.back().axis, e.fault.code.category().name(), e.code_text(),
+                                                e.fault.text, std::string(profiles::to_string(e.reaction)),
+                                                std::string(controllers::to_string(e.ack))});
+    }
+  }
+  io_.observe(t);
   for (auto& s : states_) {
     if (s.decided) continue;
     const auto& st = machine_.axes()[s.axis].axis->status();
@@ -213,11 +253,11 @@ void RunMonitor::finish(Duration t_end, RunResult& r) const {
                      std::string seen;
                      for (const auto& ev : faults_) {
                        if (ev.axis != name) continue;
-                       if (code_matches(ev.fault, f.code) && (!f.by || ev.t <= *f.by)) {
+                       if (code_matches(ev, f.code) && (!f.by || ev.t <= *f.by)) {
                          s.passed = true;
                          return;
                        }
-                       seen += fmt::format("{}{} at t={:.3f} s", seen.empty() ? "" : "; ", fault_text(ev.fault),
+                       seen += fmt::format("{}{} at t={:.3f} s", seen.empty() ? "" : "; ", fault_text(ev),
                                            to_seconds(ev.t));
                      }
                      s.detail = seen.empty() ? std::string("no fault occurred") : "saw " + seen;
@@ -228,7 +268,7 @@ void RunMonitor::finish(Duration t_end, RunResult& r) const {
                      for (const auto& ev : faults_) {
                        if (ev.axis != name) continue;
                        s.passed = false;
-                       s.detail = fmt::format("faulted at t={:.3f} s: {}", to_seconds(ev.t), fault_text(ev.fault));
+                       s.detail = fmt::format("faulted at t={:.3f} s: {}", to_seconds(ev.t), fault_text(ev));
                        break;
                      }
                    },
@@ -261,10 +301,27 @@ void RunMonitor::finish(Duration t_end, RunResult& r) const {
       if (ev.axis != name) continue;
       r.ok = false;
       r.failures.push_back(fmt::format("axis {}: unexpected {} fault at t={:.3f} s: {}", name, ev.source,
-                                       to_seconds(ev.t), fault_text(ev.fault)));
+                                       to_seconds(ev.t), fault_text(ev)));
       break;
     }
   }
+  // Device errors of the whole controller: expected when some fault expectation matches them.
+  for (const auto& ev : faults_) {
+    if (ev.axis != "controller") continue;
+    const bool expected = std::ranges::any_of(scenario_.expectations, [&](const Expectation& e) {
+      const auto* f = std::get_if<FaultExpectation>(&e.kind);
+      return f != nullptr && !f->code.empty() && code_matches(ev, f->code);
+    });
+    if (expected) continue;
+    r.ok = false;
+    r.failures.push_back(
+        fmt::format("controller: unexpected device error at t={:.3f} s: {}", to_seconds(ev.t), fault_text(ev)));
+  }
+  if (const auto* c = machine_.controller()) {
+    r.controller = c->device();
+    r.device_errors = device_events_;
+  }
+  io_.finish(t_end, r);
 }
 
 }  // namespace hil::runtime

@@ -147,7 +147,7 @@ std::expected<RunResult, ConfigError> run_scenario(const Scenario& scenario, con
   if (options.virtual_time) {
     VirtualClock clock;
     RunEnvironment env{clock, true, nullptr, scenario.file, scenario.period, options.verify_steps, {}};
-    auto machine = Machine::build(scenario, registry, env);
+    auto machine = Machine::build(scenario, registry, env, options.controllers);
     if (!machine) return std::unexpected(machine.error());
     Session session(scenario, *machine, options);
     if (auto e = session.check()) return std::unexpected(*e);
@@ -167,7 +167,7 @@ std::expected<RunResult, ConfigError> run_scenario(const Scenario& scenario, con
   asio::io_context io;
   SteadyClock clock;
   RunEnvironment env{clock, false, &io, scenario.file, scenario.period, options.verify_steps, {}};
-  auto machine = Machine::build(scenario, registry, env);
+  auto machine = Machine::build(scenario, registry, env, options.controllers);
   if (!machine) return std::unexpected(machine.error());
   Session session(scenario, *machine, options);
   if (auto e = session.check()) return std::unexpected(*e);

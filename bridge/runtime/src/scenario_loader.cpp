@@ -37,7 +37,8 @@ class Loader {
     if (!root.IsMap())
       top.fail(fmt::format("a scenario is a map with 'machine:' and 'program:', got {}", top.describe()));
     top.expect_map(
-        {"name", "description", "period", "duration", "timeout", "realtime", "machine", "program", "expect"});
+        {"name", "description", "period", "duration", "timeout", "realtime", "controller", "machine", "io", "program",
+         "expect"});
     if (auto f = top.child("name"); f.present()) s.name = f.as_string("a scenario name");
     if (auto f = top.child("description"); f.present()) s.description = f.as_string("a text");
     if (auto f = top.child("period"); f.present()) {
@@ -56,6 +57,8 @@ class Loader {
     if (s.duration && *s.duration > s.timeout) s.timeout = *s.duration;
     if (auto f = top.child("realtime"); f.present()) s.realtime = load_realtime(f);
 
+    if (auto c = top.child("controller"); c.present()) s.controller = load_controller(c);
+    has_controller_ = s.controller.has_value();
     const Field machine = top.required("machine", "the machine: a map with 'axes:'");
     machine.expect_map({"axes", "masters", "cams", "couplings"});
     const Field axes = machine.required("axes", "a list of axes");
@@ -65,10 +68,22 @@ class Loader {
     detail::load_coupling_machine(machine, s);
     scenario_ = &s;
 
+    if (auto io = top.child("io"); io.present()) {
+      if (!s.controller) io.fail("'io:' drives a controller's inputs: add a 'controller:' block");
+      for (const Field& f : io.items()) s.io.push_back(load_stimulus(f));
+    }
     if (auto p = top.child("program"); p.present())
       for (const Field& f : p.items()) s.program.push_back(load_step(f, 0));
-    if (auto e = top.child("expect"); e.present())
-      for (const Field& f : e.items()) load_expectation(f, s.expectations);
+    if (auto e = top.child("expect"); e.present()) {
+      for (const Field& f : e.items()) {
+        if (f.node().IsMap() && f.child("io").present()) {
+          if (!s.controller) f.child("io").fail("an I/O expectation needs a 'controller:' block");
+          s.io_expectations.push_back(load_io_expectation(f));
+        } else {
+          load_expectation(f, s.expectations);
+        }
+      }
+    }
     return s;
   }
 
@@ -112,6 +127,7 @@ class Loader {
       name.fail(fmt::format("axis names use letters, digits, '_' and '-' (1..32 characters, not 'all'), got {}",
                             name.describe()));
     if (s.find_axis(a.name)) name.fail(fmt::format("axis '{}' is defined twice", a.name));
+    if (has_controller_ && !f.child("inc_per_unit").present()) return load_controller_axis(f, std::move(a));
     if (auto r = f.child("rotary"); r.present()) a.rotary = r.as_bool();
     a.units = a.rotary ? "deg" : "mm";
     if (auto u = f.child("units"); u.present()) a.units = u.as_string("a unit name such as mm or deg");
@@ -192,6 +208,166 @@ class Loader {
                       .as_string("a transport name");
     a.drive = drive.node();
     return a;
+  }
+
+  /// An axis of the controller: scaling, limits and supervision come from its parameter file.
+  AxisSpec load_controller_axis(const Field& f, AxisSpec a) {
+    for (const auto& k : f.expect_map({"name", "units", "inc_per_unit", "rotary", "modulo", "limits", "soft_limits",
+                                       "backlash", "supervision", "fault_reaction", "drive"})) {
+      if (k != "name" && k != "units" && k != "drive")
+        f.child(k).fail(fmt::format(
+            "'{}' comes from the controller's parameter file; a controller axis takes name, units and drive "
+            "(give 'inc_per_unit' and 'limits' to define an axis outside the controller)",
+            k));
+    }
+    a.from_controller = true;
+    if (auto u = f.child("units"); u.present()) a.units = u.as_string("a unit name such as mm or deg");
+    a.in_position_window = 0.01;
+    const Field drive = f.required("drive", "a map with 'transport:' and the transport's keys");
+    if (!drive.node().IsMap()) drive.fail(fmt::format("expected a map with 'transport:', got {}", drive.describe()));
+    a.transport = drive.required("transport", "the transport name, e.g. sim, canopen, modbus, stepdir")
+                      .as_string("a transport name");
+    a.drive = drive.node();
+    return a;
+  }
+
+  std::string resolve_path(const std::string& p) const {
+    std::filesystem::path path(p);
+    if (path.is_absolute() || file_.empty()) return path.string();
+    return (std::filesystem::path(file_).parent_path() / path).lexically_normal().string();
+  }
+
+  ControllerBlock load_controller(const Field& f) {
+    if (!f.node().IsMap()) f.fail(fmt::format("expected a map with 'device:' and 'parameters:', got {}", f.describe()));
+    ControllerBlock c;
+    c.source = {f.line(), f.path()};
+    c.device = f.required("device", "the device profile name, e.g. wf725-726, ip247, clm14").as_string("a device");
+    c.parameters =
+        resolve_path(f.required("parameters", "the device's parameter file (its own format)").as_string("a file path"));
+    if (auto p = f.child("programs"); p.present()) {
+      if (p.node().IsScalar()) {
+        c.programs.push_back(resolve_path(p.as_string("a file path")));
+      } else {
+        for (const Field& i : p.items()) c.programs.push_back(resolve_path(i.as_string("a file path")));
+      }
+    }
+    if (auto cy = f.optional_duration("cycle")) {
+      if (*cy <= Duration::zero()) f.child("cycle").fail("expected a controller cycle > 0");
+      c.cycle = cy;
+    }
+    for (const auto& kv : f.node()) {
+      const std::string key = kv.first.Scalar();
+      if (key == "device" || key == "parameters" || key == "programs" || key == "cycle") continue;
+      const Field v = f.child(key);
+      if (!v.node().IsScalar()) v.fail(fmt::format("controller option '{}' takes a single value", key));
+      c.options[key] = v.node().Scalar();
+    }
+    return c;
+  }
+
+  std::string signal_name(const Field& f) const {
+    const std::string s = f.as_string("an I/O name or the device's address, e.g. I0.00.3 or 'E 4.1'");
+    if (s.empty()) f.fail("expected an I/O name or address");
+    return s;
+  }
+
+  IoStimulus load_stimulus(const Field& f) {
+    const auto keys = f.expect_map({"set", "pulse", "cam", "mark", "value", "at", "when", "width", "axis", "from", "to",
+                                    "active_low", "position", "accuracy"});
+    IoStimulus st;
+    st.source = {f.line(), f.path()};
+    std::string kind;
+    for (const auto& k : keys) {
+      if (k != "set" && k != "pulse" && k != "cam" && k != "mark") continue;
+      if (!kind.empty()) f.child(k).fail(fmt::format("one stimulus per entry; got '{}' and '{}'", kind, k));
+      kind = k;
+    }
+    if (kind.empty()) f.fail("an io entry needs one of: set, pulse, cam, mark");
+    st.signal = signal_name(f.child(kind));
+    auto allow = [&](std::initializer_list<std::string_view> allowed) {
+      for (const auto& k : keys) {
+        if (k == kind || std::find(allowed.begin(), allowed.end(), k) != allowed.end()) continue;
+        f.child(k).fail(fmt::format("'{}' does not apply to '{}'", k, kind));
+      }
+    };
+    if (kind == "set" || kind == "pulse") {
+      allow({"value", "at", "when", "width"});
+      st.kind = kind == "set" ? IoStimulus::Kind::set : IoStimulus::Kind::pulse;
+      if (auto v = f.child("value"); v.present()) st.value = v.as_bool();
+      st.at = f.optional_duration("at");
+      if (auto w = f.child("when"); w.present()) st.when = load_condition(w);
+      if (st.at.has_value() == st.when.has_value())
+        f.fail(fmt::format("'{}' needs either 'at: <time>' or 'when: <condition>'", kind));
+      if (auto w = f.optional_duration("width")) {
+        if (kind == "set") f.child("width").fail("'width' applies to 'pulse' only");
+        st.width = *w;
+      }
+    } else if (kind == "cam") {
+      allow({"axis", "from", "to", "active_low"});
+      st.kind = IoStimulus::Kind::cam;
+      st.axis = axis_name(f.required("axis", "the axis whose position switches the input"));
+      st.from = f.optional_number("from", "a position in units");
+      st.to = f.optional_number("to", "a position in units");
+      if (!st.from && !st.to) f.fail("a cam needs 'from:', 'to:' or both (the active position range)");
+      if (st.from && st.to && *st.from > *st.to) f.child("to").fail(fmt::format("expected to >= from ({})", *st.from));
+      if (auto v = f.child("active_low"); v.present()) st.active_low = v.as_bool();
+    } else {
+      allow({"axis", "position", "accuracy", "width"});
+      st.kind = IoStimulus::Kind::mark;
+      st.axis = axis_name(f.required("axis", "the axis carrying the marks"));
+      st.position = f.required("position", "the mark's position in units").as_number("a position in units");
+      if (auto a = f.child("accuracy"); a.present()) st.accuracy = a.as_non_negative("an accuracy in units");
+      if (auto w = f.optional_duration("width")) st.width = *w;
+    }
+    return st;
+  }
+
+  IoExpectation load_io_expectation(const Field& f) {
+    const auto keys = f.expect_map({"io", "state", "at", "edges", "edge", "first_edge", "after", "by"});
+    IoExpectation e;
+    e.source = {f.line(), f.path()};
+    e.signal = signal_name(f.child("io"));
+    std::string kind;
+    for (const auto& k : keys) {
+      if (k != "state" && k != "edges" && k != "first_edge") continue;
+      if (!kind.empty()) f.child(k).fail(fmt::format("one I/O expectation per entry; got '{}' and '{}'", kind, k));
+      kind = k;
+    }
+    if (kind.empty()) f.fail("an I/O expectation needs one of: state, edges, first_edge");
+    auto allow = [&](std::initializer_list<std::string_view> allowed) {
+      for (const auto& k : keys) {
+        if (k == "io" || k == kind || std::find(allowed.begin(), allowed.end(), k) != allowed.end()) continue;
+        f.child(k).fail(fmt::format("'{}' does not apply to an I/O '{}' expectation", k, kind));
+      }
+    };
+    auto edge = [&] {
+      if (auto x = f.child("edge"); x.present())
+        e.edge = static_cast<IoExpectation::Edge>(x.as_enum({"rising", "falling", "any"}));
+    };
+    const Field x = f.child(kind);
+    if (kind == "state") {
+      allow({"at"});
+      e.kind = IoExpectation::Kind::state;
+      e.state = x.as_bool();
+      e.at = f.optional_duration("at");
+    } else if (kind == "edges") {
+      allow({"edge"});
+      e.kind = IoExpectation::Kind::edges;
+      const double n = x.as_non_negative("a number of edges");
+      if (n != std::floor(n) || n > 1e12) x.fail(fmt::format("expected a whole number of edges, got {}", x.describe()));
+      e.count = static_cast<std::uint64_t>(n);
+      edge();
+    } else {
+      allow({"edge", "after", "by"});
+      e.kind = IoExpectation::Kind::first_edge;
+      if (!x.as_bool()) x.fail("'first_edge' takes 'true' with 'after:' and/or 'by:'");
+      e.after = f.optional_duration("after");
+      e.by = f.optional_duration("by");
+      if (!e.after && !e.by) f.fail("'first_edge' needs 'after:', 'by:' or both");
+      if (e.after && e.by && *e.after > *e.by) f.child("by").fail("expected by >= after");
+      edge();
+    }
+    return e;
   }
 
   static double ratio_value(const AxisSpec& a) {
@@ -477,6 +653,7 @@ class Loader {
   std::string file_;
   const std::vector<AxisSpec>* axes_ = nullptr;
   const Scenario* scenario_ = nullptr;  ///< for the coupling keys of program steps
+  bool has_controller_ = false;
 };
 
 }  // namespace
@@ -575,8 +752,17 @@ std::optional<FaultCode> parse_fault_code(std::string_view text) {
   FaultCode c;
   c.category = std::string(text.substr(0, colon));
   for (char ch : c.category)
-    if (!(std::isalnum(static_cast<unsigned char>(ch)) || ch == '_' || ch == '-')) return std::nullopt;
+    if (!(std::isalnum(static_cast<unsigned char>(ch)) || ch == '_' || ch == '-' || ch == '.')) return std::nullopt;
   std::string_view num = text.substr(colon + 1);
+  c.text = std::string(num);
+  // A device catalogue ("wf725-726.traversing", "clm14.diagnostic") writes its codes as its
+  // manual does ("96", "4C"): they are matched as text against the catalogue's code.
+  const bool device = c.category.find('.') != std::string::npos;
+  if (device && !num.empty() && num.size() <= 8 &&
+      std::all_of(num.begin(), num.end(), [](char ch) { return std::isalnum(static_cast<unsigned char>(ch)) != 0; })) {
+    c.value = -1;
+    return c;
+  }
   int base = 10;
   if (num.starts_with("0x") || num.starts_with("0X")) {
     base = 16;

@@ -43,6 +43,13 @@ void TraceCsvWriter::on_start(const Scenario&, const Machine& machine) {
       h += csv_field(column);
     }
   }
+  // The controller's I/O (inputs, outputs, markers it names and those the scenario uses), one
+  // 0/1 column each, and its newest active device error.
+  for (const auto& [name, address] : machine.io_signals()) {
+    h += ',';
+    h += csv_field(fmt::format("io_{}", name));
+  }
+  if (machine.controller() != nullptr) h += ",controller_error";
   h += '\n';
   if (std::fputs(h.c_str(), file_.get()) < 0 && !error_) error_ = {errno, std::generic_category()};
 }
@@ -58,6 +65,17 @@ void TraceCsvWriter::on_cycle(Duration t, const Machine& machine) noexcept {
                      st.velocity, st.following_error, motion::to_string(st.state));
       if (st.fault)
         fmt::format_to(std::back_inserter(line_), "{}:{}", st.fault.code.category().name(), st.fault.code.value());
+    }
+    if (const auto* c = machine.controller()) {
+      for (const auto& [name, address] : machine.io_signals()) {
+        line_ += ',';
+        line_ += c->io().get(address) ? '1' : '0';
+      }
+      line_ += ',';
+      if (const auto active = c->errors().active(); !active.empty()) {
+        const auto& e = active.back();
+        fmt::format_to(std::back_inserter(line_), "{}:{}", e.fault.code.category().name(), e.code_text());
+      }
     }
     line_ += '\n';
     if (std::fwrite(line_.data(), 1, line_.size(), file_.get()) != line_.size())

@@ -7,13 +7,22 @@
 // One cycle (docs/runtime.md): every factory's begin_cycle, the virtual masters, each axis' update
 // (a coupled slave first takes its coupling's set-point; drive read -> trajectory + supervision ->
 // drive write) in scenario order, every factory's end_cycle.
+// With a scenario `controller:` block the machine also owns the controller (docs/controllers.md):
+// the controller's axes take their AxisConfig from its parameter file, the scenario's `io:`
+// stimuli are attached to its image, and cycle() steps it every cycle_period() / period cycles
+// (the first cycle included), after the axes' update and the factories' end_cycle.
 // Thread: the cycle thread only; cycle() never throws.
 
 #include <expected>
 #include <memory>
+#include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
+#include "hil/controllers/controller.hpp"
+#include "hil/controllers/controller_registry.hpp"
+#include "hil/controllers/io_image.hpp"
 #include "hil/core/config_error.hpp"
 #include "hil/core/fault_injection.hpp"
 #include "hil/core/transport.hpp"
@@ -42,10 +51,11 @@ struct NamedReport {
 class Machine {
  public:
   /// Build every axis' drive through `registry` (unknown transports and factory errors are
-  /// ConfigErrors naming the axis' `drive:` line). `env` must outlive the machine.
-  [[nodiscard]] static std::expected<Machine, ConfigError> build(const Scenario& scenario,
-                                                                 const TransportRegistry& registry,
-                                                                 RunEnvironment& env);
+  /// ConfigErrors naming the axis' `drive:` line). `env` must outlive the machine. A scenario
+  /// controller is built through `controllers` (nullptr: controllers::builtin_controllers()).
+  [[nodiscard]] static std::expected<Machine, ConfigError> build(
+      const Scenario& scenario, const TransportRegistry& registry, RunEnvironment& env,
+      const controllers::ControllerRegistry* controllers = nullptr);
 
   /// One cycle: begin_cycle (all factories), update (all axes), end_cycle (all factories).
   void cycle(const CycleTime& cycle) noexcept;
@@ -61,14 +71,38 @@ class Machine {
   [[nodiscard]] MachineCouplings& couplings() noexcept { return couplings_; }
   [[nodiscard]] const MachineCouplings& couplings() const noexcept { return couplings_; }
 
+  /// The scenario's controller, nullptr when it has none.
+  [[nodiscard]] controllers::Controller* controller() noexcept { return controller_.get(); }
+  [[nodiscard]] const controllers::Controller* controller() const noexcept { return controller_.get(); }
+  /// I/O signals the run reports (trace columns, plot strips, JSON): the controller's named
+  /// signals, then every address the scenario's io:/expect: entries name. Empty without controller.
+  [[nodiscard]] const std::vector<std::pair<std::string, controllers::BitAddress>>& io_signals() const noexcept {
+    return io_signals_;
+  }
+
  private:
   struct Factory {
     std::string name;
     std::unique_ptr<TransportFactory> factory;
   };
+  [[nodiscard]] std::optional<ConfigError> build_controller(const Scenario& scenario,
+                                                            const controllers::ControllerRegistry* registry);
+  [[nodiscard]] std::optional<ConfigError> attach_io(const Scenario& scenario);
+  [[nodiscard]] std::optional<ConfigError> bind_controller(const Scenario& scenario);
+  /// The controller's copy of a controller axis' spec (units, rotary, windows filled in), else `spec`.
+  [[nodiscard]] const AxisSpec& controller_spec(const AxisSpec& spec) const noexcept;
+  [[nodiscard]] std::expected<motion::AxisConfig, ConfigError> controller_axis_config(const AxisSpec& spec,
+                                                                                      const std::string& file) const;
+
   std::vector<Factory> factories_;
+  std::vector<std::unique_ptr<AxisSpec>> controller_specs_;  ///< specs of the controller's axes
   std::vector<MachineAxis> axes_;
   MachineCouplings couplings_;
+  std::vector<std::unique_ptr<controllers::IoSource>> stimuli_;
+  std::unique_ptr<controllers::Controller> controller_;  ///< declared after the axes: destroyed first
+  std::vector<std::pair<std::string, controllers::BitAddress>> io_signals_;
+  std::uint64_t controller_every_ = 1;  ///< run cycles per controller cycle
+  std::uint64_t cycle_count_ = 0;
 };
 
 }  // namespace hil::runtime

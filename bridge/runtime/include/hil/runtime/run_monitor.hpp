@@ -7,6 +7,7 @@
 #include <optional>
 #include <vector>
 
+#include "hil/runtime/io_monitor.hpp"
 #include "hil/runtime/machine.hpp"
 #include "hil/runtime/run_result.hpp"
 #include "hil/runtime/scenario.hpp"
@@ -20,7 +21,9 @@ class RunMonitor {
   /// After each cycle, at scenario time `t`. Never throws.
   void observe(Duration t) noexcept;
   /// The latest `at:`/`by:` time of any expectation (a run lasts at least this long).
-  [[nodiscard]] Duration latest_expectation_time() const noexcept { return latest_; }
+  [[nodiscard]] Duration latest_expectation_time() const noexcept {
+    return std::max(latest_, io_.latest_expectation_time());
+  }
   /// Fill axes, faults and expectations of `result`; adds failures for failed expectations and
   /// for faults no `fault:` expectation of their axis accounts for.
   void finish(Duration t_end, RunResult& result) const;
@@ -55,7 +58,13 @@ class RunMonitor {
   std::vector<ExpectationState> states_;
   std::vector<FaultEvent> faults_;
   Duration latest_{};
+  IoMonitor io_;
+  std::size_t device_errors_seen_ = 0;
+  std::vector<DeviceErrorEvent> device_events_;  ///< controller error history entries turned into events
 };
+
+/// "wf725-726.traversing:96" for a device error event, "motion:5" otherwise.
+[[nodiscard]] std::string fault_code_text(const FaultEvent& e);
 
 /// "position 100.000 +/- 0.010 mm at t=2.000 s" (what was expected, for reports).
 [[nodiscard]] std::string describe(const Expectation& e, const AxisSpec& axis);

@@ -4,6 +4,7 @@
 // statistics and the transports' reports. Printed by `hilbridge run`, turned into JUnit XML by
 // `hilbridge test`.
 
+#include <cstdint>
 #include <optional>
 #include <string>
 #include <vector>
@@ -16,10 +17,32 @@
 namespace hil::runtime {
 
 struct FaultEvent {
-  Duration t{};  ///< scenario time it was first seen
-  std::string axis;
-  std::string source;  ///< "axis" (motion supervision) or "drive" (the drive's own fault)
+  Duration t{};        ///< scenario time it was first seen
+  std::string axis;    ///< axis name; "controller" for a device error of the whole device
+  std::string source;  ///< "axis" (motion supervision), "drive" (the drive's own fault) or "device"
   Fault fault;
+};
+
+/// A device error the controller raised (also a FaultEvent with source "device").
+struct DeviceErrorEvent {
+  Duration t{};
+  std::string axis;         ///< axis name, or "controller"
+  std::string category;     ///< "wf725-726.traversing"
+  std::string code;         ///< as the manual writes it: "96", "4C", "28"
+  std::string text;         ///< the catalogue's text, cause and context
+  std::string reaction;     ///< message / stop / drive_off / needs_reset
+  std::string acknowledge;  ///< self_clearing / acknowledge / reset / power_cycle
+  /// "wf725-726.traversing:96 Pre-limit switch positive (MD 13): ..."
+  [[nodiscard]] std::string describe() const { return category + ":" + code + " " + text; }
+};
+
+/// One I/O signal of the controller over the run (summary, JSON).
+struct IoSummary {
+  std::string name;     ///< as the device or the scenario names it
+  std::string address;  ///< the image address ("output 64.3")
+  bool final_state = false;
+  std::uint64_t rising = 0, falling = 0;
+  std::optional<Duration> first_rising, first_falling;
 };
 
 struct AxisSummary {
@@ -50,6 +73,9 @@ struct RunResult {
   std::vector<AxisSummary> axes;
   std::vector<FaultEvent> faults;
   std::vector<ExpectationResult> expectations;
+  std::string controller;                       ///< device name of the scenario's controller ("" without)
+  std::vector<DeviceErrorEvent> device_errors;  ///< every device error the controller raised, in order
+  std::vector<IoSummary> io;                    ///< the controller's reported I/O signals
   std::vector<NamedReport> reports;
   SchedulerStats scheduler;
   std::optional<RealtimeReport> realtime;  ///< set when the run asked for real-time operation

@@ -31,6 +31,8 @@ struct RunOptions {
   /// ConfigError (key "realtime", with what to do) unless `realtime.fallback`.
   RealtimeOptions realtime;
   std::vector<RunObserver*> observers;
+  /// Device controllers for `controller:` blocks; nullptr = controllers::builtin_controllers().
+  const controllers::ControllerRegistry* controllers = nullptr;
 };
 
 /// Blocking. ConfigError when the machine cannot be built (unknown transport, a factory's

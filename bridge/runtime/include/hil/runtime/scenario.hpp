@@ -6,6 +6,7 @@
 // Pure data; the loader (scenario_loader.hpp) fills it, the runner (runner.hpp) executes it.
 
 #include <cstdint>
+#include <map>
 #include <optional>
 #include <string>
 #include <variant>
@@ -55,8 +56,9 @@ struct AxisSpec {
   std::optional<Duration> enable_timeout;
   std::optional<Duration> feedback_timeout;
   FaultReaction fault_reaction = FaultReaction::quick_stop;
-  YAML::Node drive;       ///< the `drive:` map, handed to the transport factory
-  std::string transport;  ///< drive.transport
+  bool from_controller = false;  ///< scaling, limits and supervision come from the controller's parameters
+  YAML::Node drive;              ///< the `drive:` map, handed to the transport factory
+  std::string transport;         ///< drive.transport
   SourceRef source;
 };
 
@@ -182,6 +184,46 @@ struct Expectation {
   SourceRef source;
 };
 
+// ---- controller and I/O (docs/controllers.md) ------------------------------------------------
+/// `controller: {device: wf725-726, parameters: md.txt, ...}`: the axes named like the device's
+/// axes take their configuration from its parameter file.
+struct ControllerBlock {
+  std::string device;
+  std::string parameters;             ///< path, relative paths resolved against the scenario's folder
+  std::vector<std::string> programs;  ///< same
+  std::optional<Duration> cycle;      ///< overrides the device's controller cycle
+  std::map<std::string, std::string, std::less<>> options;  ///< the block's other keys, as text
+  SourceRef source;
+};
+
+/// One entry of `io:` (a stimulus the scenario drives into the controller's inputs).
+struct IoStimulus {
+  enum class Kind : std::uint8_t { set, pulse, cam, mark } kind = Kind::set;
+  std::string signal;  ///< an I/O name or the device's address ("I0.00.3", "E 4.1")
+  bool value = true;
+  std::optional<Duration> at;      ///< set/pulse at this scenario time
+  std::optional<Condition> when;   ///< ... or once this condition holds
+  Duration width{};                ///< pulse width (0 = one controller cycle); mark pulse width
+  std::string axis;                ///< cam / mark
+  std::optional<double> from, to;  ///< cam: active position range (either may be open)
+  bool active_low = false;         ///< cam: normally-closed contact
+  double position = 0.0;           ///< mark position
+  double accuracy = 0.0;           ///< mark: latch accuracy in units
+  SourceRef source;
+};
+
+/// One I/O entry of `expect:` (`io: <signal>` with state / edges / first_edge).
+struct IoExpectation {
+  std::string signal;
+  enum class Kind : std::uint8_t { state, edges, first_edge } kind = Kind::state;
+  enum class Edge : std::uint8_t { rising, falling, any } edge = Edge::rising;
+  bool state = true;
+  std::optional<Duration> at;         ///< state: at this time (default: end of run)
+  std::uint64_t count = 0;            ///< edges: exact number over the run
+  std::optional<Duration> after, by;  ///< first_edge: inside [after, by]
+  SourceRef source;
+};
+
 struct Scenario {
   std::string file;  ///< as given (for messages, and relative paths of transports)
   std::string name;
@@ -198,6 +240,9 @@ struct Scenario {
   std::vector<CouplingSpec> couplings;     ///< machine.couplings
   std::vector<Step> program;
   std::vector<Expectation> expectations;
+  std::optional<ControllerBlock> controller;
+  std::vector<IoStimulus> io;
+  std::vector<IoExpectation> io_expectations;
   YAML::Node document;  ///< keeps the drive nodes' document alive
 
   [[nodiscard]] const AxisSpec* find_axis(const std::string& name) const noexcept;

@@ -30,10 +30,12 @@ namespace hil::runtime {
 /// Increments per unit: "1000", "4096/5", "12.5" -> {num, den} (both 1..2^40); nullopt otherwise.
 [[nodiscard]] std::optional<std::pair<std::int64_t, std::int64_t>> parse_ratio(std::string_view text);
 
-/// A fault code as scenarios write it: "motion:1", "cia402:0x7305" -> {category, value}.
+/// A fault code as scenarios write it: "motion:1", "cia402:0x7305" -> {category, value}; a device
+/// catalogue's code as its manual writes it: "wf725-726.traversing:96" -> {category, -1, "96"}.
 struct FaultCode {
   std::string category;
-  int value = 0;
+  int value = 0;     ///< -1 for a device catalogue code (match `text`)
+  std::string text;  ///< the code as written after the colon
 };
 [[nodiscard]] std::optional<FaultCode> parse_fault_code(std::string_view text);
 

@@ -1,0 +1,32 @@
+// SPDX-License-Identifier: MIT
+#include "hil/controllers/gpio_io.hpp"
+
+namespace hil::controllers {
+
+void GpioInputs::read(TimePoint, IoImage& image) noexcept {
+  for (const auto& m : map_) {
+    const auto v = lines_.get_value(m.line);
+    if (!v) {
+      ++errors_;
+      last_error_ = v.error();
+      continue;
+    }
+    image.set(m.bit, *v != m.active_low);
+  }
+}
+
+void GpioOutputs::write(TimePoint, const IoImage& image) noexcept {
+  for (std::size_t i = 0; i < map_.size(); ++i) {
+    const auto& m = map_[i];
+    const bool level = image.get(m.bit) != m.active_low;
+    if (written_[i] == static_cast<int>(level)) continue;
+    if (const auto ec = lines_.set_value(m.line, level)) {
+      ++errors_;
+      last_error_ = ec;
+      continue;
+    }
+    written_[i] = level ? 1 : 0;
+  }
+}
+
+}  // namespace hil::controllers

@@ -1,0 +1,196 @@
+// SPDX-License-Identifier: MIT
+// The controller part of the Machine: building the scenario's controller, taking the axes'
+// configuration from it, binding the axes and attaching the scenario's I/O stimuli.
+#include <algorithm>
+
+#include <fmt/format.h>
+
+#include "hil/controllers/io_stimulus.hpp"
+#include "hil/controllers/parameter_controller.hpp"
+#include "hil/runtime/condition.hpp"
+#include "hil/runtime/machine.hpp"
+
+namespace hil::runtime {
+
+std::optional<ConfigError> Machine::build_controller(const Scenario& scenario,
+                                                     const controllers::ControllerRegistry* registry) {
+  const ControllerBlock& b = *scenario.controller;
+  controllers::ControllerSpec spec;
+  spec.device = b.device;
+  spec.parameters = b.parameters;
+  for (const auto& p : b.programs) spec.programs.emplace_back(p);
+  for (const auto& [k, v] : b.options) spec.options.emplace(k, v);
+  spec.cycle = b.cycle;
+  spec.file = scenario.file;
+  spec.line = b.source.line;
+  controllers::ControllerRegistry builtin;
+  if (registry == nullptr) {
+    builtin = controllers::builtin_controllers();
+    registry = &builtin;
+  }
+  auto created = registry->create(spec);
+  if (!created) return created.error();
+  controller_ = std::move(*created);
+  const auto fail = [&](std::string key, std::string message) {
+    return ConfigError{scenario.file, b.source.line, 0, std::move(key), std::move(message)};
+  };
+  const Duration cycle = controller_->cycle_period();
+  if (cycle < scenario.period || cycle % scenario.period != Duration::zero()) {
+    return fail("controller.cycle",
+                fmt::format("the {} controller cycle {:.3f} ms is not a whole multiple of the scenario period "
+                            "{:.3f} ms: set 'period:' to a divisor of it or give 'controller: {{cycle: ...}}'",
+                            b.device, to_seconds(cycle) * 1e3, to_seconds(scenario.period) * 1e3));
+  }
+  controller_every_ = static_cast<std::uint64_t>(cycle / scenario.period);
+
+  std::string names;
+  for (const auto& ca : controller_->axis_specs()) names += (names.empty() ? "" : ", ") + ca.name;
+  for (const auto& ca : controller_->axis_specs()) {
+    const AxisSpec* s = scenario.find_axis(ca.name);
+    if (s == nullptr) {
+      return fail("machine.axes", fmt::format("the {} parameter file {} defines axis '{}': add it under machine.axes "
+                                              "with its drive (- name: {}\n    drive: {{transport: sim}})",
+                                              b.device, b.parameters, ca.name, ca.name));
+    }
+    if (!s->from_controller) {
+      return ConfigError{scenario.file, s->source.line, 0, s->source.path,
+                         fmt::format("axis '{}' is an axis of the {} controller: its scaling, limits and "
+                                     "supervision come from {}; give it only name, units and drive",
+                                     ca.name, b.device, b.parameters)};
+    }
+    auto copy = std::make_unique<AxisSpec>(*s);
+    if (!s->units.empty() && s->units != "mm") {
+      copy->units = s->units;
+    } else {
+      copy->units = ca.units;
+    }
+    copy->rotary = ca.config.rotary;
+    copy->modulo = ca.config.modulo;
+    copy->inc_per_unit_num = ca.config.inc_per_unit.num;
+    copy->inc_per_unit_den = ca.config.inc_per_unit.den;
+    copy->max_velocity = ca.config.limits.velocity;
+    copy->max_acceleration = ca.config.limits.acceleration;
+    copy->soft_limit_min = ca.config.soft_limit_min;
+    copy->soft_limit_max = ca.config.soft_limit_max;
+    copy->backlash = ca.config.backlash;
+    copy->in_position_window = ca.config.in_position_window;
+    copy->standstill_window = ca.config.standstill_window;
+    controller_specs_.push_back(std::move(copy));
+  }
+  for (const auto& s : scenario.axes) {
+    if (!s.from_controller) continue;
+    const bool known =
+        std::ranges::any_of(controller_->axis_specs(), [&](const auto& ca) { return ca.name == s.name; });
+    if (!known) {
+      return ConfigError{scenario.file, s.source.line, 0, s.source.path,
+                         fmt::format("axis '{}' has no inc_per_unit and limits, and the {} controller has no axis "
+                                     "of that name (it has: {})",
+                                     s.name, b.device, names.empty() ? "none" : names)};
+    }
+  }
+  return std::nullopt;
+}
+
+const AxisSpec& Machine::controller_spec(const AxisSpec& spec) const noexcept {
+  if (!spec.from_controller) return spec;
+  for (const auto& s : controller_specs_)
+    if (s->name == spec.name) return *s;
+  return spec;
+}
+
+std::expected<motion::AxisConfig, ConfigError> Machine::controller_axis_config(const AxisSpec& spec,
+                                                                               const std::string& file) const {
+  for (const auto& ca : controller_->axis_specs()) {
+    if (ca.name != spec.name) continue;
+    auto v = motion::validate(ca.config);
+    if (!v) {
+      return std::unexpected(ConfigError{file, spec.source.line, 0, spec.source.path,
+                                         fmt::format("the {} parameters give axis '{}' a configuration the motion "
+                                                     "core rejects: {}",
+                                                     controller_->device(), spec.name, v.error())});
+    }
+    return *v;
+  }
+  return std::unexpected(ConfigError{file, spec.source.line, 0, spec.source.path, "not a controller axis"});
+}
+
+std::optional<ConfigError> Machine::bind_controller(const Scenario& scenario) {
+  std::vector<motion::Axis*> axes;
+  for (const auto& ca : controller_->axis_specs()) {
+    MachineAxis* a = find(ca.name);
+    if (a == nullptr)
+      return ConfigError{scenario.file, scenario.controller->source.line, 0, "controller", "axis missing"};
+    axes.push_back(a->axis.get());
+  }
+  if (auto r = controller_->bind_axes(axes); !r) {
+    return ConfigError{scenario.file, scenario.controller->source.line, 0, "controller", r.error()};
+  }
+  return std::nullopt;
+}
+
+std::optional<ConfigError> Machine::attach_io(const Scenario& scenario) {
+  auto& io = controller_->io();
+  const auto add_signal = [&](const std::string& name, controllers::BitAddress a) {
+    for (const auto& [n, addr] : io_signals_)
+      if (n == name) return;
+    io_signals_.emplace_back(name, a);
+  };
+  for (const auto& s : io.signals())
+    if (s.bit) add_signal(s.name, controllers::BitAddress{s.area, s.byte, *s.bit});
+  const auto resolve = [&](const std::string& signal,
+                           const SourceRef& src) -> std::expected<controllers::BitAddress, ConfigError> {
+    auto a = controller_->resolve_bit(signal);
+    if (!a) return std::unexpected(ConfigError{scenario.file, src.line, 0, src.path, a.error()});
+    if (!io.contains(*a)) {
+      return std::unexpected(
+          ConfigError{scenario.file, src.line, 0, src.path,
+                      fmt::format("'{}' is outside the {} controller's I/O image", signal, controller_->device())});
+    }
+    return *a;
+  };
+  const Duration cycle = controller_->cycle_period();
+  for (const IoStimulus& st : scenario.io) {
+    auto bit = resolve(st.signal, st.source);
+    if (!bit) return bit.error();
+    if (bit->area != controllers::IoArea::input && bit->area != controllers::IoArea::data) {
+      return ConfigError{scenario.file, st.source.line, 0, st.source.path,
+                         fmt::format("'{}' is a {} ({}): the scenario drives inputs (and device data bits) only",
+                                     st.signal, controllers::to_string(bit->area), controllers::format_address(*bit))};
+    }
+    add_signal(st.signal, *bit);
+    std::unique_ptr<controllers::IoSource> src;
+    const Duration width = st.kind == IoStimulus::Kind::pulse && st.width == Duration::zero() ? cycle : st.width;
+    switch (st.kind) {
+      case IoStimulus::Kind::set:
+      case IoStimulus::Kind::pulse:
+        if (st.at) {
+          src = std::make_unique<controllers::TimedInput>(*bit, st.value, *st.at, width);
+        } else {
+          motion::Axis* ax = find(st.when->axis)->axis.get();
+          src = std::make_unique<controllers::ConditionInput>(
+              *bit, st.value, [ax, c = *st.when] { return condition_met(c, *ax); }, width);
+        }
+        break;
+      case IoStimulus::Kind::cam:
+        src = std::make_unique<controllers::PositionCam>(*bit, *find(st.axis)->axis, st.from, st.to, st.active_low);
+        break;
+      case IoStimulus::Kind::mark: {
+        auto m = std::make_unique<controllers::RegistrationMark>(*bit, *find(st.axis)->axis, st.position, st.accuracy,
+                                                                 st.width);
+        m->reserve(1024);
+        src = std::move(m);
+        break;
+      }
+    }
+    io.attach(*src);
+    stimuli_.push_back(std::move(src));
+  }
+  for (const IoExpectation& e : scenario.io_expectations) {
+    auto bit = resolve(e.signal, e.source);
+    if (!bit) return bit.error();
+    add_signal(e.signal, *bit);
+  }
+  return std::nullopt;
+}
+
+}  // namespace hil::runtime

@@ -1,0 +1,246 @@
+// SPDX-License-Identifier: MIT
+// The runtime with a controller: `controller:` configures the axes from the device's parameter
+// file, `io:` stimuli reach the image, I/O expectations pass and fail with the values, device
+// errors reach the result, the trace gets the I/O columns, and the loader's errors name the key.
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+
+#include "hil/runtime/runner.hpp"
+#include "hil/runtime/scenario_loader.hpp"
+#include "hil/runtime/trace_csv.hpp"
+#include "sim_registry.hpp"
+
+namespace hil::runtime {
+namespace {
+
+std::expected<RunResult, ConfigError> run_text(const std::string& text, std::vector<RunObserver*> observers = {}) {
+  // Relative parameter paths resolve against the scenario's folder: pretend it lives in examples/controllers.
+  auto s = parse_scenario(text, "examples/controllers/test.yaml");
+  if (!s) return std::unexpected(s.error());
+  static Scenario keep;
+  keep = std::move(*s);
+  RunOptions o;
+  o.observers = std::move(observers);
+  return run_scenario(keep, hil::testing::sim_registry(), o);
+}
+
+const std::string wf_head = R"(
+period: 1ms
+controller: {device: wf725-726, parameters: wf725-axis-a.txt}
+machine:
+  axes:
+    - name: A
+      drive: {transport: sim, kv: 100, feedforward: 1.0}
+)";
+
+TEST(ControllerScenario, AxesComeFromTheParameterFile) {
+  const auto r = run_text(wf_head + R"(
+program:
+  - enable: A
+  - move_absolute: {axis: A, position: 50}
+expect:
+  - {axis: A, position: 50, tolerance: 0.011}
+  - {axis: A, no_fault: true}
+)");
+  ASSERT_TRUE(r) << r.error().describe();
+  EXPECT_TRUE(r->ok) << (r->failures.empty() ? "" : r->failures.front());
+  EXPECT_EQ(r->controller, "wf725-726");
+  ASSERT_EQ(r->axes.size(), 1U);
+  EXPECT_EQ(r->axes[0].units, "mm");
+  EXPECT_TRUE(r->device_errors.empty());
+}
+
+TEST(ControllerScenario, SoftLimitIsTheDevicesErrorInTheResult) {
+  const auto r = run_text(wf_head + R"(
+program:
+  - enable: A
+  - move_velocity: {axis: A, velocity: 80}
+    blocking: false
+  - wait_until: {axis: A, state: error}
+    timeout: 5s
+expect:
+  - {axis: A, fault: "wf725-726.traversing:96"}
+)");
+  ASSERT_TRUE(r) << r.error().describe();
+  EXPECT_TRUE(r->ok) << (r->failures.empty() ? "" : r->failures.front());
+  ASSERT_EQ(r->device_errors.size(), 1U);
+  EXPECT_EQ(r->device_errors[0].code, "96");
+  EXPECT_EQ(r->device_errors[0].category, "wf725-726.traversing");
+  EXPECT_EQ(r->device_errors[0].reaction, "stop");
+  EXPECT_NE(r->device_errors[0].describe().find("Pre-limit switch positive (MD 13)"), std::string::npos);
+  // Without the expectation the device error fails the run with its number and text.
+  const auto u = run_text(wf_head + R"(
+program:
+  - enable: A
+  - move_velocity: {axis: A, velocity: 80}
+    blocking: false
+  - wait_until: {axis: A, state: error}
+    timeout: 5s
+)");
+  ASSERT_TRUE(u);
+  EXPECT_FALSE(u->ok);
+  std::string all;
+  for (const auto& f : u->failures) all += f + "\n";
+  EXPECT_NE(all.find("wf725-726.traversing:96"), std::string::npos) << all;
+}
+
+TEST(ControllerScenario, StimuliAndIoExpectations) {
+  const auto r = run_text(wf_head + R"(
+io:
+  - set: limit_minus_A
+    at: 100ms
+  - pulse: reference_cam_A
+    when: {axis: A, position_above: 10}
+    width: 8ms
+  - {set: "E 0.0", value: false, at: 200ms}
+program:
+  - enable: A
+  - move_absolute: {axis: A, position: 20}
+expect:
+  - {io: limit_minus_A, state: false, at: 50ms}
+  - {io: limit_minus_A, first_edge: true, after: 100ms, by: 104ms}
+  - {io: reference_cam_A, edges: 1}
+  - {io: reference_cam_A, edges: 1, edge: falling}
+  - {io: in_position_A, state: true}
+)");
+  ASSERT_TRUE(r) << r.error().describe();
+  EXPECT_TRUE(r->ok) << (r->failures.empty() ? "" : r->failures.front());
+  EXPECT_EQ(r->expectations.size(), 5U);
+  bool found = false;
+  for (const auto& io : r->io) {
+    if (io.name != "reference_cam_A") continue;
+    found = true;
+    EXPECT_EQ(io.rising, 1U);
+    EXPECT_EQ(io.address, "input 0.2");
+  }
+  EXPECT_TRUE(found);
+}
+
+TEST(ControllerScenario, FailedIoExpectationSaysWhatWasSeen) {
+  const auto r = run_text(wf_head + R"(
+io:
+  - {pulse: reference_cam_A, at: 20ms}
+program:
+  - enable: A
+expect:
+  - {io: reference_cam_A, edges: 3}
+  - {io: moving_A, state: true}
+)");
+  ASSERT_TRUE(r) << r.error().describe();
+  EXPECT_FALSE(r->ok);
+  ASSERT_EQ(r->failures.size(), 2U);
+  EXPECT_NE(r->failures[0].find("saw 1 (1 rising, 1 falling)"), std::string::npos) << r->failures[0];
+  EXPECT_NE(r->failures[1].find("was 0 at the end of the run"), std::string::npos) << r->failures[1];
+}
+
+TEST(ControllerScenario, TraceHasTheIoColumns) {
+  const std::string path = ::testing::TempDir() + "/ctl_trace.csv";
+  TraceCsvWriter trace;
+  ASSERT_FALSE(trace.open(path));
+  const auto r = run_text(wf_head + R"(
+io:
+  - {pulse: reference_cam_A, at: 20ms, width: 10ms}
+program:
+  - enable: A
+  - wait: 50ms
+)",
+                          {&trace});
+  ASSERT_TRUE(r) << r.error().describe();
+  ASSERT_FALSE(trace.close());
+  std::ifstream in(path);
+  std::string header;
+  std::getline(in, header);
+  EXPECT_NE(header.find(",io_reference_cam_A,"), std::string::npos) << header;
+  EXPECT_NE(header.find(",io_in_position_A,"), std::string::npos) << header;
+  EXPECT_TRUE(header.ends_with(",controller_error")) << header;
+  std::string line;
+  int ones = 0;
+  std::size_t col = 0;
+  {
+    std::size_t pos = 0, k = 0;
+    const std::size_t at = header.find("io_reference_cam_A");
+    while (pos < at) {
+      if (header[pos] == ',') ++k;
+      ++pos;
+    }
+    col = k;
+  }
+  while (std::getline(in, line)) {
+    std::stringstream ss(line);
+    std::string cell;
+    for (std::size_t k = 0; k <= col && std::getline(ss, cell, ','); ++k) {
+    }
+    if (cell == "1") ++ones;
+  }
+  EXPECT_EQ(ones, 10) << "10 ms pulse at a 1 ms period";
+}
+
+TEST(ControllerScenario, ConfigurationErrorsNameTheKey) {
+  const auto unknown_device = run_text(R"(
+controller: {device: wf999, parameters: x.md}
+machine:
+  axes:
+    - {name: A, drive: {transport: sim}}
+)");
+  ASSERT_FALSE(unknown_device);
+  EXPECT_NE(unknown_device.error().message.find("wf725-726"), std::string::npos) << unknown_device.error().describe();
+
+  const auto extra_key = parse_scenario(R"(
+controller: {device: wf725-726, parameters: wf725-axis-a.txt}
+machine:
+  axes:
+    - {name: A, limits: {velocity: 1, acceleration: 1}, drive: {transport: sim}}
+)",
+                                        "s.yaml");
+  ASSERT_FALSE(extra_key);
+  EXPECT_NE(extra_key.error().message.find("comes from the controller's parameter file"), std::string::npos)
+      << extra_key.error().describe();
+
+  const auto wrong_axis = run_text(R"(
+controller: {device: wf725-726, parameters: wf725-axis-a.txt}
+machine:
+  axes:
+    - {name: B, drive: {transport: sim}}
+)");
+  ASSERT_FALSE(wrong_axis);
+  EXPECT_NE(wrong_axis.error().message.find("defines axis 'A'"), std::string::npos) << wrong_axis.error().describe();
+
+  const auto bad_signal = run_text(wf_head + "io:\n  - {set: no_such_input, at: 1s}\n");
+  ASSERT_FALSE(bad_signal);
+  EXPECT_NE(bad_signal.error().message.find("no_such_input"), std::string::npos) << bad_signal.error().describe();
+
+  const auto output = run_text(wf_head + "io:\n  - {set: moving_A, at: 1s}\n");
+  ASSERT_FALSE(output);
+  EXPECT_NE(output.error().message.find("drives inputs"), std::string::npos) << output.error().describe();
+
+  const auto period = run_text(R"(
+period: 3ms
+controller: {device: wf725-726, parameters: wf725-axis-a.txt}
+machine:
+  axes:
+    - {name: A, drive: {transport: sim}}
+)");
+  ASSERT_FALSE(period);
+  EXPECT_NE(period.error().message.find("whole multiple"), std::string::npos) << period.error().describe();
+
+  const auto no_controller = parse_scenario(
+      "machine:\n  axes:\n    - {name: A, inc_per_unit: 1, limits: {velocity: 1, "
+      "acceleration: 1}, drive: {transport: sim}}\nio:\n  - {set: x, at: 1s}\n");
+  ASSERT_FALSE(no_controller);
+  EXPECT_EQ(no_controller.error().key, "io");
+
+  const auto bad_param = run_text(R"(
+controller: {device: ip247, parameters: ../serial/clm14-parameters.par}
+machine:
+  axes:
+    - {name: "1", drive: {transport: sim}}
+)");
+  ASSERT_FALSE(bad_param);
+  EXPECT_NE(bad_param.error().file.find("clm14-parameters.par"), std::string::npos) << bad_param.error().describe();
+}
+
+}  // namespace
+}  // namespace hil::runtime
