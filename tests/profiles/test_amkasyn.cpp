@@ -118,3 +118,18 @@ TEST_F(Amk, Catalogues) {
   EXPECT_EQ(d->parse_code("bit2"), 4);
   EXPECT_EQ(d->find(4)->text, "Upper output maximum speed exceeded");
 }
+
+// The profile accepts every example block the manual prints (issue 16): FIPZ with unused table
+// cycle times 0, XFIPW with DD18 = 0, EPOS with DD14 = 0 - and still refuses what they would hide.
+TEST_F(Amk, ManualExamplesWithZeroedUnusedFieldsAreValid) {
+  for (const char* f : {"amk_fipz_unused_tables.txt", "amk_xfipw_dd18_zero.txt", "amk_epos_dd14_zero.txt"})
+    for (const auto& p : check(read(f))) ADD_FAILURE() << f << ": " << p.describe();
+  // A table in use without a cycle time is still an error.
+  auto fipz = read("amk_fipz_unused_tables.txt");
+  fipz.replace(fipz.find("DW11 = 400"), 10, "DW11 = 0  ");
+  EXPECT_FALSE(check(fipz).empty());
+  // EPOS with external velocity needs the external resolution.
+  auto epos = read("amk_epos_dd14_zero.txt");
+  epos.replace(epos.find("DL1 = 0 "), 8, "DL1 = 1 ");
+  EXPECT_FALSE(check(epos).empty());
+}

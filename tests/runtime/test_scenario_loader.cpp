@@ -265,3 +265,74 @@ TEST(ScenarioLoader, DurationsRatiosAndFaultCodes) {
   EXPECT_FALSE(parse_fault_code(":1"));
   EXPECT_FALSE(parse_fault_code("motion:x1"));
 }
+
+// Coupling keys (docs/scenarios.md "Coupling"): a complete set, and mistakes named by key.
+namespace {
+std::string coupled(const std::string& tail) {
+  return "machine:\n"
+         "  masters:\n    - {name: line, units: mm, inc_per_unit: 1000}\n"
+         "  axes:\n"
+         "    - {name: x, inc_per_unit: 1000, limits: {velocity: 10, acceleration: 100}, drive: {transport: sim}}\n"
+         "    - {name: y, inc_per_unit: 1000, limits: {velocity: 10, acceleration: 100}, drive: {transport: sim}}\n"
+         "  cams:\n"
+         "    - {name: c, interpolation: cubic_periodic, periodic: true, points: [[0, 0], [1, 1], [2, 3], [3, 3]]}\n" +
+         tail;
+}
+}  // namespace
+
+TEST(ScenarioLoader, CouplingKeys) {
+  auto r = parse_scenario(coupled("  couplings:\n    - {slave: y, master: x, source: actual, limits: {velocity: 5, "
+                                  "following_error: 0.5}}\n"
+                                  "program:\n"
+                                  "  - couple: {master: line, velocity: 5, acceleration: 50}\n"
+                                  "  - couple: {slave: y, gear: \"-3/4\", at: 1.5, ramp: 2}\n"
+                                  "  - couple: {slave: y, superimpose: 1, velocity: 1, acceleration: 10}\n"
+                                  "  - couple: {slave: y, disengage: true}\n"),
+                          "t.yaml");
+  ASSERT_TRUE(r.has_value()) << r.error().describe();
+  ASSERT_EQ(r->couplings.size(), 1u);
+  EXPECT_EQ(r->couplings[0].source_kind, hil::runtime::MasterSource::axis_actual);
+  EXPECT_EQ(r->couplings[0].velocity, 5.0);
+  EXPECT_EQ(r->couplings[0].following_error, 0.5);
+  ASSERT_EQ(r->cams.size(), 1u);
+  EXPECT_EQ(r->cams[0].table.points.size(), 4u);
+  const auto& g = std::get<hil::runtime::CoupleStep>(r->program[1].action);
+  EXPECT_EQ(g.action, hil::runtime::CoupleStep::Action::gear);
+  EXPECT_EQ(g.ratio_num, -3);
+  EXPECT_EQ(g.ratio_den, 4);
+  EXPECT_EQ(*g.at, 1.5);
+  EXPECT_EQ(g.ramp, 2.0);
+}
+
+TEST(ScenarioLoader, CouplingMistakes) {
+  struct Case {
+    std::string text, key, part;
+  };
+  const std::vector<Case> cases = {
+      {coupled("  couplings:\n    - {slave: z, master: x}\n"), "machine.couplings[0].slave", "unknown axis 'z'"},
+      {coupled("  couplings:\n    - {slave: y, master: y}\n"), "machine.couplings[0].master", "its own master"},
+      {coupled("  couplings:\n    - {slave: y, master: q}\n"), "machine.couplings[0].master", "unknown master 'q'"},
+      {coupled("  couplings:\n    - {slave: y, master: line, source: actual}\n"), "machine.couplings[0].source",
+       "axis masters only"},
+      {coupled("  couplings:\n    - {slave: y, master: x}\n    - {slave: y, master: line}\n"),
+       "machine.couplings[1].slave", "already the slave"},
+      {coupled("  couplings:\n    - {slave: y, master: x}\nprogram:\n  - couple: {slave: x, gear: 1}\n"),
+       "program[0].couple.slave", "not the slave of a coupling"},
+      {coupled("  couplings:\n    - {slave: y, master: x}\nprogram:\n  - couple: {slave: y, gear: fast}\n"),
+       "program[0].couple.gear", "expected a gear ratio"},
+      {coupled("  couplings:\n    - {slave: y, master: x}\nprogram:\n  - couple: {slave: y, gear: 1, cam: c}\n"),
+       "program[0].couple", "exactly one of"},
+      {coupled("  couplings:\n    - {slave: y, master: x}\nprogram:\n  - couple: {slave: y, cam: d}\n"),
+       "program[0].couple.cam", "unknown cam 'd'"},
+      {coupled("  couplings:\n    - {slave: y, master: x}\nprogram:\n  - couple: {slave: y, cam: c, ramp: 1}\n"),
+       "program[0].couple.ramp", "without a ramp"},
+      {"machine:\n  axes:\n    - {name: x, inc_per_unit: 1, limits: {velocity: 1, acceleration: 1}, drive: {transport: "
+       "sim}}\n  cams:\n    - {name: c, points: [[0, 0], [2, 1], [1, 3]]}\n",
+       "machine.cams[0].points", "is not above"},
+  };
+  for (const auto& c : cases) {
+    const auto e = error_of(c.text);
+    EXPECT_EQ(e.key, c.key) << e.describe() << "\n---\n" << c.text;
+    EXPECT_NE(e.message.find(c.part), std::string::npos) << e.describe() << "\n---\n" << c.text;
+  }
+}

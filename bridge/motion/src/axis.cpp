@@ -332,6 +332,42 @@ std::error_code Axis::quick_stop() {
   }
 }
 
+std::error_code Axis::follow(std::int64_t position_inc, double velocity_inc_per_s, double acceleration_inc_per_s2) {
+  if (auto ec = check_can_move()) return ec;
+  if (drive_profile_ || !std::isfinite(velocity_inc_per_s) || !std::isfinite(acceleration_inc_per_s2))
+    return make_error_code(MotionFault::invalid_command);
+  if (mode_ != Mode::external) {
+    supervisor_.start_move();
+    profile_start_ = last_now_;
+  }
+  mode_ = Mode::external;
+  profile_active_ = true;
+  target_inc_ = position_inc;
+  ext_v_inc_ = velocity_inc_per_s;
+  ext_a_inc_ = acceleration_inc_per_s2;
+  relative_carry_inc_ = 0.0;
+  active_limits_ = config_.limits;
+  // A stop from the coupled state may have to start outside the axis' limits (the coupling
+  // monitor watches them): plan it from an envelope that contains the state.
+  {
+    const double upi = 1.0 / scaling_.inc_per_unit();
+    entry_limits_ =
+        Limits{std::max(config_.limits.velocity, std::fabs(velocity_inc_per_s) * upi),
+               std::max(config_.limits.acceleration, std::fabs(acceleration_inc_per_s2) * upi), config_.limits.jerk};
+  }
+  programmed_feed_ = std::fabs(velocity_inc_per_s) / scaling_.inc_per_unit();
+  status_.state = AxisState::moving;
+  status_.busy = true;
+  status_.in_position = false;
+  return {};
+}
+
+void Axis::raise_fault(hil::Fault fault) {
+  if (status_.state == AxisState::error || status_.state == AxisState::disabled) return;
+  raise(fault.code, std::move(fault.text));
+  react_to_fault();
+}
+
 // ---- cycle ----------------------------------------------------------------------------------
 
 void Axis::raise(std::error_code code, std::string text) {
@@ -416,6 +452,14 @@ void Axis::finish_profile() {
 
 void Axis::step_trajectory(const hil::CycleTime& cycle) {
   if (!profile_active_) return;
+  if (mode_ == Mode::external) {
+    const double upi = 1.0 / scaling_.inc_per_unit();
+    cmd_inc_ = target_inc_;
+    cmd_p_ = scaling_.to_units(cmd_inc_);
+    cmd_v_ = ext_v_inc_ * upi;
+    cmd_a_ = ext_a_inc_ * upi;
+    return;
+  }
   const double t = hil::to_seconds(cycle.now - profile_start_);
   if (profile_.end().v == 0.0 && t >= profile_.duration()) {
     finish_profile();
@@ -548,6 +592,7 @@ CycleResult Axis::update(const hil::CycleTime& cycle) {
   status_.referenced = fb.referenced;
   status_.position = scaling_.to_units_fast(scaling_.wrap_inc(fb.position_inc));
   status_.command_position = scaling_.to_units_fast(scaling_.wrap_inc(cmd_inc_));
+  status_.command_inc = cmd_inc_;
   status_.velocity = fb.velocity_inc_per_s * upi;
   status_.command_velocity = cmd_v_;
   status_.command_acceleration = cmd_a_;

@@ -94,12 +94,17 @@ std::expected<Machine, ConfigError> Machine::build(const Scenario& scenario, con
     a.axis = std::make_unique<motion::Axis>(std::move(*config), std::move(*drive));
     m.axes_.push_back(std::move(a));
   }
+  if (auto e = m.couplings_.build(scenario, m.axes_)) return std::unexpected(*e);
   return m;
 }
 
 void Machine::cycle(const CycleTime& cycle) noexcept {
   for (auto& f : factories_) f.factory->begin_cycle(cycle);
-  for (auto& a : axes_) a.axis->update(cycle);
+  couplings_.begin_cycle(cycle);
+  for (std::size_t i = 0; i < axes_.size(); ++i) {
+    couplings_.before_axis(i, axes_, cycle);
+    axes_[i].axis->update(cycle);
+  }
   for (auto& f : factories_) f.factory->end_cycle(cycle);
 }
 

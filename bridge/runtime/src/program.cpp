@@ -150,6 +150,11 @@ bool Program::launch(Running& r, Duration t) {
             }
             return true;
           },
+          [&](const CoupleStep& c) {
+            const std::string e = machine_.couplings().command(c, machine_.axes());
+            if (!e.empty()) fail(s, t, e);
+            return e.empty();
+          },
           [](const auto&) { return true; },  // waits start nothing
       },
       s.action);
@@ -269,6 +274,10 @@ Program::Check Program::poll(Running& r, Duration t) {
             return met ? Check::done : Check::pending;
           },
           [&](const InjectFaultStep&) { return Check::done; },
+          [&](const CoupleStep& cs) {
+            if (cs.action != CoupleStep::Action::master_velocity && faulted(cs.slave)) return Check::failed;
+            return machine_.couplings().done(cs, machine_.axes()) ? Check::done : Check::pending;
+          },
           [&](const ParallelStep&) {
             bool done = true;
             for (auto& child : r.children) {

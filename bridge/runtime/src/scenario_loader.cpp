@@ -8,6 +8,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "coupling_loader.hpp"
 #include "yaml_reader.hpp"
 
 namespace hil::runtime {
@@ -54,11 +55,13 @@ class Loader {
     if (s.duration && *s.duration > s.timeout) s.timeout = *s.duration;
 
     const Field machine = top.required("machine", "the machine: a map with 'axes:'");
-    machine.expect_map({"axes"});
+    machine.expect_map({"axes", "masters", "cams", "couplings"});
     const Field axes = machine.required("axes", "a list of axes");
     for (const Field& a : axes.items()) s.axes.push_back(load_axis(a, s));
     if (s.axes.empty()) axes.fail("a machine needs at least one axis");
     axes_ = &s.axes;
+    detail::load_coupling_machine(machine, s);
+    scenario_ = &s;
 
     if (auto p = top.child("program"); p.present())
       for (const Field& f : p.items()) s.program.push_back(load_step(f, 0));
@@ -201,9 +204,9 @@ class Loader {
   }
 
   static constexpr std::string_view step_keys[] = {
-      "enable",        "disable",          "reset",      "home",         "move_absolute",
-      "move_relative", "move_velocity",    "jog",        "stop",         "quick_stop",
-      "wait",          "wait_in_position", "wait_until", "inject_fault", "parallel"};
+      "enable",        "disable",      "reset",    "home",       "move_absolute", "move_relative",
+      "move_velocity", "jog",          "stop",     "quick_stop", "wait",          "wait_in_position",
+      "wait_until",    "inject_fault", "parallel", "couple"};
 
   Step load_step(const Field& f, int depth) {
     if (!f.node().IsMap())
@@ -211,7 +214,7 @@ class Loader {
                          f.describe()));
     const auto keys = f.expect_map({"enable", "disable", "reset", "home", "move_absolute", "move_relative",
                                     "move_velocity", "jog", "stop", "quick_stop", "wait", "wait_in_position",
-                                    "wait_until", "inject_fault", "parallel", "at", "timeout", "blocking"});
+                                    "wait_until", "inject_fault", "parallel", "couple", "at", "timeout", "blocking"});
     std::string action;
     for (const auto& k : keys) {
       if (k == "at" || k == "timeout" || k == "blocking") continue;
@@ -298,6 +301,10 @@ class Loader {
       if (auto a = v.child("active"); a.present()) i.active = a.as_bool();
       st.name += " " + i.axis + " " + i.fault;
       st.action = i;
+    } else if (action == "couple") {
+      CoupleStep c = detail::load_couple_step(v, *scenario_);
+      st.name += " " + c.slave;
+      st.action = std::move(c);
     } else if (action == "parallel") {
       if (depth >= max_parallel_depth)
         v.fail(fmt::format("'parallel' nested deeper than {} levels", max_parallel_depth));
@@ -439,6 +446,7 @@ class Loader {
 
   std::string file_;
   const std::vector<AxisSpec>* axes_ = nullptr;
+  const Scenario* scenario_ = nullptr;  ///< for the coupling keys of program steps
 };
 
 }  // namespace

@@ -21,6 +21,18 @@ void PlotRecorder::on_start(const Scenario& scenario, const Machine& machine) {
     s.rotary = a.spec->rotary;
     data_.axes.push_back(std::move(s));
   }
+  data_.couplings.clear();
+  for (const auto& c : machine.couplings().couplings()) {
+    PlotCoupling p;
+    p.slave_name = c->spec->slave;
+    p.master_name = c->spec->source_kind == MasterSource::time ? "time" : c->spec->master;
+    p.slave_units = machine.axes()[c->slave].spec->units;
+    p.master_units = "s";
+    if (c->master_axis) p.master_units = machine.axes()[*c->master_axis].spec->units;
+    for (const auto& m : scenario.masters)
+      if (m.name == c->spec->master) p.master_units = m.units;
+    data_.couplings.push_back(std::move(p));
+  }
 }
 
 void PlotRecorder::on_cycle(Duration t, const Machine& machine) noexcept {
@@ -35,6 +47,14 @@ void PlotRecorder::on_cycle(Duration t, const Machine& machine) noexcept {
       s.command.push_back(st.command_position);
       s.velocity.push_back(st.velocity);
       s.following_error.push_back(st.following_error);
+    }
+    const auto& cs = machine.couplings().couplings();
+    for (std::size_t i = 0; i < cs.size() && i < data_.couplings.size(); ++i) {
+      auto& p = data_.couplings[i];
+      p.t.push_back(to_seconds(t));
+      p.master.push_back(cs[i]->plot_master);
+      p.slave.push_back(cs[i]->plot_slave);
+      p.cam.push_back(cs[i]->plot_cam);
     }
     if (!data_.axes.empty() && data_.axes.front().t.size() >= max_points_) decimate();
   } catch (...) {  // out of memory: stop recording rather than disturb the cycle
@@ -54,6 +74,12 @@ void PlotRecorder::decimate() {
     halve(s.command);
     halve(s.velocity);
     halve(s.following_error);
+  }
+  for (auto& p : data_.couplings) {
+    halve(p.t);
+    halve(p.master);
+    halve(p.slave);
+    halve(p.cam);
   }
   stride_ *= 2;
 }
@@ -115,7 +141,7 @@ struct Line {
 };
 
 void chart(std::string& svg, double x0, double y0, const std::string& title, const std::vector<double>& t,
-           const std::vector<Line>& lines, double t_end) {
+           const std::vector<Line>& lines, double t_end, Range x_range = {NAN, NAN}, const char* x_label = "t [s]") {
   const double pw = chart_w - ml - mr, ph = chart_h - mt - mb;
   const double px = x0 + ml, py = y0 + mt;
   Range yr{0, 1};
@@ -123,7 +149,7 @@ void chart(std::string& svg, double x0, double y0, const std::string& title, con
     yr = range_of({lines[0].values});
   else
     yr = range_of({lines[0].values, lines[1].values});
-  const Range tr{0.0, std::max(t_end, 1e-3)};
+  const Range tr = std::isfinite(x_range.lo) ? x_range : Range{0.0, std::max(t_end, 1e-3)};
   auto X = [&](double v) { return px + (v - tr.lo) / (tr.hi - tr.lo) * pw; };
   auto Y = [&](double v) { return py + ph - (v - yr.lo) / (yr.hi - yr.lo) * ph; };
 
@@ -153,7 +179,8 @@ void chart(std::string& svg, double x0, double y0, const std::string& title, con
     svg += fmt::format("<text x=\"{:.1f}\" y=\"{:.1f}\" class=\"xlabel\">{}</text>\n", x, py + ph + 16,
                        tick_label(v, xstep));
   }
-  svg += fmt::format("<text x=\"{:.1f}\" y=\"{:.1f}\" class=\"xlabel\">t [s]</text>\n", px + pw / 2, py + ph + 32);
+  svg += fmt::format("<text x=\"{:.1f}\" y=\"{:.1f}\" class=\"xlabel\">{}</text>\n", px + pw / 2, py + ph + 32,
+                     xml_escape(x_label));
   for (const auto& l : lines) {
     // A rotary position wraps (359.9 -> 0.1): break the line there instead of drawing a vertical
     // stroke across the chart.
@@ -199,7 +226,8 @@ void chart(std::string& svg, double x0, double y0, const std::string& title, con
 
 std::string render_svg(const PlotData& data) {
   const double width = 3 * chart_w + 20;
-  const double height = title_h + chart_h * static_cast<double>(std::max<std::size_t>(1, data.axes.size())) + 10;
+  const double height =
+      title_h + chart_h * static_cast<double>(std::max<std::size_t>(1, data.axes.size() + data.couplings.size())) + 10;
   double t_end = 0.0;
   for (const auto& s : data.axes)
     if (!s.t.empty()) t_end = std::max(t_end, s.t.back());
@@ -226,6 +254,16 @@ std::string render_svg(const PlotData& data) {
           {{&s.velocity, "actual", "#2ca02c", false}}, t_end);
     chart(svg, 10 + 2 * chart_w, y, fmt::format("{}: following error [{}]", s.axis, s.units), s.t,
           {{&s.following_error, "command - actual", "#d62728", false}}, t_end);
+    y += chart_h;
+  }
+  for (const auto& c : data.couplings) {
+    const std::string xl = fmt::format("{} [{}]", c.master_name, c.master_units);
+    chart(svg, 10, y, fmt::format("{} over {} [{}]", c.slave_name, c.master_name, c.slave_units), c.master,
+          {{&c.slave, "slave command", "#9467bd", false}}, t_end, range_of({&c.master}), xl.c_str());
+    chart(svg, 10 + chart_w, y, fmt::format("master {} [{}]", c.master_name, c.master_units), c.t,
+          {{&c.master, "master", "#8c564b", false}}, t_end);
+    chart(svg, 10 + 2 * chart_w, y, fmt::format("{}: cam table position [{}]", c.slave_name, c.master_units), c.t,
+          {{&c.cam, "x in table", "#17becf", false, true}}, t_end);
     y += chart_h;
   }
   svg += "</svg>\n";

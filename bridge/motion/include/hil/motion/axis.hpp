@@ -43,6 +43,17 @@ class Axis {
   std::error_code jog(int direction);  ///< +1 / -1 at jog_velocity until stop()
   std::error_code stop();              ///< controlled stop under the configured limits
   std::error_code quick_stop();        ///< stop at quick_stop_deceleration
+  /// Coupled motion (hil/motion/coupling.hpp): the next update() commands `position_inc` (drive
+  /// increments, unwrapped, backlash added as usual) with feed-forward velocity and acceleration
+  /// (inc/s, inc/s^2) instead of a planned trajectory. Call it once per cycle while coupled; the
+  /// axis is `moving` and supervised as in any move (feed = |velocity|). stop() / quick_stop()
+  /// end the coupling with a ramp under the axis' limits. Rejected (invalid_command) on drives
+  /// that run their own profile, for non-finite values, and in the states check_can_move refuses.
+  std::error_code follow(std::int64_t position_inc, double velocity_inc_per_s, double acceleration_inc_per_s2);
+  /// A fault from the layer above (a coupling's CouplingFault, a controller's device error):
+  /// the axis goes to error with its configured reaction, as for a supervision fault. The first
+  /// fault stays; reset() clears it.
+  void raise_fault(hil::Fault fault);
 
   /// One cycle: drive.read -> trajectory + supervision -> drive.write. Never throws.
   CycleResult update(const hil::CycleTime& cycle);
@@ -55,7 +66,7 @@ class Axis {
   [[nodiscard]] const Profile& profile() const noexcept { return profile_; }
 
  private:
-  enum class Mode : std::uint8_t { hold, position, velocity, velocity_to_limit, stopping };
+  enum class Mode : std::uint8_t { hold, position, velocity, velocity_to_limit, stopping, external };
   [[nodiscard]] std::error_code check_can_move() const;
   [[nodiscard]] std::error_code start_position(std::int64_t target_inc, const Limits& limits);
   void raise(std::error_code code, std::string text);
@@ -97,6 +108,7 @@ class Axis {
   hil::TimePoint enable_started_{};
   bool first_cycle_ = true;
   hil::TimePoint last_now_{};
+  double ext_v_inc_ = 0.0, ext_a_inc_ = 0.0;  ///< feed-forward of the coupled set-point (Mode::external)
 };
 
 }  // namespace hil::motion

@@ -22,6 +22,7 @@ struct AxisStatus {
   double command_acceleration = 0.0;  ///< units/s^2
   double following_error = 0.0;       ///< units
   std::int64_t position_inc = 0;      ///< actual, drive increments (unwrapped)
+  std::int64_t command_inc = 0;       ///< set-point, drive increments (unwrapped, without backlash)
   hil::DriveState drive_state = hil::DriveState::not_ready;
   AxisState state = AxisState::disabled;
   bool in_position = false;  ///< inside in_position_window of the target after the profile ended

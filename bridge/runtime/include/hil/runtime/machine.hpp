@@ -4,8 +4,9 @@
 // transport factory built from the axis' `drive:` block, and one factory instance per transport
 // used (so a factory can share a bus between its axes).
 //
-// One cycle (docs/runtime.md): every factory's begin_cycle, each axis' update (drive read ->
-// trajectory + supervision -> drive write) in scenario order, every factory's end_cycle.
+// One cycle (docs/runtime.md): every factory's begin_cycle, the virtual masters, each axis' update
+// (a coupled slave first takes its coupling's set-point; drive read -> trajectory + supervision ->
+// drive write) in scenario order, every factory's end_cycle.
 // Thread: the cycle thread only; cycle() never throws.
 
 #include <expected>
@@ -17,6 +18,7 @@
 #include "hil/core/fault_injection.hpp"
 #include "hil/core/transport.hpp"
 #include "hil/motion/axis.hpp"
+#include "hil/runtime/machine_coupling.hpp"
 #include "hil/runtime/scenario.hpp"
 
 namespace hil::runtime {
@@ -55,6 +57,9 @@ class Machine {
   [[nodiscard]] MachineAxis* find(const std::string& name) noexcept;
   /// Transport names in the order their first axis appears.
   [[nodiscard]] std::vector<std::string> transports() const;
+  /// Couplings and virtual masters (scenario machine.couplings / masters / cams).
+  [[nodiscard]] MachineCouplings& couplings() noexcept { return couplings_; }
+  [[nodiscard]] const MachineCouplings& couplings() const noexcept { return couplings_; }
 
  private:
   struct Factory {
@@ -63,6 +68,7 @@ class Machine {
   };
   std::vector<Factory> factories_;
   std::vector<MachineAxis> axes_;
+  MachineCouplings couplings_;
 };
 
 }  // namespace hil::runtime

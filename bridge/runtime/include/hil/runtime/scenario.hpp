@@ -14,6 +14,7 @@
 #include <yaml-cpp/yaml.h>
 
 #include "hil/core/clock.hpp"
+#include "hil/runtime/coupling_spec.hpp"
 
 namespace hil::runtime {
 
@@ -141,7 +142,7 @@ struct ParallelStep {
 
 using StepAction = std::variant<EnableStep, DisableStep, ResetStep, HomeStep, MoveAbsoluteStep, MoveRelativeStep,
                                 MoveVelocityStep, JogStep, StopStep, QuickStopStep, WaitStep, WaitInPositionStep,
-                                WaitUntilStep, InjectFaultStep, ParallelStep>;
+                                WaitUntilStep, InjectFaultStep, ParallelStep, CoupleStep>;
 
 struct Step {
   StepAction action;
@@ -188,6 +189,9 @@ struct Scenario {
   std::optional<Duration> duration;             ///< fixed run length; default: until the program is done and axes rest
   Duration timeout{std::chrono::seconds(600)};  ///< the run fails when it lasts longer
   std::vector<AxisSpec> axes;
+  std::vector<VirtualMasterSpec> masters;  ///< machine.masters (coupling)
+  std::vector<CamSpec> cams;               ///< machine.cams (coupling)
+  std::vector<CouplingSpec> couplings;     ///< machine.couplings
   std::vector<Step> program;
   std::vector<Expectation> expectations;
   YAML::Node document;  ///< keeps the drive nodes' document alive

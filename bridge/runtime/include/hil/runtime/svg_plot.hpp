@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: MIT
 #pragma once
 // `hilbridge run --plot FILE.svg`: position (actual and command), velocity and following error
-// over time, one row of three charts per axis, drawn as a self-contained SVG (axes, ticks,
+// over time, one row of three charts per axis, and per coupling a row with the slave over the
+// master, the master over time and the cam table position over time, drawn as a self-contained SVG (axes, ticks,
 // labels, legend; no external plotting dependency).
 //
 // PlotRecorder keeps at most `max_points` samples per axis: when full it drops every second
@@ -26,9 +27,19 @@ struct PlotSeries {
   std::vector<double> following_error;  ///< units
 };
 
+/// One coupling (machine.couplings): master position, slave command and cam table position.
+struct PlotCoupling {
+  std::string slave_name, master_name;
+  std::string slave_units, master_units;
+  std::vector<double> t;       ///< s
+  std::vector<double> master;  ///< master units
+  std::vector<double> slave;   ///< slave command, slave units
+  std::vector<double> cam;     ///< cam table position, master units (NaN: no cam running)
+};
 struct PlotData {
   std::string title;
   std::vector<PlotSeries> axes;
+  std::vector<PlotCoupling> couplings;  ///< one extra row each: slave vs master, master, cam position
 };
 
 class PlotRecorder final : public RunObserver {
