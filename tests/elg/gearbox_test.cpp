@@ -285,3 +285,37 @@ TEST(ElgGearbox, HaeCentresBetweenTheTwoFlanksAtTheMd170Speed) {
   rig.s.hae = false;
   EXPECT_EQ(rig.step().hae, elg::HaeState::idle);
 }
+
+TEST(ElgGearbox, RelativeIndexingCountsFromWhereTheCouplingLeftC) {
+  elg::GearboxConfig config;
+  config.index_on_grid = false;  // the manual's literal "moves C by one tooth pitch"
+  Rig rig(config);
+  rig.box.set_input({0, 10, *elg::Decimal5::parse("8.18511"), {}});
+  rig.pulse(&elg::Signals::compute);
+  rig.s.single_pitch = true;
+  rig.step();
+  rig.pulse(&elg::Signals::gearing_on);
+  rig.axes.z = 1000;  // the feed does not return exactly: C stands 818.5 -> 819 counts on
+  rig.step();
+  rig.s.gearing_on = false;
+  rig.s.gearing_off = true;
+  rig.step();
+  rig.s.gearing_off = false;
+  rig.pulse(&elg::Signals::index_plus);
+  EXPECT_EQ(rig.axes.c, 819 + 72000);
+  // On the grid (the default) the same sequence lands on the pitch exactly.
+  Rig grid;
+  grid.box.set_input({0, 10, *elg::Decimal5::parse("8.18511"), {}});
+  grid.pulse(&elg::Signals::compute);
+  grid.s.single_pitch = true;
+  grid.step();
+  grid.pulse(&elg::Signals::gearing_on);
+  grid.axes.z = 1000;
+  grid.step();
+  grid.s.gearing_on = false;
+  grid.s.gearing_off = true;
+  grid.step();
+  grid.s.gearing_off = false;
+  grid.pulse(&elg::Signals::index_plus);
+  EXPECT_EQ(grid.axes.c, 72000);
+}

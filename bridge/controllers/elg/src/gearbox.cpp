@@ -79,8 +79,10 @@ void Gearbox::engage(const AxisFeedback& axes, bool single_pitch) {
     raise(Alarm::gearing_not_permissible);
     return;
   }
-  // Positions latched at engagement (digest §2.6): set values are relative to this instant.
-  const std::int64_t c0 = indexing_ ? status_.c_set : axes.c;
+  // Positions latched at engagement (digest §2.6): set values are relative to this instant. C's
+  // own reference is its set value (actual + following error), not the actual value, so a
+  // standing following error never shifts the index position from gap to gap.
+  const std::int64_t c0 = indexing_ ? status_.c_set : axes.c + axes.c_following_error;
   linkage_ = Linkage(*constants_, axes.b, axes.z, axes.y, c0, !single_pitch);
   indexing_ = false;
   hae_offset_ = 0.0;
@@ -97,8 +99,10 @@ void Gearbox::disengage() {
   status_.hae = HaeState::idle;
   status_.tooth_gap_reached = false;
   status_.c_mode = CMode::hold;
-  // The index base follows the C position the coupling left, so the next pitch counts from it.
-  if (ezt_base_valid_) {
+  // Relative indexing: the next pitch counts from where the coupling left C. On the grid (the
+  // default) the pitches count from the position EZT was selected at, so a residual of the
+  // differential term (a feed axis settling a count short) never accumulates from gap to gap.
+  if (ezt_base_valid_ && !config_.index_on_grid) {
     index_base_ = status_.c_set;
     index_count_ = 0;
   }
@@ -125,7 +129,7 @@ const GearboxStatus& Gearbox::step(const Signals& s, const AxisFeedback& axes) {
     } else {
       status_.tooth = 1;
       index_count_ = 0;
-      index_base_ = status_.coupled ? status_.c_set : axes.c;
+      index_base_ = status_.coupled ? status_.c_set : axes.c + axes.c_following_error;
       ezt_base_valid_ = true;
     }
   }
@@ -184,7 +188,7 @@ void Gearbox::run_indexing(const Signals& s, const AxisFeedback& axes) {
     return;
   }
   if (indexing_) {
-    if (axes.c_in_position && axes.c == status_.c_set) {
+    if (axes.c_in_position && axes.c + axes.c_following_error == status_.c_set) {
       indexing_ = false;
       status_.c_mode = CMode::hold;
     }

@@ -12,6 +12,7 @@
 // - "Gearing constant computed" (E66.6) stays set until an input parameter changes.
 // - The approach condition of Gearing ON is |C following error| <= MD 166.
 // - A following error exactly equal to the limit keeps the contact closed.
+// - Single-pitch indexes land on a grid counted from EZT selection (index_on_grid).
 
 #include <cstdint>
 #include <optional>
@@ -47,7 +48,7 @@ struct AxisFeedback {
   std::int64_t y = 0;
   std::int64_t c = 0;
   std::int64_t c_following_error = 0;  ///< set value - actual value of C, counts (= MS units)
-  bool c_in_position = true;           ///< C stands within MD 204* of its last position target
+  bool c_in_position = true;           ///< C's move has ended (standing within MD 204* of its target)
 };
 
 /// Options and machine data of the gearbox (MD 166, 169, 170, 300*, the INC selector, cycle).
@@ -60,6 +61,9 @@ struct GearboxConfig {
   std::int64_t max_partial_counts = 0;      ///< C set value change per cycle that is the limit
                                             ///< (2205); 0 = no limit. 2206 warns at 90 %.
   bool clear_computed_on_parameter_change = true;
+  /// [I] Single-pitch indexes land on the grid start + k * pitch counted from EZT selection (true),
+  /// or move one pitch from wherever C stands (false: the manual's literal "moves C by one pitch").
+  bool index_on_grid = true;
 };
 
 enum class CMode : std::uint8_t {
