@@ -1,0 +1,113 @@
+// SPDX-License-Identifier: MIT
+// The annex program (13.2) on the motion core: B, C, X, Z are motion::Axis objects on simulated
+// drives (hil::mocks::SimDrive) stepped on virtual time; the HobbingMachine runs NC, PC and ELG.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "hil/controllers/elg/hobbing_machine.hpp"
+#include "hil/mocks/sim_drive.hpp"
+
+namespace elg = hil::controllers::elg;
+namespace motion = hil::motion;
+using std::chrono::milliseconds;
+
+namespace {
+
+constexpr const char* annex_program = R"(%100 (Single pitch with helical teeth)
+N5 R20 0 R21 10 R12 8.18511
+   R13 0 R14 0 R15 1
+N10 G0 G90 X90 Z10 S500 M03 F.5 G95
+N15 M52 G04 F.25
+N16 M54
+N20 G18 G41 D10 X40
+N25 M50 G04 F.25
+N30 G1 Z60
+N35 G0 X80
+N40 G40 X90 Z10
+N45 M51 G04 F.25
+N50 M56 G04 F.25
+N55 R14 R15
+N60 @03 - 20 R21 R14
+N61 M55
+N65 M30
+)";
+
+std::unique_ptr<motion::Axis> make_axis(const std::string& name, motion::Ratio ratio, double v, double a,
+                                        double window) {
+  motion::AxisConfig c;
+  c.name = name;
+  c.inc_per_unit = ratio;
+  c.limits = {v, a, a * 20};
+  c.quick_stop_deceleration = a * 2;
+  c.jog_velocity = v / 10;
+  c.following_error.static_window = window;
+  c.standstill_window = window;
+  c.in_position_window = window / 2;
+  c.in_position_timeout = milliseconds(2000);
+  EXPECT_TRUE(motion::validate(c)) << motion::validate(c).error();
+  hil::mocks::SimDriveConfig d;
+  d.name = "sim:" + name;
+  d.plant.kv_per_s = 200.0;
+  d.plant.velocity_lag_s = 0.0005;
+  d.plant.velocity_feedforward = 1.0;
+  d.plant.max_velocity_inc_per_s = 1e9;
+  return std::make_unique<motion::Axis>(c, std::make_unique<hil::mocks::SimDrive>(d));
+}
+
+}  // namespace
+
+TEST(ElgHobbingMachine, AnnexProgramOnSimulatedDrives) {
+  auto program = elg::parse_nc_program(annex_program);
+  ASSERT_TRUE(program) << program.error().what();
+  elg::HobbingConfig config;  // MD 396* = 180 000, MS 0.5 um
+  auto b = make_axis("B", elg::rotary_counts_per_degree(180000), 3600.0, 36000.0, 5.0);
+  auto c = make_axis("C", elg::rotary_counts_per_degree(180000), 360.0, 3600.0, 1.0);
+  auto x = make_axis("X", elg::linear_counts_per_mm(500), 100.0, 1000.0, 1.0);
+  auto z = make_axis("Z", elg::linear_counts_per_mm(500), 100.0, 1000.0, 1.0);
+  elg::HobbingMachine machine(std::move(*program), config, {b.get(), c.get(), z.get(), x.get(), nullptr});
+
+  hil::TimePoint now{};
+  const auto period = milliseconds(2);
+  std::vector<motion::Axis*> axes{b.get(), c.get(), x.get(), z.get()};
+  auto cycle = [&] {
+    now += period;
+    for (auto* axis : axes) axis->update(hil::CycleTime{now, period});
+    machine.step(hil::CycleTime{now, period});
+  };
+  cycle();
+  for (auto* axis : axes) ASSERT_FALSE(axis->enable());
+  for (int i = 0; i < 20; ++i) cycle();
+  for (auto* axis : axes) ASSERT_EQ(axis->status().state, motion::AxisState::standstill) << axis->config().name;
+  machine.start();
+  std::vector<std::int64_t> index_positions, off_positions;
+  bool was_coupled = false;
+  double worst_c_lag = 0;
+  for (int i = 0; i < 400000 && machine.nc().state() == elg::NcState::running; ++i) {
+    cycle();
+    ASSERT_TRUE(machine.error().empty()) << machine.error();
+    for (auto* axis : axes) ASSERT_NE(axis->status().state, motion::AxisState::error) << axis->config().name;
+    const bool coupled = machine.gearbox().status().coupled;
+    if (!was_coupled && coupled) index_positions.push_back(machine.c_set());  // the gap's start
+    if (was_coupled && !coupled) off_positions.push_back(machine.c_set());
+    if (coupled) worst_c_lag = std::max(worst_c_lag, std::abs(c->status().following_error));
+    was_coupled = coupled;
+  }
+  for (int i = 0; i < 500; ++i) cycle();  // C settles on the last index
+  ASSERT_EQ(machine.nc().state(), elg::NcState::ended) << machine.nc().error();
+  EXPECT_TRUE(machine.gearbox().alarms().empty());
+  EXPECT_EQ(machine.couplings(), 10);
+  EXPECT_LE(machine.worst_linkage_error_counts(), 1.0);  // C set value within one increment
+  ASSERT_EQ(index_positions.size(), 10u);
+  ASSERT_EQ(off_positions.size(), 10u);
+  for (std::size_t i = 0; i < 10; ++i) {
+    // Each gap starts exactly on the pitch grid (the index position is kept across ON/OFF), and
+    // the coupling hands C back within one count of it (Z settles to within a count of Z10).
+    EXPECT_EQ(index_positions[i], static_cast<std::int64_t>(i) * 72000) << "gap " << i;
+    EXPECT_LE(std::llabs(off_positions[i] - static_cast<std::int64_t>(i) * 72000), 1) << "gap " << i;
+  }
+  EXPECT_EQ(c->status().command_inc, 720000);
+  EXPECT_LE(std::llabs(c->status().position_inc - 720000), 2);
+  EXPECT_LT(worst_c_lag, 1.0);  // deg: the table follows the coupling inside its window
+  EXPECT_NEAR(z->status().position, 10.0, 0.001);
+}
