@@ -41,6 +41,7 @@ void print_summary(std::FILE* out, const runtime::RunResult& r) {
       fmt::print(out, "  {} axis {}: {}{}\n", e.passed ? "pass" : "FAIL", e.axis, e.description,
                  e.passed ? "" : ": " + e.detail);
   }
+  for (const auto& w : r.warnings) fmt::print(out, "warning: {}\n", w);
   fmt::print(out, "scheduler: {}\n", describe_scheduler(r.scheduler));
   for (const auto& rep : r.reports) {
     fmt::print(out, "transport {}: {}\n", rep.transport, rep.report.ok ? "ok" : "FAILED");
