@@ -9,6 +9,9 @@ packages=(
   libasio-dev libyaml-cpp-dev libcli11-dev libfmt-dev libspdlog-dev nlohmann-json3-dev
   libmodbus-dev libgpiod-dev gpiod
   libgtest-dev libgmock-dev libbenchmark-dev
+  # coverage-guided fuzzing (scripts/fuzz.sh): clang 16 and its libFuzzer (with libstdc++, the
+  # standard library Debian's yaml-cpp and fmt are built against: see CMakeLists.txt)
+  clang-16 libfuzzer-16-dev
   # independent peers for interop tests
   can-utils python3 python3-can python3-pymodbus python3-serial python3-serial-asyncio mbpoll socat tshark
 )

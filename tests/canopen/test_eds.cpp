@@ -3,6 +3,8 @@
 // ParameterValue, limits, and errors that name file, line, section and key.
 #include <gtest/gtest.h>
 
+#include <limits>
+
 #include "hil/canopen/eds.hpp"
 
 using namespace hil::canopen;
@@ -137,4 +139,40 @@ TEST(Eds, ErrorsNameFileLineSectionAndKey) {
   auto missing = load_eds("/nonexistent/x.eds", 1);
   ASSERT_FALSE(missing);
   EXPECT_NE(missing.error().message.find("cannot open"), std::string::npos);
+}
+
+TEST(Eds, NumbersAreRangeCheckedAndNeverOverflow) {
+  // Beyond INT64 or overflowing the sum: not a number, instead of a wrapped one (or UB).
+  EXPECT_EQ(eval_eds_integer("0x8000000000000000", 1), std::nullopt);
+  EXPECT_EQ(eval_eds_integer("0xFFFFFFFFFFFFFFFF", 1), std::nullopt);
+  EXPECT_EQ(eval_eds_integer("-0x8000000000000000", 1), std::numeric_limits<std::int64_t>::min());
+  EXPECT_EQ(eval_eds_integer("0x7FFFFFFFFFFFFFFF+$NODEID", 1), std::nullopt);
+  EXPECT_EQ(eval_eds_integer("-0x8000000000000000-1", 1), std::nullopt);
+  EXPECT_EQ(eval_eds_integer("0-(0x8000000000000000)", 1), std::nullopt);
+
+  // Identity numbers are UNSIGNED32 (0x1018): 0x100000A11 is not 0xA11.
+  auto vendor = parse_eds("[DeviceInfo]\nVendorNumber=0x100000A11\n" + minimal(""), "v.eds", 1);
+  ASSERT_FALSE(vendor);
+  EXPECT_EQ(vendor.error().key, "[DeviceInfo] VendorNumber");
+  EXPECT_NE(vendor.error().message.find("0..0xFFFFFFFF"), std::string::npos) << vendor.error().message;
+  auto negative = parse_eds("[DeviceInfo]\nProductNumber=-1\n" + minimal(""), "v.eds", 1);
+  ASSERT_FALSE(negative);
+  EXPECT_EQ(negative.error().key, "[DeviceInfo] ProductNumber");
+
+  // A negative count would drop the listed (mandatory) objects.
+  auto count = parse_eds(minimal("", "SupportedObjects=-5\n"), "c.eds", 1);
+  ASSERT_FALSE(count);
+  EXPECT_EQ(count.error().key, "[OptionalObjects] SupportedObjects");
+  EXPECT_NE(count.error().message.find("0..65535"), std::string::npos) << count.error().message;
+  auto compact = parse_eds(minimal("[2000]\nObjectType=0x8\nDataType=0x0005\nAccessType=rw\nCompactSubObj=-3\n",
+                                   "SupportedObjects=1\n1=0x2000"),
+                           "c.eds", 1);
+  ASSERT_FALSE(compact);
+  EXPECT_EQ(compact.error().key, "[2000] CompactSubObj");
+}
+
+TEST(Eds, AUtf8ByteOrderMarkIsAccepted) {
+  auto d = parse_eds("\xEF\xBB\xBF" + minimal(""), "bom.eds", 1);
+  ASSERT_TRUE(d) << d.error().describe();
+  EXPECT_NE(d->od.find(0x1000, 0), nullptr);
 }

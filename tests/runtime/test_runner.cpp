@@ -2,6 +2,7 @@
 // Runner end to end on virtual time: cycle order, the demo's final positions, expectations that
 // pass and fail (with the value and the miss in the message), program failures, transports.
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -336,4 +337,30 @@ TEST(Runner, RealTimeSmokeRun) {
   EXPECT_EQ(r->scheduler.wake_latency.count(), r->scheduler.cycles);
   EXPECT_GE(r->scheduler.wall, 59ms);
   EXPECT_GT(r->axes[0].final_position, 0.0);
+}
+
+TEST(Runner, AnExpectationThatHoldsFromTheStartAndNeverChangesIsAWarning) {
+  // The axis starts at 0 and a `by:` expectation of 0 is met at the first cycle: it checks nothing,
+  // even though the axis moves later. So does `state: disabled` on an axis never enabled.
+  const RunResult trivial =
+      run(load(one_axis +
+               "program:\n  - enable: x\n  - move_absolute: {axis: x, position: 5}\n  - move_absolute: {axis: x, "
+               "position: 0}\nexpect:\n  - {axis: x, position: 0, by: 2s}\n  - {axis: x, position: 0}\n"));
+  EXPECT_TRUE(trivial.ok);
+  ASSERT_EQ(trivial.warnings.size(), 1u) << fmt::format("{}", fmt::join(trivial.warnings, "\n"));
+  EXPECT_NE(trivial.warnings[0].find("t.yaml:"), std::string::npos) << trivial.warnings[0];
+  EXPECT_NE(trivial.warnings[0].find("expect[0]"), std::string::npos) << trivial.warnings[0];
+  EXPECT_NE(trivial.warnings[0].find("already holds at the start of the run"), std::string::npos);
+
+  const RunResult idle = run(load(one_axis + "duration: 100ms\nexpect:\n  - {axis: x, position: 0}\n"
+                                             "  - {axis: x, state: disabled}\n"));
+  EXPECT_TRUE(idle.ok);
+  EXPECT_EQ(idle.warnings.size(), 2u) << fmt::format("{}", fmt::join(idle.warnings, "\n"));
+
+  // Expectations the run has to earn: no warning.
+  const RunResult earned =
+      run(load(one_axis + "program:\n  - enable: x\n  - move_absolute: {axis: x, position: 5}\n"
+                          "expect:\n  - {axis: x, position: 5, by: 2s}\n  - {axis: x, state: standstill}\n"));
+  EXPECT_TRUE(earned.ok);
+  EXPECT_TRUE(earned.warnings.empty()) << fmt::format("{}", fmt::join(earned.warnings, "\n"));
 }

@@ -5,6 +5,7 @@
 # exactly what reached the device, leaves a resume journal, and `--resume` completes and
 # verifies it; a download keeps the previous file as .bak; the emulator's state survives a restart.
 import os
+import socket
 import subprocess
 import sys
 import tempfile
@@ -75,5 +76,49 @@ with tempfile.TemporaryDirectory() as d:
         check("state survives an emulator restart", len(again) == 60, r.stderr)
     finally:
         emu.close()
+
+# Two emulators on one state file would overwrite each other's state: the second is refused.
+# On TCP an idle client is closed after --idle-timeout, so a well-behaved one gets the line.
+with tempfile.TemporaryDirectory() as d:
+    state = os.path.join(d, "shared.json")
+    first = Emulator(HIL, "--state", state)
+    try:
+        r = run("emulate", "clm14", "--pty", "--state", state)
+        check("second emulator on the same state file refused", r.returncode == 2 and "in use by another process" in r.stderr,
+              r.stderr)
+    finally:
+        first.close()
+    tcp = subprocess.Popen([HIL, "emulate", "clm14", "--tcp", "0", "--idle-timeout", "0.5", "--state", "none",
+                            "--mode", "parameter"], stdin=subprocess.PIPE, stdout=subprocess.PIPE,
+                           stderr=subprocess.PIPE, text=True)
+    try:
+        addr = tcp.stdout.readline().strip()
+        check("emulator on tcp", addr.startswith("tcp:127.0.0.1:"), addr)
+        port = int(addr.rsplit(":", 1)[1])
+        idle = socket.create_connection(("127.0.0.1", port))
+        idle.settimeout(5)
+        closed = idle.recv(1) == b""  # the emulator closes it after 0.5 s of silence
+        check("idle TCP client closed after --idle-timeout", closed)
+        idle.close()
+        out = os.path.join(d, "tcp.prg")
+        r = run("download", "clm14", "--port", addr, "--what", "program", out)
+        check("a well-behaved TCP client is served after the idle one", r.returncode == 0, r.stderr)
+    finally:
+        tcp.stdin.write("quit\n")
+        tcp.stdin.flush()
+        tcp.wait(timeout=10)
+
+# Wrong peer and false success: ports are range-checked, never cast to another port; an upload
+# of DBs the file does not hold sends nothing and fails.
+r = run("upload", "clm14", "--port", "tcp:127.0.0.1:99999", "examples/serial/clm14-feed.prg")
+check("tcp port 99999 refused", r.returncode != 0 and "not a TCP port number 1..65535" in r.stderr, r.stderr)
+r = run("emulate", "clm14", "--tcp", "70000")
+check("emulate --tcp 70000 refused", r.returncode != 0 and "70000" in r.stderr, r.stderr)
+for dev in ("ip247", "wf725"):
+    f = "examples/serial/ip247-md-db1.s5db" if dev == "ip247" else "examples/serial/wf725-md-defaults.s5db"
+    r = run("upload", dev, "--port", "tcp:127.0.0.1:9", "--db", "7", f)
+    check(f"upload {dev} --db 7 with no DB7: exit 2", r.returncode == 2, r.stderr + r.stdout)
+    check(f"upload {dev} --db 7: says so, sends nothing",
+          "DB7 not in" in r.stderr and "nothing was sent" in r.stderr and "verified" not in r.stdout, r.stderr)
 
 sys.exit(1 if failures else 0)

@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 
 #include "hil/mocks/plant.hpp"
 
@@ -89,4 +90,19 @@ TEST(Plant, BlowupStopsFollowingAndUnpoweredCoasts) {
   coast.step(100ms, PlantInput{true, hil::CommandMode::velocity, 0.0, 1000.0});
   coast.step(200ms, PlantInput{});
   EXPECT_LT(std::abs(coast.velocity_inc_per_s()), 1.0);
+}
+
+TEST(Plant, AnyGainIntegratesInABoundedNumberOfSubSteps) {
+  // A gain far beyond what the sub-step resolves (the old loop ran 5 million sub-steps per 1 ms
+  // cycle at Kv = 1e9 and never ended at 1e20) costs at most max_substeps and stays stable.
+  for (double kv : {50.0, 1e4, 1e9, 1e20, std::numeric_limits<double>::infinity()}) {
+    Plant plant(PlantConfig{.kv_per_s = kv, .velocity_lag_s = 0.001});
+    std::size_t most = 0;
+    for (int i = 0; i < 200; ++i) most = std::max(most, plant.step(1ms, hold(1000.0)));
+    EXPECT_LE(most, Plant::max_substeps) << "kv " << kv;
+    EXPECT_NEAR(plant.position_inc(), 1000.0, 1.0) << "kv " << kv;
+  }
+  Plant plant(PlantConfig{.kv_per_s = 1e20});
+  EXPECT_LE(plant.step(std::chrono::seconds(3600), hold(5.0)), Plant::max_substeps) << "a long step too";
+  EXPECT_TRUE(std::isfinite(plant.position_inc()));
 }

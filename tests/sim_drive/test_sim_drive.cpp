@@ -135,10 +135,37 @@ TEST(SimDriveConfig, ParsesAndRejects) {
   auto bad = hil::yaml::load_string("transport: sim\nkv: -3\n", "s.yaml");
   auto e = hil::mocks::parse_sim_drive_config(*bad, hil::yaml::Where{"s.yaml", "drive"});
   ASSERT_FALSE(e);
-  EXPECT_EQ(e.error().describe(), "s.yaml:2:5: drive.kv: must be > 0, got -3");
+  EXPECT_EQ(e.error().describe(), "s.yaml:2:5: drive.kv: must be in (0, 10000] 1/s, got -3");
 
   auto typo = hil::yaml::load_string("transport: sim\nkvv: 3\n", "s.yaml");
   auto t = hil::mocks::parse_sim_drive_config(*typo, hil::yaml::Where{"s.yaml", "drive"});
   ASSERT_FALSE(t);
   EXPECT_EQ(t.error().line, 2);
+}
+
+TEST(SimDriveConfig, EveryNumericKeyHasItsDocumentedRange) {
+  struct Case {
+    const char* yaml;
+    const char* error;
+  };
+  const Case cases[] = {
+      {"kv: 1e9", "drive.kv: must be in (0, 10000] 1/s, got 1000000000"},
+      {"kv: .nan", "drive.kv: must be in (0, 10000] 1/s, got nan"},
+      {"max_velocity: 1e13", "drive.max_velocity: must be in (0, 1e+12] inc/s, got 10000000000000"},
+      {"velocity_lag: 11", "drive.velocity_lag: must be in [0, 10] s, got 11"},
+      {"feedforward: 1.5", "drive.feedforward: must be in [0, 1], got 1.5"},
+      {"encoder_step: 2e9", "drive.encoder_step: must be in [1, 1e+09] inc, got 2000000000"},
+      {"initial_position: 1e16", "drive.initial_position: must be in [-1e+15, 1e+15] inc, got 1e+16"},
+      {"transition_time: 61", "drive.transition_time: must be in [0, 60] s, got 61"},
+      {"quick_stop_deceleration: 0", "drive.quick_stop_deceleration: must be in (0, 1e+15] inc/s², got 0"},
+      {"homing_time: 3601", "drive.homing_time: must be in [0, 3600] s, got 3601"},
+      {"home_position: 2000000000000000", "drive.home_position: must be in [-1e+15, 1e+15] inc, got 2000000000000000"},
+  };
+  for (const auto& c : cases) {
+    auto doc = hil::yaml::load_string(std::string("transport: sim\n") + c.yaml + "\n", "s.yaml");
+    ASSERT_TRUE(doc);
+    auto r = hil::mocks::parse_sim_drive_config(*doc, hil::yaml::Where{"s.yaml", "drive"});
+    ASSERT_FALSE(r) << c.yaml;
+    EXPECT_NE(r.error().describe().find(c.error), std::string::npos) << r.error().describe();
+  }
 }

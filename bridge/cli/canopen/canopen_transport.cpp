@@ -22,6 +22,7 @@
 #include "hil/core/fault_injection.hpp"
 #include "hil/core/yaml_config.hpp"
 #include "hil/mocks/cia402_node.hpp"
+#include "hil/mocks/key_range.hpp"
 
 namespace hil::cli::canopen_cli {
 namespace {
@@ -44,6 +45,9 @@ class InProcessAxis final : public Drive, public FaultInjectable {
   bool request(DriveRequest r) override { return drive_->request(r); }
   std::vector<std::string> injectable_faults() const override {
     auto names = mocks::Cia402Node::fault_names();
+    // SDO faults act on SDO transfers; the run's exchange is PDOs only once the node has booted,
+    // so in a scenario they would do nothing: refused (the node itself still offers them).
+    std::erase_if(names, [](const std::string& n) { return n == "sdo_slow" || n == "sdo_timeout"; });
     if (master_node_ != 0) names.emplace_back("master_heartbeat_loss");
     return names;
   }
@@ -141,6 +145,18 @@ class CanopenTransport final : public TransportFactory {
     auto master_hb = ms("master_heartbeat", 0);
     for (auto* r : {&hb, &hb_timeout, &sdo_timeout, &master_hb})
       if (!*r) return std::unexpected(r->error());
+    if (sdo_timeout->count() == 0)
+      return std::unexpected(yaml::error_at(node["sdo_timeout"], where.key("sdo_timeout"),
+                                            "must be 1..65535 ms: an SDO transfer needs time to answer"));
+    // The node produces its heartbeat every `heartbeat` ms and the master watches it with
+    // `heartbeat_timeout` (0 = not watched): a timeout not longer than the period faults at once.
+    if (hb->count() > 0 && hb_timeout->count() > 0 && *hb_timeout <= *hb)
+      return std::unexpected(
+          yaml::error_at(node["heartbeat_timeout"] ? node["heartbeat_timeout"] : node["heartbeat"],
+                         where.key(node["heartbeat_timeout"] ? "heartbeat_timeout" : "heartbeat"),
+                         fmt::format("heartbeat_timeout {} ms must be longer than heartbeat {} ms (one late "
+                                     "heartbeat must not fault the drive)",
+                                     hb_timeout->count(), hb->count())));
     // The master's own heartbeat, watched by the node (0x1016:1): a drive whose master dies stops.
     auto master_hb_timeout =
         ms("master_heartbeat_timeout", 3 * std::chrono::duration_cast<std::chrono::milliseconds>(*master_hb).count());
@@ -237,7 +253,8 @@ class CanopenTransport final : public TransportFactory {
         auto v = yaml::get_double(node, where, key);
         if (!v) return std::unexpected(v.error());
         if (v->has_value()) {
-          if (**v < 0) return std::unexpected(yaml::error_at(node[std::string(key)], where.key(key), "must be >= 0"));
+          if (auto bad = mocks::plant_key_range(key)->check(**v); !bad.empty())
+            return std::unexpected(yaml::error_at(node[std::string(key)], where.key(key), bad));
           out = **v;
         }
         return {};

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 // `hilbridge emulate cia402`: simulated CiA 402 nodes as a process on a real bus (SocketCAN,
 // socketcand), one channel per node, stepped every millisecond on real time until SIGINT/SIGTERM.
+#include <cmath>
 #include <csignal>
 #include <cstdio>
 #include <memory>
@@ -13,6 +14,7 @@
 
 #include "hil/cli/context.hpp"
 #include "hil/mocks/cia402_node.hpp"
+#include "hil/mocks/key_range.hpp"
 #include "session.hpp"
 
 namespace hil::cli::canopen_cli {
@@ -96,9 +98,10 @@ void register_emulate_cia402(Context& ctx) {
   c->add_option("--node", a->nodes, "Node-ID 1..127 (repeat for several nodes)")->required()->check(CLI::Range(1, 127));
   c->add_option("--duration", a->duration_s, "Stop after this many seconds (default: until SIGINT/SIGTERM)")
       ->check(CLI::NonNegativeNumber);
-  c->add_option("--kv", a->kv, "Plant position-loop gain Kv in 1/s (default 50)")->check(CLI::PositiveNumber);
-  c->add_option("--max-velocity", a->max_velocity, "Plant velocity limit in increments/s (default 5e6)")
-      ->check(CLI::PositiveNumber);
+  c->add_option("--kv", a->kv, "Plant position-loop gain Kv in 1/s, (0, 10000] (default 50)")
+      ->check(CLI::Range(std::nextafter(0.0, 1.0), mocks::kv_range.max));
+  c->add_option("--max-velocity", a->max_velocity, "Plant velocity limit in increments/s, (0, 1e12] (default 5e6)")
+      ->check(CLI::Range(std::nextafter(0.0, 1.0), mocks::max_velocity_range.max));
   c->footer(
       "The node's object dictionary is the EDS profiles/canopen/hil_cia402_drive.eds (compiled in).\n"
       "Fault injection over SDO: 0x2100 error code (u16, 0 clears), 0x2101 heartbeat loss (u8),\n"

@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "hil/cli/context.hpp"
+#include "hil/core/text_file.hpp"
 #include "hil/profiles/loader.hpp"
 #include "hil/profiles/parameter_set.hpp"
 #include "hil/profiles/validation.hpp"
@@ -172,21 +173,19 @@ void run_validate(Context& ctx, const Options& o) {
     ctx.exit_code = 2;
     return;
   }
-  std::ifstream in(o.file, std::ios::binary);
-  if (!in) {
-    fmt::print(stderr, "error: cannot read {}\n", o.file);
+  auto buf = read_text_file(o.file);
+  if (!buf) {
+    fmt::print(stderr, "error: cannot read the parameter set: {}\n", buf.error());
     ctx.exit_code = 2;
     return;
   }
-  std::stringstream buf;
-  buf << in.rdbuf();
   auto parser = hp::make_parameter_set_parser(p);
   if (!parser) {
     fmt::print(stderr, "error: {} declares the unknown parameter-set format '{}'\n", p->device, p->text_format);
     ctx.exit_code = 2;
     return;
   }
-  const auto parsed = parser->parse(buf.str(), *settings);
+  const auto parsed = parser->parse(*buf, *settings);
   auto problems = parsed.problems;
   for (auto& pr : hp::validate(*p, parsed.set, *settings)) {
     if (o.partial && pr.rule.starts_with("required")) continue;

@@ -54,6 +54,7 @@ void print_summary(std::FILE* out, const runtime::RunResult& r) {
       fmt::print(out, "  {} axis {}: {}{}\n", e.passed ? "pass" : "FAIL", e.axis, e.description,
                  e.passed ? "" : ": " + e.detail);
   }
+  for (const auto& w : r.warnings) fmt::print(out, "warning: {}\n", w);
   fmt::print(out, "scheduler: {}\n", describe_scheduler(r.scheduler));
   if (r.realtime) fmt::print(out, "real time: {}\n", r.realtime->describe());
   if (!r.scheduler.virtual_time && r.scheduler.wake_latency.count() > 0)

@@ -103,6 +103,7 @@ int test_command(Context& ctx, const TestArgs& args) {
                                             e.line, e.path));
       for (const auto& f : r.failures)
         if (!f.starts_with("axis ") || f.find(": expected ") == std::string::npos) fmt::print("  FAIL {}\n", f);
+      for (const auto& w : r.warnings) fmt::print("  warning: {}\n", w);
       if (r.ok) ++passed;
     }
     outcomes.push_back(std::move(o));

@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "hil/cli/progress.hpp"
+#include "hil/core/text_file.hpp"
 #include "hil/serial/clm14/client.hpp"
 #include "hil/serial/clm14/files.hpp"
 #include "hil/serial/clm14/item_devices.hpp"
@@ -104,14 +105,12 @@ int clm14_upload(const TransferOptions& o) {
     fmt::print(stderr, "error: device profile clm14: {}\n", data.error());
     return 2;
   }
-  std::ifstream in(o.file, std::ios::binary);
-  if (!in) {
-    fmt::print(stderr, "error: cannot read {}\n", o.file);
+  const auto input = read_text_file(o.file);
+  if (!input) {
+    fmt::print(stderr, "error: {}\nNothing was sent.\n", input.error());
     return 2;
   }
-  std::stringstream ss;
-  ss << in.rdbuf();
-  const std::string text = ss.str();
+  const std::string& text = *input;
   auto kind = kind_of(o, text);
   if (!kind) {
     fmt::print(stderr, "error: {}: {}\n", o.file, kind.error());

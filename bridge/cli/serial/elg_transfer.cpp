@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "hil/cli/progress.hpp"
+#include "hil/core/text_file.hpp"
 #include "hil/serial/item_transfer.hpp"
 #include "hil/serial/profile_checks.hpp"
 #include "hil/serial/tape/elg_tape.hpp"
@@ -107,10 +108,12 @@ int elg_download(const TransferOptions& o) {
 }
 
 int elg_upload(const TransferOptions& o) {
-  std::ifstream in(o.file, std::ios::binary);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  auto sections = tp::parse_elg_text(ss.str());
+  const auto text = read_text_file(o.file);
+  if (!text) {
+    fmt::print(stderr, "error: {}\nNothing was sent.\n", text.error());
+    return 2;
+  }
+  auto sections = tp::parse_elg_text(*text);
   if (!sections) {
     fmt::print(stderr, "{}: block '{}': {} ({})\nerror: nothing was sent.\n", o.file, sections.error().block,
                sections.error().message, sections.error().code.message());

@@ -20,7 +20,8 @@ namespace hil::cli::serial_cli {
 
 void add_emulate_options(CLI::App& cmd, EmulateOptions& o) {
   cmd.add_flag("--pty", o.pty, "Serve on a new pseudo-terminal; its slave path is printed on the first line of stdout");
-  cmd.add_option("--tcp", o.tcp_port, "Serve on this TCP port instead (0 = any free port, printed on stdout)");
+  cmd.add_option("--tcp", o.tcp_port, "Serve on this TCP port instead (0 = any free port, printed on stdout)")
+      ->check(CLI::Range(0, 65535));
   cmd.add_option("--bind", o.bind, "Address to listen on with --tcp")->capture_default_str();
   cmd.add_option("--baud,-b", o.link.baud, "Baud rate the emulated device is set to")->capture_default_str();
   cmd.add_option("--format,-f", o.link.format, "Character format, e.g. 7E2 (parity is carried in bit 7 on a pty/TCP)")
@@ -28,6 +29,11 @@ void add_emulate_options(CLI::App& cmd, EmulateOptions& o) {
   cmd.add_option("--flow", o.link.flow, "Flow control: none, rtscts or xonxoff")->capture_default_str();
   cmd.add_option("--xon", o.link.xon, "XON byte")->capture_default_str();
   cmd.add_option("--xoff", o.link.xoff, "XOFF byte")->capture_default_str();
+  cmd.add_option("--idle-timeout", o.idle_timeout_s,
+                 "With --tcp: close a client that sends nothing for this many seconds, so an idle or "
+                 "half-open client does not hold the line")
+      ->capture_default_str()
+      ->check(CLI::Range(0.1, 86400.0));
   cmd.add_option("--state", o.state_file,
                  "State file (saved atomically whenever the line is quiet after a change); default "
                  "$XDG_STATE_HOME/hilbridge/<device>.json; 'none' keeps nothing");
@@ -98,8 +104,10 @@ int serve(mocks::legacy::Endpoint& endpoint, const EmulateOptions& o, const std:
         if (!host) host = std::make_unique<mocks::legacy::EndpointHost>(endpoint, *stream, clock, state);
       }
       const auto ec = host->step(std::chrono::milliseconds(50));
-      if (listener && ec == hil::serial::LineError::closed) {
-        // The TCP client went away: keep the state, wait for the next one.
+      const bool idle = listener && clock.now() - host->last_rx() > from_seconds(o.idle_timeout_s);
+      if (idle) fmt::print(stderr, "closing the TCP client: nothing received for {} s\n", o.idle_timeout_s);
+      if (listener && (ec == hil::serial::LineError::closed || idle)) {
+        // The TCP client went away (or idles): keep the state, wait for the next one.
         std::lock_guard lock(endpoint_mutex);
         (void)host->persist();
         host.reset();

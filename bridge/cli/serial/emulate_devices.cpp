@@ -2,15 +2,19 @@
 // `hilbridge emulate clm14 | elg-tape | ip247 | wf725`.
 #include <fmt/format.h>
 
+#include <expected>
 #include <fstream>
+#include <optional>
 #include <sstream>
 
 #include "emulate.hpp"
 #include "hil/cli/context.hpp"
+#include "hil/core/text_file.hpp"
 #include "hil/mocks/legacy/clm14_line.hpp"
 #include "hil/mocks/legacy/elg_tape_endpoint.hpp"
 #include "hil/mocks/legacy/s5_block_endpoint.hpp"
 #include "hil/serial/clm14/device_data.hpp"
+#include "hil/serial/file_lock.hpp"
 #include "hil/serial/profile_checks.hpp"
 
 namespace hil::cli::serial_cli {
@@ -19,22 +23,31 @@ namespace lg = hil::mocks::legacy;
 
 namespace {
 
-std::filesystem::path resolve_state(const EmulateOptions& o, const std::string& device) {
-  if (o.state_file == "none") return {};
+/// The state file, locked for the life of this emulator: a second emulator on the same file
+/// (the default path is per device, so two `emulate clm14` share it) is refused.
+std::expected<std::filesystem::path, std::string> resolve_state(const EmulateOptions& o, const std::string& device) {
+  if (o.state_file == "none") return std::filesystem::path{};
   const std::filesystem::path p =
       o.state_file.empty() ? default_state_path(device) : std::filesystem::path(o.state_file);
   std::error_code ec;
   if (p.has_parent_path()) std::filesystem::create_directories(p.parent_path(), ec);
+  static std::optional<hil::serial::FileLock> held;
+  auto lock = hil::serial::FileLock::acquire(p);
+  if (!lock) return std::unexpected(lock.error());
+  held.emplace(std::move(*lock));
   return p;
 }
 
 std::optional<std::string> read_file(const std::filesystem::path& p) {
   if (p.empty()) return std::nullopt;
-  std::ifstream in(p, std::ios::binary);
-  if (!in) return std::nullopt;
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
+  std::error_code ec;
+  if (!std::filesystem::exists(p, ec)) return std::nullopt;
+  auto text = read_text_file(p);
+  if (!text) {
+    fmt::print(stderr, "warning: {}; starting from defaults\n", text.error());
+    return std::nullopt;
+  }
+  return *text;
 }
 
 std::expected<lg::ClmMode, std::string> parse_mode(std::string_view s) {
@@ -87,7 +100,13 @@ void register_emulators(Context& ctx) {
       return;
     }
     lg::Clm14Line line(*data, co->stations, co->axes);
-    const auto state = resolve_state(co->e, "clm14");
+    const auto locked = resolve_state(co->e, "clm14");
+    if (!locked) {
+      fmt::print(stderr, "error: {}\n", locked.error());
+      ctx.exit_code = 2;
+      return;
+    }
+    const auto& state = *locked;
     if (auto text = read_file(state)) {
       if (auto r = line.load_state(*text); !r)
         fmt::print(stderr, "warning: {}: {}; starting from defaults\n", state.string(), r.error());
@@ -136,7 +155,13 @@ void register_emulators(Context& ctx) {
       return;
     }
     lg::ElgTapeEndpoint ep(*check);
-    const auto state = resolve_state(*eo, "elg");
+    const auto locked = resolve_state(*eo, "elg");
+    if (!locked) {
+      fmt::print(stderr, "error: {}\n", locked.error());
+      ctx.exit_code = 2;
+      return;
+    }
+    const auto& state = *locked;
     if (auto text = read_file(state))
       if (auto r = ep.load_state(*text); !r) fmt::print(stderr, "warning: {}\n", r.error());
     ctx.exit_code = serve(ep, *eo, state, [](lg::Endpoint& e, const std::string& cmd) -> std::string {
@@ -187,7 +212,13 @@ void register_emulators(Context& ctx) {
         // A fresh module holds the profile's default machine data (data code 1).
         if (auto img = hil::serial::load_wf725_default_image()) ep.store()[1] = *img;
       }
-      const auto state = resolve_state(*so, dev);
+      const auto locked = resolve_state(*so, dev);
+      if (!locked) {
+        fmt::print(stderr, "error: {}\n", locked.error());
+        ctx.exit_code = 2;
+        return;
+      }
+      const auto& state = *locked;
       if (auto text = read_file(state))
         if (auto r = ep.load_state(*text); !r) fmt::print(stderr, "warning: {}\n", r.error());
       ctx.exit_code = serve(ep, *so, state, [](lg::Endpoint& e, const std::string& c) -> std::string {

@@ -5,6 +5,8 @@
 
 #include <fmt/format.h>
 
+#include <charconv>
+
 #include "hil/serial/linux/ports.hpp"
 #include "hil/serial/serial_stream.hpp"
 
@@ -75,12 +77,12 @@ std::expected<std::unique_ptr<hil::serial::ByteStream>, std::string> open_link(c
     const std::string rest = o.port.substr(4);
     const auto colon = rest.rfind(':');
     if (colon == std::string::npos) return std::unexpected(fmt::format("--port {}: expected tcp:HOST:PORT", o.port));
-    int port = 0;
-    try {
-      port = std::stoi(rest.substr(colon + 1));
-    } catch (const std::exception&) {
-      return std::unexpected(fmt::format("--port {}: '{}' is not a TCP port number", o.port, rest.substr(colon + 1)));
-    }
+    // The whole text, 1..65535: 99999 or 80x is an error, never a cast to another port.
+    const std::string digits = rest.substr(colon + 1);
+    unsigned port = 0;
+    const auto [end, ec] = std::from_chars(digits.data(), digits.data() + digits.size(), port);
+    if (ec != std::errc{} || end != digits.data() + digits.size() || port < 1 || port > 65535)
+      return std::unexpected(fmt::format("--port {}: '{}' is not a TCP port number 1..65535", o.port, digits));
     auto raw = hil::serial::linux_io::connect_tcp(rest.substr(0, colon), static_cast<std::uint16_t>(port),
                                                   std::chrono::seconds(5));
     if (!raw) return std::unexpected(raw.error().message);

@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "hil/cli/progress.hpp"
+#include "hil/core/text_file.hpp"
 #include "hil/serial/item_transfer.hpp"
 #include "hil/serial/profile_checks.hpp"
 #include "hil/serial/s5/db_listing.hpp"
@@ -99,10 +100,12 @@ int s5_download(const TransferOptions& o) {
 }
 
 int s5_upload(const TransferOptions& o) {
-  std::ifstream in(o.file, std::ios::binary);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  const std::string text = ss.str();
+  const auto input = read_text_file(o.file);
+  if (!input) {
+    fmt::print(stderr, "error: {}\nNothing was sent.\n", input.error());
+    return 2;
+  }
+  const std::string& text = *input;
   auto images = s5::parse_db_listing(text, o.file);
   if (!images) {
     for (const auto& p : images.error()) fmt::print(stderr, "{}\n", p);
@@ -110,9 +113,22 @@ int s5_upload(const TransferOptions& o) {
     return 2;
   }
   if (!o.blocks.empty()) {
+    // Every DB asked for must be in the file: sending less than asked is no success.
+    std::vector<std::string> missing;
+    for (const auto b : o.blocks)
+      if (std::none_of(images->begin(), images->end(), [&](const s5::DbImage& d) { return d.db == b; }))
+        missing.push_back(fmt::format("DB{}", b));
+    if (!missing.empty()) {
+      fmt::print(stderr, "error: --db: {} not in {}; nothing was sent.\n", fmt::join(missing, ", "), o.file);
+      return 2;
+    }
     std::erase_if(*images, [&](const s5::DbImage& d) {
       return std::find(o.blocks.begin(), o.blocks.end(), d.db) == o.blocks.end();
     });
+  }
+  if (images->empty()) {
+    fmt::print(stderr, "error: {} holds no data block; nothing was sent.\n", o.file);
+    return 2;
   }
   // Validate every image against the profile before anything is sent.
   std::vector<std::string> problems;

@@ -5,6 +5,7 @@
 
 #include "hil/core/config_error.hpp"
 #include "hil/core/drive.hpp"
+#include "hil/core/printable.hpp"
 
 namespace hil {
 namespace {
@@ -84,8 +85,9 @@ std::string ConfigError::describe() const {
   std::string where = file.empty() ? std::string("<input>") : file;
   if (line > 0) where += fmt::format(":{}", line);
   if (column > 0) where += fmt::format(":{}", column);
-  if (!key.empty()) return fmt::format("{}: {}: {}", where, key, message);
-  return fmt::format("{}: {}", where, message);
+  // The key and the message may quote the input: never raw binary on the terminal.
+  if (!key.empty()) return printable(fmt::format("{}: {}: {}", where, key, message));
+  return printable(fmt::format("{}: {}", where, message));
 }
 
 std::string_view to_string(DriveState s) noexcept {

@@ -7,6 +7,8 @@
 
 #include <fmt/format.h>
 
+#include "hil/core/text_file.hpp"
+
 namespace hil::yaml {
 
 ConfigError error_at(const YAML::Node& node, const Where& where, std::string message) {
@@ -89,11 +91,9 @@ std::expected<YAML::Node, ConfigError> load_string(const std::string& text, cons
 }
 
 std::expected<YAML::Node, ConfigError> load_file(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) return std::unexpected(ConfigError{path, 0, 0, "", "cannot open file (does it exist and is it readable?)"});
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return load_string(ss.str(), path);
+  auto text = read_text_file(path);
+  if (!text) return std::unexpected(ConfigError{path, 0, 0, "", text.error()});
+  return load_string(*text, path);
 }
 
 }  // namespace hil::yaml

@@ -152,6 +152,25 @@ void RunMonitor::decide(ExpectationState& s, Duration t, const motion::AxisStatu
              s.e->kind);
 }
 
+void RunMonitor::track_start(ExpectationState& s, const motion::AxisStatus& st) const {
+  if (const auto* p = std::get_if<PositionExpectation>(&s.e->kind)) {
+    if (!s.seen) {
+      s.start_position = st.position;
+      s.held_at_start = std::abs(position_error(s.axis, st.position, p->value)) <= p->tolerance;
+    } else if (std::abs(position_error(s.axis, st.position, s.start_position)) > p->tolerance) {
+      s.changed = true;
+    }
+  } else if (const auto* e = std::get_if<StateExpectation>(&s.e->kind)) {
+    if (!s.seen) {
+      s.start_state = st.state;
+      s.held_at_start = e->state == motion::to_string(st.state);
+    } else if (st.state != s.start_state) {
+      s.changed = true;
+    }
+  }
+  s.seen = true;
+}
+
 void RunMonitor::observe(Duration t) noexcept {
   for (auto& tr : tracks_) {
     const auto& st = tr.axis->axis->status();
@@ -184,8 +203,9 @@ void RunMonitor::observe(Duration t) noexcept {
   }
   io_.observe(t);
   for (auto& s : states_) {
-    if (s.decided) continue;
     const auto& st = machine_.axes()[s.axis].axis->status();
+    track_start(s, st);
+    if (s.decided) continue;
     if (const auto* p = std::get_if<PositionExpectation>(&s.e->kind)) {
       if (p->at && t >= *p->at) decide(s, t, st);
       if (p->by && !s.decided) {
@@ -284,6 +304,14 @@ void RunMonitor::finish(Duration t_end, RunResult& r) const {
                },
                s.e->kind);
     ExpectationResult er{name, describe(*s.e, spec), s.passed, s.detail, s.e->source.line, s.e->source.path};
+    // Met at the first cycle and nothing changed since (or a `by:` met at the first cycle, which
+    // nothing after can undo): it passes, but it tests nothing.
+    const auto* pos = std::get_if<PositionExpectation>(&s.e->kind);
+    if (er.passed && s.held_at_start && (!s.changed || (pos != nullptr && pos->by)))
+      r.warnings.push_back(
+          fmt::format("{}:{} {}: axis {}: expected {} already holds at the start of the run{}: it checks nothing",
+                      r.file, er.line, er.path, name, er.description,
+                      pos != nullptr && pos->by ? " (`by:` accepts the first cycle)" : " and never changed"));
     if (!er.passed) {
       r.ok = false;
       r.failures.push_back(fmt::format("axis {}: expected {}, {}", name, er.description, er.detail));

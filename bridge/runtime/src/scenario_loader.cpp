@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "coupling_loader.hpp"
+#include "hil/core/text_file.hpp"
 #include "yaml_reader.hpp"
 
 namespace hil::runtime {
@@ -794,13 +795,9 @@ std::expected<Scenario, ConfigError> parse_scenario(std::string_view text, const
 }
 
 std::expected<Scenario, ConfigError> load_scenario(const std::filesystem::path& file) {
-  std::ifstream in(file, std::ios::binary);
-  if (!in)
-    return std::unexpected(ConfigError{file.string(), 0, 0, "", "cannot open the scenario file (does it exist?)"});
-  std::ostringstream ss;
-  ss << in.rdbuf();
-  if (in.bad()) return std::unexpected(ConfigError{file.string(), 0, 0, "", "cannot read the scenario file"});
-  return parse_scenario(ss.str(), file.string());
+  auto text = read_text_file(file);
+  if (!text) return std::unexpected(ConfigError{file.string(), 0, 0, "", text.error()});
+  return parse_scenario(*text, file.string());
 }
 
 }  // namespace hil::runtime

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 #include "hil/drives/modbus_transport.hpp"
 
+#include <charconv>
 #include <filesystem>
 #include <vector>
 
@@ -110,6 +111,13 @@ class ModbusTransport final : public TransportFactory {
                    seconds("backoff_min", config.backoff_min), seconds("backoff_max", config.backoff_max),
                    seconds("homing_timeout", config.homing_timeout)})
       if (!r) return std::unexpected(r.error());
+    if (config.backoff_min > config.backoff_max) {
+      const char* key = node["backoff_max"] ? "backoff_max" : "backoff_min";
+      return std::unexpected(yaml::error_at(
+          node[key], where.key(key),
+          fmt::format("backoff_min {} s is longer than backoff_max {} s: the reconnect back-off grows from min to max",
+                      to_seconds(config.backoff_min), to_seconds(config.backoff_max))));
+    }
     auto unit = yaml::get_int(node, where, "unit");
     if (!unit) return std::unexpected(unit.error());
     if (unit->has_value()) {
@@ -130,11 +138,10 @@ class ModbusTransport final : public TransportFactory {
       std::string h = **host;
       long long p = port->value_or(modbus::kDefaultPort);
       if (auto colon = h.rfind(':'); colon != std::string::npos && h.find(':') == colon) {
-        try {
-          p = std::stoll(h.substr(colon + 1));
-        } catch (...) {
+        const std::string digits = h.substr(colon + 1);
+        const auto [end, ec] = std::from_chars(digits.data(), digits.data() + digits.size(), p);
+        if (ec != std::errc{} || end != digits.data() + digits.size())
           return std::unexpected(yaml::error_at(node["host"], where.key("host"), "expected HOST or HOST:PORT"));
-        }
         h = h.substr(0, colon);
       }
       if (p < 1 || p > 65535)

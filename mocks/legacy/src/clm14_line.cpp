@@ -87,12 +87,18 @@ std::string Clm14Line::save_state() const {
 std::expected<void, std::string> Clm14Line::load_state(const std::string& text) {
   const auto j = nlohmann::json::parse(text, nullptr, false);
   if (j.is_discarded() || !j.is_object()) return std::unexpected(std::string("state file is not valid JSON"));
-  if (j.value("device", std::string{}) != "clm14")
+  if (!j.contains("device") || !j.at("device").is_string() || j.at("device").get<std::string>() != "clm14")
     return std::unexpected(std::string("state file is not a clm14 state"));
-  const auto& st = j.value("stations", nlohmann::json::array());
-  for (std::size_t i = 0; i < st.size() && i < stations_.size(); ++i) {
-    if (auto r = stations_[i]->from_json(st[i]); !r)
-      return std::unexpected(fmt::format("station {}: {}", i + 1, r.error()));
+  if (j.contains("stations") && !j.at("stations").is_array())
+    return std::unexpected(std::string("state file malformed: 'stations' is not a list"));
+  try {
+    const nlohmann::json st = j.value("stations", nlohmann::json::array());
+    for (std::size_t i = 0; i < st.size() && i < stations_.size(); ++i) {
+      if (auto r = stations_[i]->from_json(st[i]); !r)
+        return std::unexpected(fmt::format("station {}: {}", i + 1, r.error()));
+    }
+  } catch (const std::exception& e) {  // a value of the wrong type deep inside a station
+    return std::unexpected(fmt::format("state file malformed: {}", e.what()));
   }
   return {};
 }

@@ -115,7 +115,8 @@ std::string ElgTapeEndpoint::save_state() const {
 
 std::expected<void, std::string> ElgTapeEndpoint::load_state(const std::string& text) {
   const auto j = nlohmann::json::parse(text, nullptr, false);
-  if (j.is_discarded() || !j.is_object() || j.value("device", std::string{}) != "elg")
+  if (j.is_discarded() || !j.is_object() || !j.contains("device") || !j.at("device").is_string() ||
+      j.at("device").get<std::string>() != "elg")
     return std::unexpected(std::string("not an ELG state file"));
   try {
     const nlohmann::json md = j.contains("machine_data") ? j.at("machine_data") : nlohmann::json::object();

@@ -9,7 +9,7 @@ namespace hil::mocks::legacy {
 
 EndpointHost::EndpointHost(Endpoint& endpoint, serial::ByteStream& stream, const Clock& clock,
                            std::filesystem::path state_file)
-    : endpoint_(endpoint), stream_(stream), clock_(clock), state_file_(std::move(state_file)) {}
+    : endpoint_(endpoint), stream_(stream), clock_(clock), state_file_(std::move(state_file)), last_rx_(clock.now()) {}
 
 void EndpointHost::send(const std::string& bytes) {
   if (bytes.empty()) return;
@@ -32,6 +32,7 @@ std::error_code EndpointHost::step(Duration max_wait) {
     if (deadline != TimePoint::max()) wait = std::max(Duration::zero(), std::min(wait, deadline - clock_.now()));
   }
   const serial::ReadResult r = stream_.read_some(buf, wait);
+  if (r.size > 0) last_rx_ = clock_.now();
   std::string out;
   {
     std::lock_guard lock(mutex_);

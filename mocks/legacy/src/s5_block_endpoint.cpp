@@ -92,7 +92,9 @@ std::string S5BlockEndpoint::save_state() const {
 
 std::expected<void, std::string> S5BlockEndpoint::load_state(const std::string& text) {
   const auto j = nlohmann::json::parse(text, nullptr, false);
-  if (j.is_discarded() || !j.is_object() || j.value("device", std::string{}) != policy_->name())
+  // "device" must be the string naming this device (value() throws for another type).
+  if (j.is_discarded() || !j.is_object() || !j.contains("device") || !j.at("device").is_string() ||
+      j.at("device").get<std::string>() != policy_->name())
     return std::unexpected(fmt::format("not a {} state file", policy_->name()));
   try {
     const nlohmann::json dbs = j.contains("dbs") ? j.at("dbs") : nlohmann::json::object();

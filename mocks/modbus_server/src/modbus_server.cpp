@@ -1,6 +1,9 @@
 // SPDX-License-Identifier: MIT
 #include "hil/mocks/modbus_server.hpp"
 
+#include <unistd.h>
+
+#include <algorithm>
 #include <array>
 #include <cstring>
 #include <set>
@@ -21,6 +24,8 @@ struct ModbusDriveServer::Impl {
   asio::io_context io;
   tcp::acceptor acceptor{io};
   asio::steady_timer step_timer{io};
+  asio::steady_timer accept_timer{io};
+  Duration accept_backoff{};
   std::chrono::steady_clock::time_point last_step{};
   std::set<std::shared_ptr<Connection>> connections;  // I/O thread only
   bool stopping = false;                              // I/O thread only
@@ -38,12 +43,15 @@ struct ModbusDriveServer::Impl {
 class ModbusDriveServer::Connection : public std::enable_shared_from_this<Connection> {
  public:
   Connection(ModbusDriveServer::Impl& impl, tcp::socket socket)
-      : impl_(impl), socket_(std::move(socket)), timer_(impl.io), frame_timer_(impl.io) {
+      : impl_(impl), socket_(std::move(socket)), timer_(impl.io), frame_timer_(impl.io), idle_timer_(impl.io) {
     std::error_code ec;
     peer_ = fmt::format("{}", socket_.remote_endpoint(ec).address().to_string());
     socket_.set_option(tcp::no_delay(true), ec);
   }
-  void start() { do_read(); }
+  void start() {
+    arm_idle_timer();
+    do_read();
+  }
 
   void close() {
     if (!socket_.is_open()) return;
@@ -52,6 +60,7 @@ class ModbusDriveServer::Connection : public std::enable_shared_from_this<Connec
     socket_.close(ec);
     timer_.cancel();
     frame_timer_.cancel();
+    idle_timer_.cancel();
     impl_.server.open_.fetch_sub(1);
     impl_.connections.erase(shared_from_this());
   }
@@ -115,6 +124,7 @@ class ModbusDriveServer::Connection : public std::enable_shared_from_this<Connec
       have_ -= off;
     }
     arm_frame_timer(off > 0);
+    if (off > 0) arm_idle_timer();
     if (tx_.empty()) {
       if (close_after_write_) return close();
       return do_read();
@@ -152,6 +162,18 @@ class ModbusDriveServer::Connection : public std::enable_shared_from_this<Connec
     });
   }
 
+  // Every completed request restarts the idle clock; none for idle_timeout closes the connection.
+  void arm_idle_timer() {
+    idle_timer_.expires_after(impl_.server.config_.idle_timeout);
+    idle_timer_.async_wait([self = shared_from_this()](std::error_code ec) {
+      if (ec || !self->socket_.is_open()) return;
+      self->impl_.server.idle_closed_.fetch_add(1);
+      self->impl_.log(fmt::format("modbus server: closing connection from {}: no request for {} s", self->peer_,
+                                  to_seconds(self->impl_.server.config_.idle_timeout)));
+      self->close();
+    });
+  }
+
   void do_write() {
     asio::async_write(socket_, asio::buffer(tx_), [self = shared_from_this()](std::error_code ec, std::size_t) {
       if (ec || self->close_after_write_) return self->close();
@@ -163,6 +185,7 @@ class ModbusDriveServer::Connection : public std::enable_shared_from_this<Connec
   tcp::socket socket_;
   asio::steady_timer timer_;
   asio::steady_timer frame_timer_;
+  asio::steady_timer idle_timer_;
   bool frame_armed_ = false;
   std::string peer_;
   // Two maximal ADUs fit: a full frame never waits for buffer space.
@@ -189,8 +212,21 @@ void ModbusDriveServer::Impl::do_accept() {
         c->start();
       }
     } else if (ec != asio::error::operation_aborted) {
-      log(fmt::format("modbus server: accept failed: {}", ec.message()));
+      // Out of file descriptors (EMFILE/ENFILE): the connection stays in the backlog, so an
+      // accept at once would fail again at once. Back off (doubling) and log once per attempt.
+      server.accept_errors_.fetch_add(1);
+      const auto& c = server.config_;
+      accept_backoff =
+          accept_backoff == Duration{} ? c.accept_backoff_min : std::min(2 * accept_backoff, c.accept_backoff_max);
+      log(fmt::format("modbus server: accept failed: {}; retrying in {} ms", ec.message(),
+                      std::chrono::duration_cast<std::chrono::milliseconds>(accept_backoff).count()));
+      accept_timer.expires_after(accept_backoff);
+      accept_timer.async_wait([this](std::error_code e) {
+        if (!e && !stopping) do_accept();
+      });
+      return;
     }
+    if (!ec) accept_backoff = {};
     do_accept();
   });
 }
@@ -212,6 +248,7 @@ void ModbusDriveServer::Impl::close_all() {
   std::error_code ec;
   acceptor.close(ec);
   step_timer.cancel();
+  accept_timer.cancel();
   auto copy = connections;
   for (const auto& c : copy) c->close();
 }
@@ -265,6 +302,31 @@ void ModbusDriveServer::stop() {
   running_ = false;
 }
 
+void ModbusDriveServer::adopt(int fd) {
+  if (!running_) {
+    ::close(fd);
+    return;
+  }
+  asio::post(impl_->io, [this, fd] {
+    if (impl_->stopping) {
+      ::close(fd);
+      return;
+    }
+    tcp::socket socket(impl_->io);
+    std::error_code ec;
+    socket.assign(tcp::v4(), fd, ec);
+    if (ec) {
+      ::close(fd);
+      return;
+    }
+    accepted_.fetch_add(1);
+    open_.fetch_add(1);
+    auto c = std::make_shared<Connection>(*impl_, std::move(socket));
+    impl_->connections.insert(c);
+    c->start();
+  });
+}
+
 void ModbusDriveServer::step(Duration dt) {
   std::lock_guard lock(device_mutex_);
   device_.step(dt);
@@ -285,7 +347,8 @@ void ModbusDriveServer::set_response_delay(Duration delay) {
 }
 
 ModbusServerStats ModbusDriveServer::stats() const {
-  return {accepted_.load(), requests_.load(), exceptions_.load(), malformed_.load(), stalled_.load(), open_.load()};
+  return {accepted_.load(), requests_.load(), exceptions_.load(),  malformed_.load(),
+          stalled_.load(),  open_.load(),     idle_closed_.load(), accept_errors_.load()};
 }
 
 }  // namespace hil::mocks

@@ -11,17 +11,19 @@ Plant::Plant(PlantConfig config) : config_(config), position_(config.initial_pos
   sample_encoder();
 }
 
-void Plant::step(Duration dt, const PlantInput& in) noexcept {
-  double left = to_seconds(dt);
-  if (!(left > 0.0)) return;
-  // Keep Kv * h well inside the explicit integrator's stability region.
-  const double h_max = std::min(2.5e-4, 0.2 / std::max(config_.kv_per_s, 1e-9));
-  while (left > 0.0) {
-    const double h = std::min(left, h_max);
-    substep(h, in);
-    left -= h;
-  }
+std::size_t Plant::step(Duration dt, const PlantInput& in) noexcept {
+  const double t = to_seconds(dt);
+  if (!(t > 0.0)) return 0;
+  // Keep Kv * h well inside the explicit integrator's stability region, in a bounded number of
+  // equal sub-steps (counted, so a gain or a step of any size always ends).
+  const double wanted = std::ceil(t * std::max(1.0 / 2.5e-4, config_.kv_per_s / 0.2));
+  const std::size_t n = wanted >= static_cast<double>(max_substeps)
+                            ? max_substeps
+                            : std::max<std::size_t>(1, static_cast<std::size_t>(wanted));
+  const double h = t / static_cast<double>(n);
+  for (std::size_t i = 0; i < n; ++i) substep(h, in);
   sample_encoder();
+  return n;
 }
 
 void Plant::substep(double h, const PlantInput& in) noexcept {
@@ -30,7 +32,9 @@ void Plant::substep(double h, const PlantInput& in) noexcept {
   if (drives) {
     if (in.mode == CommandMode::position) {
       const double reading = position_ + offset_;
-      v_cmd = config_.kv_per_s * (in.position_inc - reading) + config_.velocity_feedforward * in.velocity_inc_per_s;
+      // A gain beyond what the sub-step resolves acts as the fastest stable loop (Kv h = 0.2).
+      const double kv = std::min(config_.kv_per_s, 0.2 / h);
+      v_cmd = kv * (in.position_inc - reading) + config_.velocity_feedforward * in.velocity_inc_per_s;
     } else {
       v_cmd = in.velocity_inc_per_s;
     }

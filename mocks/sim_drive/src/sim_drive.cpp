@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: MIT
 #include "hil/mocks/sim_drive.hpp"
 
+#include "hil/mocks/key_range.hpp"
+
 #include <cmath>
 
 #include <fmt/format.h>
@@ -16,43 +18,40 @@ std::expected<SimDriveConfig, ConfigError> parse_sim_drive_config(const YAML::No
            "transition_time", "quick_stop_deceleration", "homing_time", "home_position"});
       !k)
     return std::unexpected(k.error());
-  auto positive = [&](std::string_view key, double& out, bool allow_zero) -> std::expected<void, ConfigError> {
-    auto v = yaml::get_double(node, where, key);
+  // Every numeric key has its documented range (docs/scenarios.md, the `sim` drive block).
+  auto number = [&](const KeyRange& range, double& out) -> std::expected<void, ConfigError> {
+    auto v = yaml::get_double(node, where, range.key);
     if (!v) return std::unexpected(v.error());
     if (!v->has_value()) return {};
-    if (**v < 0.0 || (!allow_zero && **v == 0.0))
-      return std::unexpected(yaml::error_at(node[std::string(key)], where.key(key),
-                                            fmt::format("must be {} 0, got {}", allow_zero ? ">=" : ">", **v)));
+    if (auto bad = range.check(**v); !bad.empty())
+      return std::unexpected(yaml::error_at(node[std::string(range.key)], where.key(range.key), bad));
     out = **v;
     return {};
   };
   double transition_s = to_seconds(c.transition_time);
   double homing_s = to_seconds(c.homing_time);
   double encoder_step = static_cast<double>(c.plant.encoder_step_inc);
+  double home = 0.0;
   for (auto r :
-       {positive("kv", c.plant.kv_per_s, false), positive("max_velocity", c.plant.max_velocity_inc_per_s, false),
-        positive("velocity_lag", c.plant.velocity_lag_s, true),
-        positive("feedforward", c.plant.velocity_feedforward, true), positive("encoder_step", encoder_step, false),
-        positive("transition_time", transition_s, true),
-        positive("quick_stop_deceleration", c.quick_stop_deceleration_inc_per_s2, false),
-        positive("homing_time", homing_s, true)})
+       {number(kv_range, c.plant.kv_per_s), number(max_velocity_range, c.plant.max_velocity_inc_per_s),
+        number(velocity_lag_range, c.plant.velocity_lag_s), number(feedforward_range, c.plant.velocity_feedforward),
+        number(encoder_step_range, encoder_step), number(position_range, c.plant.initial_position_inc),
+        number({"transition_time", 0.0, 60.0, false, "s"}, transition_s),
+        number({"quick_stop_deceleration", 0.0, 1e15, true, "inc/s²"}, c.quick_stop_deceleration_inc_per_s2),
+        number({"homing_time", 0.0, 3600.0, false, "s"}, homing_s),
+        number({"home_position", -1e15, 1e15, false, "inc"}, home)})
     if (!r) return std::unexpected(r.error());
-  if (c.plant.velocity_feedforward > 1.0)
-    return std::unexpected(
-        yaml::error_at(node["feedforward"], where.key("feedforward"),
-                       fmt::format("must be between 0 and 1, got {}", c.plant.velocity_feedforward)));
   if (encoder_step != std::floor(encoder_step))
     return std::unexpected(
         yaml::error_at(node["encoder_step"], where.key("encoder_step"), "must be a whole number of increments"));
   c.plant.encoder_step_inc = static_cast<std::int64_t>(encoder_step);
   c.transition_time = from_seconds(transition_s);
   c.homing_time = from_seconds(homing_s);
-  auto init = yaml::get_double(node, where, "initial_position");
-  if (!init) return std::unexpected(init.error());
-  if (init->has_value()) c.plant.initial_position_inc = **init;
-  auto home = yaml::get_int(node, where, "home_position");
-  if (!home) return std::unexpected(home.error());
-  if (home->has_value()) c.home_position_inc = **home;
+  if (node["home_position"]) {
+    auto whole = yaml::get_int(node, where, "home_position");
+    if (!whole) return std::unexpected(whole.error());
+    c.home_position_inc = **whole;
+  }
   return c;
 }
 

@@ -3,6 +3,7 @@
 // where it becomes the std::expected error; nothing escapes.
 #include "hil/profiles/loader.hpp"
 
+#include "hil/core/text_file.hpp"
 #include "hil/core/yaml_config.hpp"
 
 #include <fmt/format.h>
@@ -573,9 +574,9 @@ std::shared_ptr<Profile> load_impl(const YAML::Node& root, const std::string& na
     const auto path = base->parent_path() / inc;
     YAML::Node doc;
     try {
-      doc = YAML::LoadFile(path.string());
-    } catch (const YAML::BadFile&) {
-      rd.fail(root["include"], "include", fmt::format("cannot read included file {}", path.string()));
+      const auto text = hil::read_text_file(path);
+      if (!text) rd.fail(root["include"], "include", fmt::format("cannot read included file: {}", text.error()));
+      doc = YAML::Load(*text);
     } catch (const YAML::Exception& e) {
       hil::ConfigError ce{path.string(), e.mark.line + 1, e.mark.column + 1, "", e.msg};
       throw LoadFailure{ce};
@@ -606,7 +607,9 @@ std::expected<std::shared_ptr<const Profile>, hil::ConfigError> load_profile_tex
 
 std::expected<std::shared_ptr<const Profile>, hil::ConfigError> load_profile(const std::filesystem::path& file) {
   try {
-    const auto root = YAML::LoadFile(file.string());
+    const auto text = hil::read_text_file(file);
+    if (!text) return std::unexpected(hil::ConfigError{file.string(), 0, 0, "", text.error()});
+    const auto root = YAML::Load(*text);
     return std::shared_ptr<const Profile>(load_impl(root, file.string(), &file));
   } catch (const LoadFailure& f) {
     return std::unexpected(f.error);

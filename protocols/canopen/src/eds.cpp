@@ -7,10 +7,13 @@
 #include <charconv>
 #include <cstring>
 #include <fstream>
+#include <limits>
 #include <map>
 #include <sstream>
 
 #include <fmt/format.h>
+
+#include "hil/core/text_file.hpp"
 
 namespace hil::canopen {
 namespace {
@@ -79,7 +82,7 @@ class Parser {
 std::optional<ConfigError> Parser::split() {
   Section* current = nullptr;
   int line_no = 0;
-  std::size_t pos = 0;
+  std::size_t pos = text_.starts_with("\xEF\xBB\xBF") ? 3 : 0;  // a UTF-8 byte-order mark is no content
   while (pos <= text_.size()) {
     auto end = text_.find('\n', pos);
     if (end == std::string_view::npos) end = text_.size();
@@ -253,8 +256,8 @@ std::optional<ConfigError> Parser::add_object(std::uint16_t index, const Section
   }
   auto compact = integer(s, "CompactSubObj", 0);
   if (!compact) return compact.error();
+  if (*compact < 0 || *compact > 254) return error(s.line, s.name, "CompactSubObj", "must be 0..254");
   if (*compact > 0) {
-    if (*compact > 254) return error(s.line, s.name, "CompactSubObj", "must be 1..254");
     Variable sub0;
     sub0.index = index;
     sub0.name = "Highest sub-index supported";
@@ -311,6 +314,9 @@ std::expected<DeviceDescription, ConfigError> Parser::run() {
     auto num = [&](std::string_view key, std::uint32_t& dst) -> std::optional<ConfigError> {
       auto v = integer(*di, key, 0);
       if (!v) return v.error();
+      if (*v < 0 || *v > 0xFFFFFFFF)  // the identity object 0x1018 holds UNSIGNED32
+        return error(di->get(key)->line, di->name, key,
+                     fmt::format("'{}' must be 0..0xFFFFFFFF (UNSIGNED32, object 0x1018)", di->get(key)->value));
       dst = static_cast<std::uint32_t>(*v);
       return std::nullopt;
     };
@@ -326,6 +332,9 @@ std::expected<DeviceDescription, ConfigError> Parser::run() {
     listed = true;
     auto count = integer(*list, "SupportedObjects", std::nullopt);
     if (!count) return std::unexpected(count.error());
+    if (*count < 0 || *count > 0xFFFF)
+      return std::unexpected(error(list->get("SupportedObjects")->line, list->name, "SupportedObjects",
+                                   fmt::format("{} objects: must be 0..65535", *count)));
     for (std::int64_t i = 1; i <= *count; ++i) {
       auto idx = integer(*list, std::to_string(i), std::nullopt);
       if (!idx) return std::unexpected(idx.error());
@@ -374,8 +383,11 @@ std::optional<std::int64_t> parse_literal(std::string_view t) noexcept {
   std::uint64_t v = 0;
   auto [p, ec] = std::from_chars(t.data(), t.data() + t.size(), v, base);
   if (ec != std::errc{} || p != t.data() + t.size()) return std::nullopt;
-  const auto s = static_cast<std::int64_t>(v);
-  return neg ? -s : s;
+  // INTEGER64 range: -2^63 .. 2^63 - 1; beyond it is no number (never a wrapped one).
+  constexpr std::uint64_t max = std::numeric_limits<std::int64_t>::max();
+  if (v > max + (neg ? 1u : 0u)) return std::nullopt;
+  if (neg) return v == max + 1u ? std::numeric_limits<std::int64_t>::min() : -static_cast<std::int64_t>(v);
+  return static_cast<std::int64_t>(v);
 }
 
 }  // namespace
@@ -401,7 +413,8 @@ std::optional<std::int64_t> eval_eds_integer(std::string_view text, NodeId node_
       if (!v) return std::nullopt;
       value = *v;
     }
-    sum += sign * value;
+    if (sign < 0 ? __builtin_sub_overflow(sum, value, &sum) : __builtin_add_overflow(sum, value, &sum))
+      return std::nullopt;  // beyond INTEGER64
     first = false;
     if (end >= text.size()) break;
     sign = text[end] == '-' ? -1 : 1;
@@ -417,16 +430,14 @@ std::expected<DeviceDescription, ConfigError> parse_eds(std::string_view text, s
 }
 
 std::expected<DeviceDescription, ConfigError> load_eds(const std::filesystem::path& path, NodeId node_id) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) {
+  auto text = read_text_file(path);
+  if (!text) {
     ConfigError e;
     e.file = path.string();
-    e.message = "cannot open the EDS/DCF file: check the path";
+    e.message = text.error();
     return std::unexpected(e);
   }
-  std::ostringstream ss;
-  ss << in.rdbuf();
-  return parse_eds(ss.str(), path.string(), node_id);
+  return parse_eds(*text, path.string(), node_id);
 }
 
 }  // namespace hil::canopen

@@ -7,6 +7,7 @@
 #include <fmt/format.h>
 #include <yaml-cpp/yaml.h>
 
+#include "hil/core/text_file.hpp"
 #include "hil/core/yaml_config.hpp"
 
 #include "hil/modbus/exchange_plan.hpp"
@@ -288,16 +289,14 @@ std::expected<Profile, ConfigError> parse_profile(const std::string& yaml_text, 
 }
 
 std::expected<Profile, ConfigError> load_profile(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) {
+  auto text = read_text_file(path);
+  if (!text) {
     ConfigError err;
     err.file = path;
-    err.message = "cannot open the Modbus profile file; check the path (profiles/modbus/*.yaml)";
+    err.message = text.error() + " (Modbus profiles: profiles/modbus/*.yaml)";
     return std::unexpected(err);
   }
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return parse_profile(ss.str(), path);
+  return parse_profile(*text, path);
 }
 
 }  // namespace hil::modbus

@@ -2,11 +2,17 @@
 #include "hil/serial/item_transfer.hpp"
 
 #include <fcntl.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <fmt/format.h>
 
+#include "hil/core/text_file.hpp"
+
+#include <atomic>
 #include <cerrno>
+#include <charconv>
+#include <chrono>
 #include <fstream>
 #include <sstream>
 
@@ -93,28 +99,57 @@ std::uint64_t content_hash(std::string_view text) noexcept {
   return h;
 }
 
-std::error_code write_atomically(const std::filesystem::path& path, const std::string& text) {
-  const std::filesystem::path tmp = path.string() + ".tmp";
-  const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
-  if (fd < 0) return {errno, std::system_category()};
+namespace {
+
+std::error_code last_error() {
+  return {errno, std::system_category()};
+}
+
+/// Write all of `text` to `fd`, then flush it to the disk.
+std::error_code write_all(int fd, const std::string& text) {
   std::size_t done = 0;
   while (done < text.size()) {
     const ssize_t n = ::write(fd, text.data() + done, text.size() - done);
     if (n < 0 && errno == EINTR) continue;
-    if (n < 0) {
-      const std::error_code ec(errno, std::system_category());
-      ::close(fd);
-      return ec;
-    }
+    if (n < 0) return last_error();
     done += static_cast<std::size_t>(n);
   }
-  const bool synced = ::fsync(fd) == 0;
-  const std::error_code ec = synced ? std::error_code{} : std::error_code(errno, std::system_category());
-  ::close(fd);
-  if (ec) return ec;
-  std::error_code rec;
-  std::filesystem::rename(tmp, path, rec);
-  return rec;
+  return ::fsync(fd) == 0 ? std::error_code{} : last_error();
+}
+
+}  // namespace
+
+std::error_code write_atomically(const std::filesystem::path& path, const std::string& text) {
+  const std::filesystem::path dir = path.has_parent_path() ? path.parent_path() : std::filesystem::path(".");
+  // The target's mode is kept; a new file gets 0666 less the umask, as any new file does.
+  struct stat st {};
+  const bool existed = ::stat(path.c_str(), &st) == 0 && S_ISREG(st.st_mode);
+  // A fresh name in the same folder (same file system, so the rename is atomic), created with
+  // O_EXCL | O_NOFOLLOW: never a user's file, never through a symlink.
+  static std::atomic<unsigned> counter{0};
+  int fd = -1;
+  std::filesystem::path tmp;
+  for (int attempt = 0; fd < 0; ++attempt) {
+    tmp = dir / fmt::format(".{}.{}-{}-{:x}.tmp", path.filename().string(), ::getpid(), counter++,
+                            static_cast<unsigned>(std::chrono::steady_clock::now().time_since_epoch().count()));
+    fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, existed ? 0600 : 0666);
+    if (fd < 0 && (errno != EEXIST || attempt >= 100)) return last_error();
+  }
+  std::error_code ec;
+  if (existed && ::fchmod(fd, st.st_mode & 07777) != 0) ec = last_error();
+  if (!ec) ec = write_all(fd, text);
+  if (::close(fd) != 0 && !ec) ec = last_error();
+  if (!ec && ::rename(tmp.c_str(), path.c_str()) != 0) ec = last_error();
+  if (ec) {
+    ::unlink(tmp.c_str());
+    return ec;
+  }
+  // The rename is durable once the folder is on the disk too.
+  const int dfd = ::open(dir.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+  if (dfd < 0) return last_error();
+  if (::fsync(dfd) != 0 && errno != EINVAL) ec = last_error();
+  ::close(dfd);
+  return ec;
 }
 
 std::filesystem::path ResumeJournal::path_for(const std::filesystem::path& file) {
@@ -122,25 +157,51 @@ std::filesystem::path ResumeJournal::path_for(const std::filesystem::path& file)
 }
 
 std::optional<ResumeJournal> ResumeJournal::load(const std::filesystem::path& file) {
-  std::ifstream in(path_for(file));
-  if (!in) return std::nullopt;
+  std::error_code ec;
+  if (!std::filesystem::exists(path_for(file), ec)) return std::nullopt;
+  const auto text = read_text_file(path_for(file), 64 * 1024);
+  if (!text) return std::nullopt;
+  return parse(*text);
+}
+
+std::string ResumeJournal::text() const {
+  return fmt::format("hash {:016x}\nnext {}\ndevice {}\n", hash, next, device);
+}
+
+std::optional<ResumeJournal> ResumeJournal::parse(std::string_view text) {
+  // Exactly the lines text() writes: "hash <16 hex digits>", "next <decimal>", "device <text>".
+  // Anything else (truncated, edited, binary) is no journal: the upload starts from the beginning.
   ResumeJournal j;
-  std::string key;
-  while (in >> key) {
-    if (key == "device") {
-      in >> std::ws;
-      std::getline(in, j.device);
-    } else if (key == "hash") {
-      in >> std::hex >> j.hash >> std::dec;
-    } else if (key == "next") {
-      in >> j.next;
+  bool hash = false, next = false, device = false;
+  while (!text.empty()) {
+    const auto eol = text.find('\n');
+    if (eol == std::string_view::npos) return std::nullopt;  // every line ends with a newline
+    const std::string_view line = text.substr(0, eol);
+    text.remove_prefix(eol + 1);
+    const auto sp = line.find(' ');
+    if (sp == std::string_view::npos) return std::nullopt;
+    const std::string_view key = line.substr(0, sp), value = line.substr(sp + 1);
+    auto number = [&](int base, auto& out) {
+      const auto [end, ec] = std::from_chars(value.data(), value.data() + value.size(), out, base);
+      return ec == std::errc{} && end == value.data() + value.size() && !value.empty();
+    };
+    if (key == "hash" && !hash && value.size() == 16 && number(16, j.hash)) {
+      hash = true;
+    } else if (key == "next" && !next && value.size() <= 9 && number(10, j.next)) {
+      next = true;
+    } else if (key == "device" && !device) {
+      j.device = std::string(value);
+      device = true;
+    } else {
+      return std::nullopt;
     }
   }
+  if (!hash || !next || !device) return std::nullopt;
   return j;
 }
 
 std::error_code ResumeJournal::save(const std::filesystem::path& file) const {
-  return write_atomically(path_for(file), fmt::format("hash {:016x}\nnext {}\ndevice {}\n", hash, next, device));
+  return write_atomically(path_for(file), text());
 }
 
 void ResumeJournal::remove(const std::filesystem::path& file) {

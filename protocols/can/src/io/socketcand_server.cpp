@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 #include "hil/can/socketcand_server.hpp"
 
+#include <algorithm>
 #include <array>
 #include <chrono>
 #include <vector>
@@ -21,7 +22,10 @@ struct Server::Shared {
 class Server::Session : public std::enable_shared_from_this<Server::Session> {
  public:
   Session(asio::ip::tcp::socket socket, std::shared_ptr<Shared> shared)
-      : socket_(std::move(socket)), shared_(std::move(shared)) {
+      : socket_(std::move(socket)),
+        shared_(std::move(shared)),
+        handshake_timer_(socket_.get_executor()),
+        stall_timer_(socket_.get_executor()) {
     std::error_code ec;
     const auto ep = socket_.remote_endpoint(ec);
     peer_ = ec ? std::string("unknown") : ep.address().to_string() + ":" + std::to_string(ep.port());
@@ -30,6 +34,13 @@ class Server::Session : public std::enable_shared_from_this<Server::Session> {
 
   void start() {
     ++shared_->stats.active;
+    // A client that opens no bus in time holds a slot for nothing: closed.
+    handshake_timer_.expires_after(shared_->options.handshake_timeout);
+    handshake_timer_.async_wait([self = shared_from_this()](const std::error_code& ec) {
+      if (ec || self->closed_ || self->state_ != State::no_bus) return;
+      ++self->shared_->stats.timed_out;
+      self->close();
+    });
     write(hi_element);
     read();
   }
@@ -41,6 +52,8 @@ class Server::Session : public std::enable_shared_from_this<Server::Session> {
     std::error_code ec;
     socket_.shutdown(asio::ip::tcp::socket::shutdown_both, ec);
     socket_.close(ec);
+    handshake_timer_.cancel();
+    stall_timer_.cancel();
     channel_.reset();  // leave the bus now, not when the last handler lets go
   }
 
@@ -63,7 +76,13 @@ class Server::Session : public std::enable_shared_from_this<Server::Session> {
         }
         self->handle(item.element);
       }
-      if (!self->closed_) self->read();
+      // Back-pressure: a client whose replies pile up (it sends but does not read) is not read
+      // from until they are written, so its queue stays bounded.
+      if (self->closed_) return;
+      if (self->pending_.size() >= self->shared_->options.max_output_bytes)
+        self->read_paused_ = true;
+      else
+        self->read();
     });
   }
 
@@ -106,6 +125,7 @@ class Server::Session : public std::enable_shared_from_this<Server::Session> {
       channel_ = std::move(*ch);
       channel_->set_receive_handler([this](const Frame& f, TimePoint t) { on_bus_frame(f, t); });
       state_ = State::bcm;
+      handshake_timer_.cancel();
       write(ok_element);
     } else if (const auto* mode = std::get_if<SwitchMode>(&e)) {
       if (state_ == State::no_bus) {
@@ -158,12 +178,19 @@ class Server::Session : public std::enable_shared_from_this<Server::Session> {
       return;
     }
     if (format_rx_frame(pending_, f, shared_->options.to_wire_time(t))) ++shared_->stats.frames_to_clients;
+    note_queue();
     flush();
   }
 
   void write(std::string_view text) {
     pending_.append(text);
+    note_queue();
     flush();
+  }
+
+  void note_queue() {
+    auto& peak = shared_->stats.peak_queued_bytes;
+    peak = std::max<std::uint64_t>(peak, pending_.size() + outbox_.size());
   }
 
   void flush() {
@@ -171,14 +198,27 @@ class Server::Session : public std::enable_shared_from_this<Server::Session> {
     writing_ = true;
     outbox_.swap(pending_);
     pending_.clear();
+    // A write that does not complete in time: the client does not read (or is gone without a
+    // reset, half-open). It is closed instead of holding its slot and its queue forever.
+    stall_timer_.expires_after(shared_->options.write_stall_timeout);
+    stall_timer_.async_wait([self = shared_from_this()](const std::error_code& ec) {
+      if (ec || self->closed_ || !self->writing_) return;
+      ++self->shared_->stats.timed_out;
+      self->close();
+    });
     asio::async_write(socket_, asio::buffer(outbox_),
                       [self = shared_from_this()](const std::error_code& ec, std::size_t) {
                         self->writing_ = false;
                         self->outbox_.clear();
+                        self->stall_timer_.cancel();
                         if (self->closed_) return;
                         if (ec) {
                           self->close();
                           return;
+                        }
+                        if (self->read_paused_ && self->pending_.size() < self->shared_->options.max_output_bytes) {
+                          self->read_paused_ = false;
+                          self->read();
                         }
                         if (self->close_after_write_ && self->pending_.empty()) {
                           self->close();
@@ -201,11 +241,15 @@ class Server::Session : public std::enable_shared_from_this<Server::Session> {
   bool writing_ = false;
   bool closed_ = false;
   bool close_after_write_ = false;
+  bool read_paused_ = false;
+  asio::steady_timer handshake_timer_;
+  asio::steady_timer stall_timer_;
 };
 
 Server::Server(asio::any_io_executor executor, const Clock& clock, BusOpener opener, ServerOptions options)
     : shared_(std::make_shared<Shared>(Shared{clock, std::move(opener), std::move(options), {}, {}, false})),
-      acceptor_(std::move(executor)) {
+      acceptor_(executor),
+      accept_timer_(executor) {
   if (!shared_->options.to_wire_time) {
     const auto offset = std::chrono::duration_cast<Duration>(std::chrono::system_clock::now().time_since_epoch()) -
                         clock.now().time_since_epoch();
@@ -252,7 +296,21 @@ const ServerStats& Server::stats() const noexcept {
 void Server::accept() {
   acceptor_.async_accept([this, shared = shared_](const std::error_code& ec, asio::ip::tcp::socket socket) {
     if (shared->closed || ec == asio::error::operation_aborted) return;  // `this` may be gone
-    if (!ec) {
+    if (ec) {
+      // Out of file descriptors (EMFILE/ENFILE) or another accept error: the pending connection
+      // stays in the backlog, so accepting again at once would spin. Back off, growing to the max.
+      ++shared->stats.accept_errors;
+      const auto& o = shared->options;
+      accept_backoff_ =
+          accept_backoff_ == Duration{} ? o.accept_backoff_min : std::min(2 * accept_backoff_, o.accept_backoff_max);
+      accept_timer_.expires_after(accept_backoff_);
+      accept_timer_.async_wait([this, shared](const std::error_code& e) {
+        if (!e && !shared->closed) accept();
+      });
+      return;
+    }
+    accept_backoff_ = {};
+    {
       std::erase_if(shared->sessions, [](const std::weak_ptr<Session>& w) { return w.expired(); });
       if (shared->stats.active >= shared->options.max_clients) {
         ++shared->stats.refused;
@@ -270,10 +328,25 @@ void Server::accept() {
   });
 }
 
+void Server::adopt(asio::ip::tcp::socket socket) {
+  std::erase_if(shared_->sessions, [](const std::weak_ptr<Session>& w) { return w.expired(); });
+  if (shared_->closed || shared_->stats.active >= shared_->options.max_clients) {
+    ++shared_->stats.refused;
+    std::error_code ignored;
+    socket.close(ignored);
+    return;
+  }
+  ++shared_->stats.accepted;
+  auto session = std::make_shared<Session>(std::move(socket), shared_);
+  shared_->sessions.push_back(session);
+  session->start();
+}
+
 void Server::close() {
   shared_->closed = true;
   std::error_code ec;
   acceptor_.close(ec);
+  accept_timer_.cancel();
   for (auto& w : shared_->sessions)
     if (auto s = w.lock()) s->close();
   shared_->sessions.clear();

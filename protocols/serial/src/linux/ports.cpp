@@ -8,6 +8,7 @@
 #include <sys/sysmacros.h>
 #include <termios.h>
 #include <unistd.h>
+#include <thread>
 
 #include <fmt/format.h>
 #include <asio.hpp>
@@ -275,6 +276,7 @@ class AsioTcpListener final : public TcpListener {
     // Accept on our own io_context into a socket, then move the native handle into the line.
     asio::ip::tcp::socket sock(io_);
     bool done = false;
+    const auto start = std::chrono::steady_clock::now();
     acceptor_.async_accept(sock, [&](const std::error_code& e) {
       done = true;
       ec = e;
@@ -287,7 +289,13 @@ class AsioTcpListener final : public TcpListener {
       io_.run();
       return nullptr;
     }
-    if (ec) return nullptr;
+    if (ec) {
+      // Out of file descriptors (EMFILE) or another accept error: the client stays in the
+      // backlog and would fail again at once. A failed accept takes the whole timeout, so a
+      // caller that loops on accept() backs off instead of spinning.
+      std::this_thread::sleep_until(start + timeout);
+      return nullptr;
+    }
     sock.set_option(asio::ip::tcp::no_delay(true), ec);
     const auto proto = sock.local_endpoint(ec).protocol();
     line->stream().assign(proto, sock.release(ec), ec);

@@ -47,7 +47,14 @@ class RunMonitor {
     double best_error = 0.0;  ///< position: closest approach so far
     Duration best_t{};
     bool best_set = false;
+    // An expectation that holds at the first cycle and whose axis never changes checks nothing.
+    bool seen = false;           ///< the first cycle was observed
+    bool held_at_start = false;  ///< the condition held at the first cycle
+    bool changed = false;        ///< position left its start tolerance band / state changed since
+    double start_position = 0.0;
+    motion::AxisState start_state{};
   };
+  void track_start(ExpectationState& s, const motion::AxisStatus& st) const;
   void decide(ExpectationState& s, Duration t, const motion::AxisStatus& st) const;
   [[nodiscard]] double position_error(std::size_t axis, double position, double target) const;
   [[nodiscard]] std::string fmt_pos(const ExpectationState& s, double v) const;

@@ -70,6 +70,8 @@ struct RunResult {
   std::string file;
   bool ok = true;
   std::vector<std::string> failures;  ///< program failure, timeout, unexpected faults, failed reports
+  /// Expectations that check nothing: met at the first cycle and never changed (the run still passes).
+  std::vector<std::string> warnings;
   std::vector<AxisSummary> axes;
   std::vector<FaultEvent> faults;
   std::vector<ExpectationResult> expectations;

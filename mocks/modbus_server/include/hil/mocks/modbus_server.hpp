@@ -43,6 +43,13 @@ struct ModbusServerConfig {
   /// A frame started but not completed within this time closes the connection (a stalled
   /// client must not hold a connection slot forever). Real time.
   Duration frame_timeout{std::chrono::seconds(5)};
+  /// A connection that completes no request for this long is closed: idle or half-open clients
+  /// must not hold every slot. Real time.
+  Duration idle_timeout{std::chrono::seconds(60)};
+  /// A failed accept (out of file descriptors) is retried after this back-off, doubling up to
+  /// the max, instead of at once.
+  Duration accept_backoff_min{std::chrono::milliseconds(50)};
+  Duration accept_backoff_max{std::chrono::seconds(1)};
   /// Diagnostics (malformed frames, refused connections). Called on the I/O thread; must not block.
   std::function<void(std::string_view)> log;
 };
@@ -54,6 +61,8 @@ struct ModbusServerStats {
   std::uint64_t malformed = 0;   ///< connections closed for a bad MBAP header
   std::uint64_t stalled = 0;     ///< connections closed for a frame left incomplete (frame_timeout)
   std::uint64_t open_connections = 0;
+  std::uint64_t idle_closed = 0;    ///< connections closed for completing no request (idle_timeout)
+  std::uint64_t accept_errors = 0;  ///< failed accepts (EMFILE, ...), each followed by a back-off
 };
 
 class ModbusDriveServer {
@@ -70,6 +79,9 @@ class ModbusDriveServer {
   /// Close the listener and every connection and join the I/O thread. Idempotent.
   void stop();
   [[nodiscard]] bool running() const noexcept { return running_.load(); }
+  /// Serve an already connected stream socket `fd` (one end of a socketpair for tests and fuzzing)
+  /// as a client connection; the server takes ownership. Needs a running server.
+  void adopt(int fd);
   /// The bound port (valid after a successful start()).
   [[nodiscard]] std::uint16_t port() const noexcept { return port_.load(); }
 
@@ -104,6 +116,7 @@ class ModbusDriveServer {
   std::atomic<int> fail_code_{0};
   std::atomic<std::int64_t> delay_ns_{0};
   std::atomic<std::uint64_t> accepted_{0}, requests_{0}, exceptions_{0}, malformed_{0}, stalled_{0}, open_{0};
+  std::atomic<std::uint64_t> idle_closed_{0}, accept_errors_{0};
 };
 
 }  // namespace hil::mocks

@@ -12,6 +12,7 @@
 // Without feed-forward the steady following error at speed v is v / Kv, the classic value the
 // WF 725/726 speed-dependent window (1.5 v / Kv) is built on.
 
+#include <cstddef>
 #include <cstdint>
 
 #include "hil/core/clock.hpp"
@@ -40,8 +41,13 @@ class Plant {
  public:
   explicit Plant(PlantConfig config = {});
 
-  /// Advance by `dt` (any length; long steps are sub-stepped for stability).
-  void step(Duration dt, const PlantInput& in) noexcept;
+  /// Most sub-steps one step() takes, whatever `dt` and the gain (a gain beyond 0.2 / h acts as
+  /// 0.2 / h): a run on virtual time never stalls in the plant.
+  static constexpr std::size_t max_substeps = 20'000;
+
+  /// Advance by `dt` (any length; long steps are sub-stepped for stability). Returns the number
+  /// of sub-steps taken (at most max_substeps).
+  std::size_t step(Duration dt, const PlantInput& in) noexcept;
 
   /// Encoder reading in increments (frozen while the encoder fault is injected).
   [[nodiscard]] std::int64_t encoder_position_inc() const noexcept { return encoder_; }

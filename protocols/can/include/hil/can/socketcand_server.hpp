@@ -7,7 +7,11 @@
 //
 // Robustness: garbage between elements is skipped, malformed elements get `< error ... >` and the
 // session continues, overlong elements are dropped, clients may disconnect mid-element, and a
-// client that does not read loses frames (counted) instead of stalling the bus.
+// client that does not read loses frames (counted) instead of stalling the bus, and is not read
+// from while its replies are backed up (its output stays bounded by max_output_bytes plus one
+// read's worth of replies). A client that opens no bus within handshake_timeout, or that takes no
+// data for write_stall_timeout, is closed; a failed accept (out of file descriptors) is retried
+// after a growing back-off instead of at once.
 // Thread: the server, its sessions and the opened channels run on the executor's thread.
 
 #include <cstdint>
@@ -20,6 +24,7 @@
 
 #include <asio/any_io_executor.hpp>
 #include <asio/ip/tcp.hpp>
+#include <asio/steady_timer.hpp>
 
 #include "hil/can/channel.hpp"
 #include "hil/can/socketcand.hpp"
@@ -40,6 +45,10 @@ struct ServerOptions {
   /// python-can 4.1 (Debian 12) expects its `< ok >` alone in one recv(); a frame right behind
   /// it makes its connect fail. The daemon has no such grace (0 = exact daemon behaviour).
   Duration raw_mode_grace{0};
+  Duration handshake_timeout{std::chrono::seconds(10)};    ///< from connect to `< open >`
+  Duration write_stall_timeout{std::chrono::seconds(30)};  ///< one write pending this long: the client is gone
+  Duration accept_backoff_min{std::chrono::milliseconds(50)};
+  Duration accept_backoff_max{std::chrono::seconds(1)};
 };
 
 struct ServerStats {
@@ -54,6 +63,9 @@ struct ServerStats {
   std::uint64_t dropped_slow_client = 0;
   std::uint64_t rtr_not_forwarded = 0;     ///< socketcand raw mode has no RTR form
   std::uint64_t dropped_during_grace = 0;  ///< see ServerOptions::raw_mode_grace
+  std::uint64_t accept_errors = 0;         ///< failed accepts (EMFILE, ENFILE, ...), each followed by a back-off
+  std::uint64_t timed_out = 0;             ///< closed: no bus opened in time, or not reading
+  std::uint64_t peak_queued_bytes = 0;     ///< largest output queue of any client (bounded, see above)
 };
 
 class Server {
@@ -66,6 +78,9 @@ class Server {
   /// Bind and listen (port 0 picks a free port). Errors: address in use, permission, ...
   std::error_code listen(const asio::ip::tcp::endpoint& endpoint);
   [[nodiscard]] asio::ip::tcp::endpoint local_endpoint() const;
+  /// Serve an already connected stream socket as a client session (one end of a socketpair for
+  /// tests and fuzzing, or a socket handed over by a supervisor). Counts against max_clients.
+  void adopt(asio::ip::tcp::socket socket);
   /// Stop accepting and disconnect every client.
   void close();
   [[nodiscard]] const ServerStats& stats() const noexcept;
@@ -76,6 +91,8 @@ class Server {
   void accept();
   std::shared_ptr<Shared> shared_;
   asio::ip::tcp::acceptor acceptor_;
+  asio::steady_timer accept_timer_;
+  Duration accept_backoff_{};
 };
 
 }  // namespace hil::can::socketcand

@@ -12,6 +12,7 @@
 #include <functional>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <system_error>
 #include <vector>
 
@@ -93,12 +94,17 @@ struct ResumeJournal {
 
   [[nodiscard]] static std::filesystem::path path_for(const std::filesystem::path& file);
   [[nodiscard]] static std::optional<ResumeJournal> load(const std::filesystem::path& file);
+  /// The journal in `text` (what text() wrote), or nullopt for anything else.
+  [[nodiscard]] static std::optional<ResumeJournal> parse(std::string_view text);
+  [[nodiscard]] std::string text() const;
   std::error_code save(const std::filesystem::path& file) const;
   static void remove(const std::filesystem::path& file);
 };
 
-/// Write `text` to `path` atomically: a temp file beside it, fsync, rename. A crash leaves the
-/// old file or the new one, never half of either.
+/// Write `text` to `path` atomically: a fresh temporary file beside it (O_EXCL, never through a
+/// symlink, never a user's file), fsync, rename over `path`, fsync the folder. A crash leaves the
+/// old file or the new one, never half of either; `path` keeps its mode (a new file: 0666 less
+/// the umask); on an error no temporary file is left.
 [[nodiscard]] std::error_code write_atomically(const std::filesystem::path& path, const std::string& text);
 
 /// Write `text` to `path` atomically; when `path` exists and differs, keep the old content as

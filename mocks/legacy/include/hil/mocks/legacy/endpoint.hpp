@@ -52,6 +52,9 @@ class EndpointHost {
   void with_endpoint(const std::function<void(Endpoint&)>& fn);
   /// Save now if dirty. Returns the error of the last save.
   std::error_code persist();
+  /// When the last byte arrived (construction time before the first): idle TCP clients are
+  /// closed by the caller.
+  [[nodiscard]] TimePoint last_rx() const noexcept { return last_rx_; }
 
   /// Fault injection: after `after` more replies, drop the next `count` (a station or line
   /// that stops answering). Thread-safe.
@@ -72,6 +75,7 @@ class EndpointHost {
   std::atomic<int> drop_replies_{0};
   std::atomic<int> drop_after_{0};
   bool pending_save_ = false;
+  TimePoint last_rx_;
 };
 
 }  // namespace hil::mocks::legacy

@@ -1,0 +1,40 @@
+# SPDX-License-Identifier: MIT
+# Bad input gets a clear error, never a crash, a hang or raw binary on the terminal:
+#   cmake -DCMD="prog|arg|..." -DEXPECT=REGEX [-DMAKE=fifo:PATH|big:PATH|binary:PATH] -P expect_error.cmake
+# Runs CMD (| separates the arguments), and fails unless it exits with a status other than 0 and
+# than a crash, within 30 s, its output matches REGEX and holds no control bytes.
+string(REPLACE "|" ";" cmd "${CMD}")
+if(MAKE MATCHES "^fifo:(.*)")
+  file(REMOVE "${CMAKE_MATCH_1}")
+  execute_process(COMMAND mkfifo "${CMAKE_MATCH_1}" RESULT_VARIABLE rc)
+elseif(MAKE MATCHES "^big:(.*)")
+  # 5 MiB of valid YAML comments: beyond the 4 MiB input limit.
+  string(REPEAT "# padding padding padding padding padding padding padding padding padding padding pad\n" 65536 chunk)
+  file(WRITE "${CMAKE_MATCH_1}" "${chunk}")
+elseif(MAKE MATCHES "^binary:(.*)")
+  # A scenario whose unknown key holds an escape sequence, a bell and a byte that is not UTF-8.
+  string(ASCII 27 esc)
+  string(ASCII 7 bel)
+  string(ASCII 255 ff)
+  file(WRITE "${CMAKE_MATCH_1}" "name: t\nmachine:\n  axes: []\n${esc}[2J${bel}bad${ff}key: 1\n")
+endif()
+execute_process(COMMAND ${cmd} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err TIMEOUT 30)
+set(all "${out}${err}")
+message("exit: ${rc}\n${all}")
+if(rc STREQUAL "0")
+  message(FATAL_ERROR "exit status 0 for bad input")
+endif()
+if(NOT rc MATCHES "^[0-9]+$" OR rc GREATER 125)
+  message(FATAL_ERROR "no clean exit: ${rc} (a crash, a signal or a hang)")
+endif()
+if(NOT all MATCHES "${EXPECT}")
+  message(FATAL_ERROR "the message does not match: ${EXPECT}")
+endif()
+set(ctrl "")
+foreach(c 1 2 3 4 5 6 7 8 11 12 13 14 15 16 17 18 19 20 21 22 23 24 25 26 27 28 29 30 31 127)
+  string(ASCII ${c} ch)
+  string(APPEND ctrl "${ch}")
+endforeach()
+if(all MATCHES "[${ctrl}]")
+  message(FATAL_ERROR "control bytes echoed to the terminal")
+endif()
