@@ -13,7 +13,7 @@
 #include <fmt/format.h>
 #include <asio/io_context.hpp>
 
-#include "hil/can/make_channel.hpp"
+#include "hil/can/io/make_channel.hpp"
 #include "hil/can/virtual_bus.hpp"
 #include "hil/canopen/eds.hpp"
 #include "hil/cia402/cia402_drive.hpp"
