@@ -19,8 +19,8 @@
 #include "hil/cia402/cia402_drive.hpp"
 #include "hil/cia402/layout.hpp"
 #include "hil/cli/context.hpp"
+#include "hil/config/yaml_config.hpp"
 #include "hil/core/fault_injection.hpp"
-#include "hil/core/yaml_config.hpp"
 #include "hil/mocks/cia402_node.hpp"
 
 namespace hil::cli::canopen_cli {

@@ -6,8 +6,8 @@
 
 #include <fmt/format.h>
 
+#include "hil/config/yaml_config.hpp"
 #include "hil/core/fault_injection.hpp"
-#include "hil/core/yaml_config.hpp"
 #include "hil/drives/modbus_drive.hpp"
 #include "hil/mocks/modbus_server.hpp"
 #include "hil/mocks/sim_drive.hpp"

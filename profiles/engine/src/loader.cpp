@@ -3,7 +3,7 @@
 // where it becomes the std::expected error; nothing escapes.
 #include "hil/profiles/loader.hpp"
 
-#include "hil/core/yaml_config.hpp"
+#include "hil/config/yaml_config.hpp"
 
 #include <fmt/format.h>
 #include <yaml-cpp/yaml.h>

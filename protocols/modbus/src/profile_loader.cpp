@@ -7,7 +7,7 @@
 #include <fmt/format.h>
 #include <yaml-cpp/yaml.h>
 
-#include "hil/core/yaml_config.hpp"
+#include "hil/config/yaml_config.hpp"
 
 #include "hil/modbus/exchange_plan.hpp"
 #include "hil/modbus/profile.hpp"
