@@ -4,6 +4,7 @@
 #include "hil/profiles/loader.hpp"
 
 #include "hil/config/yaml_config.hpp"
+#include "hil/core/data_dir.hpp"
 
 #include <fmt/format.h>
 #include <yaml-cpp/yaml.h>
@@ -18,10 +19,6 @@
 
 #include "hil/profiles/validation.hpp"
 #include "hil/profiles/wire.hpp"
-
-#ifndef HIL_PROFILES_SOURCE_DIR
-#define HIL_PROFILES_SOURCE_DIR ""
-#endif
 
 namespace hil::profiles {
 namespace {
@@ -639,10 +636,9 @@ std::vector<std::filesystem::path> profile_search_path() {
   const auto exe = std::filesystem::read_symlink("/proc/self/exe", ec);
   if (!ec) {
     add(exe.parent_path() / ".." / "profiles" / "devices");
-    add(exe.parent_path() / ".." / "share" / "hilbridge" / "profiles" / "devices");
     add(exe.parent_path() / "profiles" / "devices");
   }
-  add(std::filesystem::path(HIL_PROFILES_SOURCE_DIR));
+  for (const auto& d : hil::data_dirs("profiles/devices")) add(d);
   return dirs;
 }
 
