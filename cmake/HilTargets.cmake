@@ -1,4 +1,5 @@
 # SPDX-License-Identifier: MIT
+include(GNUInstallDirs)
 # Helpers shared by every area. An area never edits a file outside its own folders:
 # it calls these from its own CMakeLists.txt.
 
@@ -24,15 +25,28 @@ function(hil_add_subfolders parent)
   endforeach()
 endfunction()
 
-# hil_add_library(NAME core SOURCES ... [LIBS ...])  -> target hil_core, alias hil::core,
-# public headers in ./include.
+# hil_add_library(NAME core SOURCES ... [LIBS ...] [INTERNAL])  -> target hil_core, alias hil::core,
+# public headers in ./include. Unless INTERNAL, `cmake --install` installs the static library and
+# its headers and exports it as hil::core in the hilbridge CMake package (cmake/HilInstall.cmake).
 function(hil_add_library)
-  cmake_parse_arguments(A "" "NAME" "SOURCES;LIBS;PRIVATE_LIBS" ${ARGN})
+  cmake_parse_arguments(A "INTERNAL" "NAME" "SOURCES;LIBS;PRIVATE_LIBS" ${ARGN})
   add_library(hil_${A_NAME} ${A_SOURCES})
   add_library(hil::${A_NAME} ALIAS hil_${A_NAME})
-  target_include_directories(hil_${A_NAME} PUBLIC ${CMAKE_CURRENT_SOURCE_DIR}/include)
-  target_link_libraries(hil_${A_NAME} PUBLIC ${A_LIBS} PRIVATE hil::warnings ${A_PRIVATE_LIBS})
+  target_include_directories(hil_${A_NAME} PUBLIC $<BUILD_INTERFACE:${CMAKE_CURRENT_SOURCE_DIR}/include>
+                                                  $<INSTALL_INTERFACE:${CMAKE_INSTALL_INCLUDEDIR}>)
+  # Warnings are a build-tree matter: the exported targets do not carry them.
+  target_link_libraries(hil_${A_NAME} PUBLIC ${A_LIBS} PRIVATE $<BUILD_INTERFACE:hil::warnings> ${A_PRIVATE_LIBS})
   target_compile_features(hil_${A_NAME} PUBLIC cxx_std_23)
+  if(NOT A_INTERNAL)
+    set_target_properties(hil_${A_NAME} PROPERTIES EXPORT_NAME ${A_NAME})
+    install(TARGETS hil_${A_NAME} EXPORT hilbridgeTargets
+            ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR} COMPONENT dev)
+    if(IS_DIRECTORY ${CMAKE_CURRENT_SOURCE_DIR}/include)
+      install(DIRECTORY ${CMAKE_CURRENT_SOURCE_DIR}/include/ DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}
+              COMPONENT dev)
+    endif()
+    set_property(GLOBAL APPEND PROPERTY HIL_INSTALLED_LIBRARIES hil_${A_NAME})
+  endif()
 endfunction()
 
 # hil_add_test(NAME motion_trajectory SOURCES ... LIBS ... [LABELS kernel])

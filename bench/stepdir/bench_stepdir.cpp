@@ -8,7 +8,7 @@
 
 #include <benchmark/benchmark.h>
 
-#include "hil/gpio/edge_writer.hpp"
+#include "hil/gpio/io/edge_writer.hpp"
 #include "hil/gpio/linux/gpiod_lines.hpp"
 #include "hil/mocks/gpio/mock_lines.hpp"
 #include "hil/stepdir/step_planner.hpp"

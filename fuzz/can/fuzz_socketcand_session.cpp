@@ -24,7 +24,7 @@
 #include <asio/ip/tcp.hpp>
 
 #include "hil/can/socketcand.hpp"
-#include "hil/can/socketcand_server.hpp"
+#include "hil/can/io/socketcand_server.hpp"
 #include "hil/can/virtual_bus.hpp"
 #include "hil/core/clock.hpp"
 

@@ -18,8 +18,8 @@
 #include <asio/post.hpp>
 #include <asio/steady_timer.hpp>
 
-#include "hil/can/bus_runner.hpp"
-#include "hil/can/socketcand_server.hpp"
+#include "hil/can/io/bus_runner.hpp"
+#include "hil/can/io/socketcand_server.hpp"
 #include "hil/can/virtual_bus.hpp"
 
 namespace hil::can::test {

@@ -3,7 +3,7 @@
 #include <gtest/gtest.h>
 
 #include "hil/can/bus_url.hpp"
-#include "hil/can/make_channel.hpp"
+#include "hil/can/io/make_channel.hpp"
 #include "hub_fixture.hpp"
 
 namespace can = hil::can;

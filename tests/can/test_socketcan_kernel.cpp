@@ -21,9 +21,9 @@
 #include <thread>
 
 #include "hil/can/candump.hpp"
+#include "hil/can/io/socketcand_channel.hpp"
+#include "hil/can/io/socketcand_server.hpp"
 #include "hil/can/linux/socketcan_channel.hpp"
-#include "hil/can/socketcand_channel.hpp"
-#include "hil/can/socketcand_server.hpp"
 #include "hub_fixture.hpp"
 #include "subprocess.hpp"
 

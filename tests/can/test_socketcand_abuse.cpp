@@ -17,7 +17,7 @@
 #include <thread>
 #include <vector>
 
-#include "hil/can/socketcand_channel.hpp"
+#include "hil/can/io/socketcand_channel.hpp"
 #include "hub_fixture.hpp"
 
 namespace can = hil::can;

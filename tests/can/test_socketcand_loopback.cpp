@@ -12,7 +12,7 @@
 #include <asio/read.hpp>
 #include <asio/write.hpp>
 
-#include "hil/can/socketcand_channel.hpp"
+#include "hil/can/io/socketcand_channel.hpp"
 #include "hub_fixture.hpp"
 
 namespace can = hil::can;

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
 #include <gtest/gtest.h>
 
-#include "hil/core/yaml_config.hpp"
+#include "hil/config/yaml_config.hpp"
 
 using hil::yaml::Where;
 

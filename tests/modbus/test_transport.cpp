@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <fmt/format.h>
+#include <yaml-cpp/yaml.h>
 
 #include "hil/core/fault_injection.hpp"
 #include "hil/drives/modbus_transport.hpp"

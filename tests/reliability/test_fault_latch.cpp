@@ -16,7 +16,7 @@
 #include "hil/cia402/cia402_drive.hpp"
 #include "hil/cia402/layout.hpp"
 #include "hil/core/clock.hpp"
-#include "hil/core/yaml_config.hpp"
+#include "hil/config/yaml_config.hpp"
 #include "hil/drives/modbus_drive.hpp"
 #include "hil/drives/stepdir/stepdir_drive.hpp"
 #include "hil/drives/stepdir/transport_factory.hpp"

@@ -1,26 +1,16 @@
 // SPDX-License-Identifier: MIT
 #pragma once
-// Test helpers: a TransportRegistry with the `sim` transport (the CLI registers the same one in
-// bridge/cli/sim), and a transport that logs the cycle order.
+// Test helpers: a TransportRegistry with the real `sim` transport (hil::mocks::make_sim_transport,
+// the one the CLI registers), and a transport that logs the cycle order.
 #include <memory>
 #include <string>
 #include <vector>
 
 #include "hil/core/transport.hpp"
 #include "hil/mocks/sim_drive.hpp"
+#include "hil/mocks/sim_transport.hpp"
 
 namespace hil::testing {
-
-class SimFactory : public TransportFactory {
- public:
-  std::expected<DrivePtr, ConfigError> make_drive(const std::string& axis, const YAML::Node& node,
-                                                  RunEnvironment& env) override {
-    auto config = mocks::parse_sim_drive_config(node, yaml::Where{env.source_file, env.drive_path(axis)});
-    if (!config) return std::unexpected(config.error());
-    config->name = axis;
-    return std::make_unique<mocks::SimDrive>(std::move(*config));
-  }
-};
 
 /// Wraps a SimDrive and logs read/write, so tests see the order of a cycle.
 class LoggingDrive final : public Drive, public FaultInjectable {
@@ -60,7 +50,7 @@ class LoggingFactory final : public TransportFactory {
     YAML::Node plain = YAML::Clone(node);
     plain.remove("transport");
     plain["transport"] = "sim";
-    auto d = SimFactory{}.make_drive(axis, plain, env);
+    auto d = mocks::make_sim_transport()->make_drive(axis, plain, env);
     if (!d) return d;
     return std::make_unique<LoggingDrive>(std::move(*d), axis, log_);
   }
@@ -78,7 +68,7 @@ class LoggingFactory final : public TransportFactory {
 
 inline TransportRegistry sim_registry() {
   TransportRegistry r;
-  r.add("sim", [] { return std::make_unique<SimFactory>(); });
+  r.add("sim", [] { return mocks::make_sim_transport(); });
   return r;
 }
 

@@ -284,7 +284,7 @@ TEST(Runner, AtDelaysAStepParallelStartsTogetherNonBlockingGoesOn) {
 }
 
 namespace {
-class EnvProbe final : public hil::testing::SimFactory {
+class EnvProbe final : public hil::TransportFactory {
  public:
   explicit EnvProbe(std::vector<std::string>& seen) : seen_(seen) {}
   std::expected<hil::DrivePtr, hil::ConfigError> make_drive(const std::string& axis, const YAML::Node& node,
@@ -293,10 +293,11 @@ class EnvProbe final : public hil::testing::SimFactory {
                                 env.verify_steps, env.period.count(), env.source_file, env.io != nullptr));
     YAML::Node plain = YAML::Clone(node);
     plain["transport"] = "sim";
-    return SimFactory::make_drive(axis, plain, env);
+    return sim_->make_drive(axis, plain, env);
   }
 
  private:
+  std::unique_ptr<hil::TransportFactory> sim_ = hil::mocks::make_sim_transport();
   std::vector<std::string>& seen_;
 };
 }  // namespace

@@ -3,8 +3,8 @@
 // A step/dir axis from a YAML drive block on the stepdir TransportFactory, on a virtual clock.
 #include <gtest/gtest.h>
 
+#include "hil/config/yaml_config.hpp"
 #include "hil/core/clock.hpp"
-#include "hil/core/yaml_config.hpp"
 #include "hil/drives/stepdir/axis.hpp"
 #include "hil/drives/stepdir/stepdir_drive.hpp"
 #include "hil/drives/stepdir/transport_factory.hpp"

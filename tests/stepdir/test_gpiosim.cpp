@@ -9,7 +9,7 @@
 #include <string>
 
 #include "drive_rig.hpp"
-#include "hil/gpio/edge_writer.hpp"
+#include "hil/gpio/io/edge_writer.hpp"
 #include "hil/gpio/linux/gpiod_lines.hpp"
 
 namespace {

@@ -11,7 +11,7 @@
 
 #include "commands.hpp"
 #include "hil/can/candump.hpp"
-#include "hil/can/make_channel.hpp"
+#include "hil/can/io/make_channel.hpp"
 #include "hil/can/pcap.hpp"
 
 namespace hil::cli::can_cmd {

@@ -10,9 +10,9 @@
 #include <asio/signal_set.hpp>
 
 #include "commands.hpp"
-#include "hil/can/bus_runner.hpp"
+#include "hil/can/io/bus_runner.hpp"
+#include "hil/can/io/socketcand_server.hpp"
 #include "hil/can/linux/socketcan_channel.hpp"
-#include "hil/can/socketcand_server.hpp"
 #include "hil/can/virtual_bus.hpp"
 
 namespace hil::cli::can_cmd {

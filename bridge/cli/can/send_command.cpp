@@ -11,9 +11,9 @@
 
 #include "commands.hpp"
 #include "hil/can/candump.hpp"
+#include "hil/can/io/make_channel.hpp"
+#include "hil/can/io/socketcand_channel.hpp"
 #include "hil/can/linux/socketcan_channel.hpp"
-#include "hil/can/make_channel.hpp"
-#include "hil/can/socketcand_channel.hpp"
 #include "hil/cli/progress.hpp"
 
 namespace hil::cli::can_cmd {

@@ -13,14 +13,14 @@
 #include <fmt/format.h>
 #include <asio/io_context.hpp>
 
-#include "hil/can/make_channel.hpp"
+#include "hil/can/io/make_channel.hpp"
 #include "hil/can/virtual_bus.hpp"
 #include "hil/canopen/eds.hpp"
 #include "hil/cia402/cia402_drive.hpp"
 #include "hil/cia402/layout.hpp"
 #include "hil/cli/context.hpp"
+#include "hil/config/yaml_config.hpp"
 #include "hil/core/fault_injection.hpp"
-#include "hil/core/yaml_config.hpp"
 #include "hil/mocks/cia402_node.hpp"
 #include "hil/mocks/key_range.hpp"
 

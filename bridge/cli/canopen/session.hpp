@@ -12,7 +12,7 @@
 #include <asio/steady_timer.hpp>
 
 #include "hil/can/channel.hpp"
-#include "hil/can/make_channel.hpp"
+#include "hil/can/io/make_channel.hpp"
 #include "hil/core/clock.hpp"
 
 namespace hil::cli::canopen_cli {

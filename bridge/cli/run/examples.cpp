@@ -1,8 +1,11 @@
 // SPDX-License-Identifier: MIT
 #include "examples.hpp"
 
+#include "hil/core/data_dir.hpp"
+
 #include <cstdlib>
 #include <system_error>
+#include <utility>
 
 namespace hil::cli {
 
@@ -18,10 +21,9 @@ std::vector<std::filesystem::path> example_dirs() {
     dirs.push_back(dir.parent_path().parent_path() / "examples");
   }
   dirs.emplace_back("examples");
-  if (!ec) dirs.push_back(exe.parent_path().parent_path() / "share" / "hilbridge" / "examples");
-#ifdef HIL_SOURCE_EXAMPLES_DIR
-  dirs.emplace_back(HIL_SOURCE_EXAMPLES_DIR);
-#endif
+  // <exe>/../share/hilbridge/examples (installed tree), then the source tree's examples/ this
+  // hilbridge was built from (out-of-tree build dirs such as /tmp/build are not next to it).
+  for (auto& d : hil::data_dirs("examples")) dirs.push_back(std::move(d));
   return dirs;
 }
 

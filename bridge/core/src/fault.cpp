@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: MIT
 #include "hil/core/fault.hpp"
 
-#include <fmt/format.h>
+#include <cstdio>
+#include <string>
 
 #include "hil/core/config_error.hpp"
 #include "hil/core/drive.hpp"
@@ -36,7 +37,7 @@ class MotionCategory final : public std::error_category {
       case MotionFault::invalid_command:
         return "invalid command";
     }
-    return fmt::format("unknown motion fault {}", v);
+    return "unknown motion fault " + std::to_string(v);
   }
 };
 
@@ -54,7 +55,7 @@ class PlantCategory final : public std::error_category {
       case PlantFault::following_blowup:
         return "plant does not follow its command";
     }
-    return fmt::format("unknown plant fault {}", v);
+    return "unknown plant fault " + std::to_string(v);
   }
 };
 
@@ -74,20 +75,25 @@ std::string Fault::describe() const {
   // Spec codes above a byte are hexadecimal in their specs (CiA 402 0x2310, SDO abort
   // 0x06020000, Modbus link errors 0x102); small ones (exception codes, error numbers) decimal.
   const auto v = static_cast<unsigned>(code.value());
-  std::string s = v < 0x100     ? fmt::format("{}:{}", code.category().name(), code.value())
-                  : v <= 0xFFFF ? fmt::format("{}:0x{:04X}", code.category().name(), v)
-                                : fmt::format("{}:0x{:08X}", code.category().name(), v);
+  std::string s = std::string(code.category().name()) + ":";
+  if (v < 0x100) {
+    s += std::to_string(code.value());
+  } else {
+    char hex[16];
+    std::snprintf(hex, sizeof hex, v <= 0xFFFF ? "0x%04X" : "0x%08X", v);
+    s += hex;
+  }
   if (!text.empty()) return s + " " + text;
   return s + " " + code.message();
 }
 
 std::string ConfigError::describe() const {
   std::string where = file.empty() ? std::string("<input>") : file;
-  if (line > 0) where += fmt::format(":{}", line);
-  if (column > 0) where += fmt::format(":{}", column);
+  if (line > 0) where += ":" + std::to_string(line);
+  if (column > 0) where += ":" + std::to_string(column);
   // The key and the message may quote the input: never raw binary on the terminal.
-  if (!key.empty()) return printable(fmt::format("{}: {}: {}", where, key, message));
-  return printable(fmt::format("{}: {}", where, message));
+  if (!key.empty()) return printable(where + ": " + key + ": " + message);
+  return printable(where + ": " + message);
 }
 
 std::string_view to_string(DriveState s) noexcept {

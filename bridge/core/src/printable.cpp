@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
 #include "hil/core/printable.hpp"
 
-#include <fmt/format.h>
+#include <cstdio>
 
 namespace hil {
 
@@ -48,7 +48,9 @@ std::string printable(std::string_view text) {
       out.append(text.substr(i, n));
       i += n;
     } else {
-      out += fmt::format("\\x{:02X}", c);
+      char hex[8];
+      std::snprintf(hex, sizeof hex, "\\x%02X", static_cast<unsigned>(c));
+      out += hex;
       ++i;
     }
   }

@@ -7,8 +7,9 @@
 
 #include <fmt/format.h>
 
+#include "hil/config/yaml_config.hpp"
+#include "hil/core/data_dir.hpp"
 #include "hil/core/fault_injection.hpp"
-#include "hil/core/yaml_config.hpp"
 #include "hil/drives/modbus_drive.hpp"
 #include "hil/mocks/modbus_server.hpp"
 #include "hil/mocks/sim_drive.hpp"
@@ -211,7 +212,7 @@ class ModbusTransport final : public TransportFactory {
 }  // namespace
 
 std::string default_modbus_profile_dir() {
-  return HIL_MODBUS_PROFILE_DIR;
+  return hil::find_data_dir("profiles/modbus").string();
 }
 
 std::string resolve_modbus_profile(const std::string& name_or_path, const std::string& scenario_dir) {

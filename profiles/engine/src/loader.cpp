@@ -3,8 +3,9 @@
 // where it becomes the std::expected error; nothing escapes.
 #include "hil/profiles/loader.hpp"
 
+#include "hil/config/yaml_config.hpp"
+#include "hil/core/data_dir.hpp"
 #include "hil/core/text_file.hpp"
-#include "hil/core/yaml_config.hpp"
 
 #include <fmt/format.h>
 #include <yaml-cpp/yaml.h>
@@ -19,10 +20,6 @@
 
 #include "hil/profiles/validation.hpp"
 #include "hil/profiles/wire.hpp"
-
-#ifndef HIL_PROFILES_SOURCE_DIR
-#define HIL_PROFILES_SOURCE_DIR ""
-#endif
 
 namespace hil::profiles {
 namespace {
@@ -642,10 +639,9 @@ std::vector<std::filesystem::path> profile_search_path() {
   const auto exe = std::filesystem::read_symlink("/proc/self/exe", ec);
   if (!ec) {
     add(exe.parent_path() / ".." / "profiles" / "devices");
-    add(exe.parent_path() / ".." / "share" / "hilbridge" / "profiles" / "devices");
     add(exe.parent_path() / "profiles" / "devices");
   }
-  add(std::filesystem::path(HIL_PROFILES_SOURCE_DIR));
+  for (const auto& d : hil::data_dirs("profiles/devices")) add(d);
   return dirs;
 }
 

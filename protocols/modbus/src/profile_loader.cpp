@@ -7,8 +7,8 @@
 #include <fmt/format.h>
 #include <yaml-cpp/yaml.h>
 
+#include "hil/config/yaml_config.hpp"
 #include "hil/core/text_file.hpp"
-#include "hil/core/yaml_config.hpp"
 
 #include "hil/modbus/exchange_plan.hpp"
 #include "hil/modbus/profile.hpp"

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-#include "hil/can/bus_runner.hpp"
+#include "hil/can/io/bus_runner.hpp"
 
 namespace hil::can {
 

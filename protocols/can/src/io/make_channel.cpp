@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: MIT
-#include "hil/can/make_channel.hpp"
+#include "hil/can/io/make_channel.hpp"
 
+#include "hil/can/io/socketcand_channel.hpp"
 #include "hil/can/linux/socketcan_channel.hpp"
-#include "hil/can/socketcand_channel.hpp"
 
 namespace hil::can {
 

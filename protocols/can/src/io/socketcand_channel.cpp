@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-#include "hil/can/socketcand_channel.hpp"
+#include "hil/can/io/socketcand_channel.hpp"
 
 #include <array>
 #include <atomic>

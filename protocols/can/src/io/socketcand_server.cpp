@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-#include "hil/can/socketcand_server.hpp"
+#include "hil/can/io/socketcand_server.hpp"
 
 #include <algorithm>
 #include <array>

@@ -12,14 +12,15 @@
 #include <string>
 #include <vector>
 
-#include <yaml-cpp/yaml.h>
-
 #include "hil/core/clock.hpp"
 #include "hil/core/config_error.hpp"
 #include "hil/core/drive.hpp"
 
 namespace asio {
 class io_context;
+}
+namespace YAML {
+class Node;  // the drive block; factories read it with hil::yaml (hil::config)
 }
 
 namespace hil {

@@ -27,8 +27,8 @@
 
 namespace hil::drives {
 
-/// Where `profile:` names are looked up when they are not a path (profiles/modbus of the source
-/// tree, compiled in).
+/// Where `profile:` names are looked up when they are not a path: hil::find_data_dir("profiles/modbus")
+/// (<prefix>/share/hilbridge/profiles/modbus of an installed tree, else the source tree's).
 [[nodiscard]] std::string default_modbus_profile_dir();
 
 /// Resolve a profile name or path: as given (relative to `scenario_dir` first), then

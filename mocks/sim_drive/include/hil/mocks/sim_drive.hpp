@@ -8,10 +8,10 @@
 
 #include <yaml-cpp/yaml.h>
 
+#include "hil/config/yaml_config.hpp"
 #include "hil/core/config_error.hpp"
 #include "hil/core/drive.hpp"
 #include "hil/core/fault_injection.hpp"
-#include "hil/core/yaml_config.hpp"
 #include "hil/mocks/plant.hpp"
 
 namespace hil::mocks {

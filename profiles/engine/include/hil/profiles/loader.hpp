@@ -5,8 +5,9 @@
 //
 // Search path for find_profile()/list_profiles(), first hit wins:
 //   1. every directory in $HILBRIDGE_PROFILES (':'-separated),
-//   2. <dir of the running executable>/../profiles/devices and <exe>/../share/hilbridge/profiles/devices,
-//   3. the source tree's profiles/devices (baked in at compile time).
+//   2. <dir of the running executable>/../profiles/devices and <exe>/profiles/devices,
+//   3. hil::data_dirs("profiles/devices"): <exe>/../share/hilbridge/profiles/devices (installed
+//      tree), then the source tree's profiles/devices (baked in at compile time).
 
 #include <expected>
 #include <filesystem>

@@ -6,7 +6,7 @@
 //   socketcand://HOST[:PORT]/BUS     a socketcand server (the daemon or `hilbridge can hub`);
 //                                    PORT defaults to 29536; HOST may be [IPv6]
 //   virtual:NAME                     an in-process VirtualBus (shared by name within one process)
-// Opening one: hil/can/make_channel.hpp.
+// Opening one: hil/can/io/make_channel.hpp.
 
 #include <cstdint>
 #include <expected>

@@ -22,7 +22,7 @@
 //  * run_until(clock, end) is the virtual-time driver: it advances a VirtualClock from event to
 //    event, so handlers that read the clock see each frame's own delivery time.
 //  * On real time (the socketcand hub) set_wakeup_handler() lets an Asio timer call deliver()
-//    exactly when the next frame is due (see hil/can/bus_runner.hpp); there is no polling.
+//    exactly when the next frame is due (see hil/can/io/bus_runner.hpp); there is no polling.
 
 #include <cstddef>
 #include <cstdint>

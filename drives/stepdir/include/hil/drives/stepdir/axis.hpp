@@ -9,7 +9,7 @@
 #include "hil/drives/stepdir/config.hpp"
 #include "hil/drives/stepdir/transport_factory.hpp"
 #include "hil/gpio/edge_sink.hpp"
-#include "hil/gpio/edge_writer.hpp"
+#include "hil/gpio/io/edge_writer.hpp"
 #include "hil/gpio/line_bank.hpp"
 #include "hil/mocks/gpio/mock_lines.hpp"
 #include "hil/stepdir/verifier.hpp"

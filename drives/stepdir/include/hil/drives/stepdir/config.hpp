@@ -11,8 +11,8 @@
 
 #include <yaml-cpp/yaml.h>
 
+#include "hil/config/yaml_config.hpp"
 #include "hil/core/config_error.hpp"
-#include "hil/core/yaml_config.hpp"
 #include "hil/gpio/line_config.hpp"
 #include "hil/stepdir/ip247_ramp.hpp"
 #include "hil/stepdir/step_planner.hpp"

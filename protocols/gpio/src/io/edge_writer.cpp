@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-#include "hil/gpio/edge_writer.hpp"
+#include "hil/gpio/io/edge_writer.hpp"
 
 #include <algorithm>
 #include <bit>

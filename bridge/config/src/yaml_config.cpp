@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-#include "hil/core/yaml_config.hpp"
+#include "hil/config/yaml_config.hpp"
 
 #include <cmath>
 #include <fstream>
