@@ -61,11 +61,11 @@ for t in "${targets[@]}"; do
   build_targets+=("fuzz_$t")
 done
 
-# Build while holding a build slot, as /work/bin/hil-build does (at most two builds at once).
+# Build while holding a build slot, as /work/bin/hil-build does (slots 1..3).
 build() {
   if [[ -d /work/bin && -x /work/bin/hil-build ]]; then
     while :; do
-      for s in 1 2; do
+      for s in 1 2 3; do
         exec 9>/tmp/hil-build-slot$s
         if flock -n 9; then
           nice -n 5 cmake --build "$bd" -j2 --target "${build_targets[@]}"

@@ -81,25 +81,33 @@ TEST(Cia402, DeviceTransitionsFromTheControlwordTable) {
 
 TEST(Cia402, MasterWalksTowardItsGoal) {
   using S = DriveState;
-  // Device and master in a closed loop: the master's controlword drives the device's table.
-  auto walk = [](S start, S goal) {
+  // Device and master in a closed loop: the master's controlword drives the device's table. A
+  // fault reset is sent only while `reset` is requested.
+  auto walk = [](S start, S goal, bool reset) {
     S s = start;
     std::uint16_t cw = 0;
     for (int i = 0; i < 10 && s != goal; ++i) {
-      const auto next_cw = controlword_toward(s, goal, cw);
+      const auto next_cw = reset && s == S::fault ? fault_reset_controlword(cw) : controlword_toward(s, goal);
       const bool edge = (next_cw & 0x80) && !(cw & 0x80);
       cw = next_cw;
       s = next_state(s, cw, edge, false);
     }
     return s;
   };
-  for (auto start : {S::switch_on_disabled, S::ready_to_switch_on, S::switched_on, S::quick_stop_active, S::fault}) {
-    EXPECT_EQ(walk(start, S::operation_enabled), S::operation_enabled) << hil::to_string(start);
-    EXPECT_EQ(walk(start, S::switch_on_disabled), S::switch_on_disabled) << hil::to_string(start);
+  for (auto start : {S::switch_on_disabled, S::ready_to_switch_on, S::switched_on, S::quick_stop_active}) {
+    EXPECT_EQ(walk(start, S::operation_enabled, false), S::operation_enabled) << hil::to_string(start);
+    EXPECT_EQ(walk(start, S::switch_on_disabled, false), S::switch_on_disabled) << hil::to_string(start);
   }
-  EXPECT_EQ(walk(S::operation_enabled, S::quick_stop_active), S::quick_stop_active);
-  EXPECT_EQ(controlword_toward(S::fault, S::operation_enabled, 0x0080), 0x0000) << "bit 7 low first";
-  EXPECT_EQ(controlword_toward(S::fault, S::operation_enabled, 0x0000), 0x0080) << "then the rising edge";
+  EXPECT_EQ(walk(S::operation_enabled, S::quick_stop_active, false), S::quick_stop_active);
+  // A fault stays latched whatever the goal until a reset is requested.
+  for (auto goal : {S::operation_enabled, S::switch_on_disabled, S::quick_stop_active}) {
+    EXPECT_EQ(walk(S::fault, goal, false), S::fault) << hil::to_string(goal);
+    EXPECT_EQ(controlword_toward(S::fault, goal), 0x0000) << "disable voltage, never bit 7";
+    EXPECT_EQ(controlword_toward(S::fault_reaction_active, goal), 0x0000);
+  }
+  EXPECT_EQ(walk(S::fault, S::switch_on_disabled, true), S::switch_on_disabled) << "15 on the requested reset";
+  EXPECT_EQ(fault_reset_controlword(0x0080), 0x0000) << "bit 7 low first";
+  EXPECT_EQ(fault_reset_controlword(0x0000), 0x0080) << "then the rising edge";
 }
 
 TEST(Cia402, ErrorCodesAndCategory) {

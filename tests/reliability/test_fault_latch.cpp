@@ -237,4 +237,6 @@ INSTANTIATE_TEST_SUITE_P(EveryTransport, FaultLatch,
                                            Transport{"canopen", [] { return std::make_unique<CanopenRig>(); }},
                                            Transport{"modbus", [] { return std::make_unique<ModbusRig>(); }},
                                            Transport{"stepdir", [] { return std::make_unique<StepDirRig>(); }}),
-                         [](const ::testing::TestParamInfo<Transport>& info) { return std::string(info.param.name); });
+                         [](const ::testing::TestParamInfo<Transport>& param_info) {
+                           return std::string(param_info.param.name);
+                         });

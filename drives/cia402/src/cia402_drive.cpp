@@ -134,6 +134,10 @@ void Cia402Drive::read(const CycleTime& cycle) {
     }
   }
   if (state == DriveState::fault || state == DriveState::fault_reaction_active) {
+    // Latched: the drive is switched off and stays off, even if it leaves Fault by itself, until
+    // a fault reset is requested; then the program enables it again.
+    fault_latched_ = true;
+    goal_ = DriveState::switch_on_disabled;
     auto code = static_cast<std::uint16_t>(img.get_int(k_error, 0));
     if (code == 0) code = emcy_code_;
     if (!feedback_.fault || feedback_.fault.code.value() != code)
@@ -144,7 +148,7 @@ void Cia402Drive::read(const CycleTime& cycle) {
     set_fault(make_error_code(MotionFault::drive_lost),
               fmt::format("node {}: no process data for {} ms (SYNC or PDO lost)", node_,
                           std::chrono::duration_cast<std::chrono::milliseconds>(feedback_.age).count()));
-  } else if (feedback_.fault && state != DriveState::fault) {
+  } else if (feedback_.fault && !fault_latched_) {
     feedback_.fault = {};
   }
   const auto mode_display = static_cast<Mode>(img.get_int(k_mode_display, 0));
@@ -169,7 +173,9 @@ void Cia402Drive::read(const CycleTime& cycle) {
 void Cia402Drive::write(const CycleTime& cycle, const DriveCommand& command) {
   auto& img = network_.master().image(node_);
   const auto state = raw_state_;
-  std::uint16_t cwv = controlword_toward(state, goal_, controlword_);
+  const bool faulted = state == DriveState::fault || state == DriveState::fault_reaction_active;
+  std::uint16_t cwv =
+      reset_pending_ && faulted ? fault_reset_controlword(controlword_) : controlword_toward(state, goal_);
   if (heartbeat_lost_) cwv = cw::cmd_disable_voltage;
   Mode mode = command.mode == CommandMode::velocity ? Mode::cyclic_sync_velocity : Mode::cyclic_sync_position;
   std::int64_t target = command.position_inc;
@@ -266,6 +272,7 @@ bool Cia402Drive::request(DriveRequest r) {
       return true;
     case DriveRequest::fault_reset:
       reset_pending_ = true;
+      fault_latched_ = false;
       reset_deadline_.reset();
       heartbeat_lost_ = false;
       emcy_code_ = 0;

@@ -150,6 +150,13 @@ void ModbusDrive::read(const CycleTime& cycle) {
   }
   feedback_.state = drive_state_;
   if (drive_state_ == DriveState::fault || drive_state_ == DriveState::fault_reaction_active) {
+    // Latched: the drive is switched off and stays off, even if it leaves its fault state by
+    // itself, until a fault reset is requested; then the program enables it again. (While a
+    // requested reset is under way the drive may still show the fault for a few exchanges.)
+    if (!reset_pending_) {
+      drive_fault_latched_ = true;
+      target_ = modbus::PowerTarget::disabled;
+    }
     const auto code = static_cast<std::uint32_t>(field_value(FieldRole::fault_code));
     if (feedback_.fault.code != modbus::make_drive_fault_code(code)) {
       feedback_.fault.code = modbus::make_drive_fault_code(code);
@@ -157,7 +164,7 @@ void ModbusDrive::read(const CycleTime& cycle) {
       feedback_.fault.text = fmt::format("drive fault 0x{:04X} {}({}); fault_reset acknowledges it", code,
                                          text.empty() ? std::string{} : text + " ", name_);
     }
-  } else if (feedback_.fault) {
+  } else if (feedback_.fault && !drive_fault_latched_) {
     feedback_.fault = {};
   }
 }
@@ -224,6 +231,7 @@ bool ModbusDrive::request(DriveRequest r) {
       link_reset_armed_ = link_fault_ != modbus::ModbusError::none && local_link_.connected;
       clear_link_fault_if_reset();
       target_ = modbus::PowerTarget::disabled;  // a reset never re-enables by itself
+      drive_fault_latched_ = false;
       reset_pending_ = true;
       reset_start_seq_ = local_image_.seq;
       return true;

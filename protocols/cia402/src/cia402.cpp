@@ -147,11 +147,12 @@ DriveState next_state(DriveState s, std::uint16_t c, bool fault_reset_edge, bool
   return s;
 }
 
-std::uint16_t controlword_toward(DriveState s, DriveState goal, std::uint16_t previous) noexcept {
-  if (s == DriveState::fault || s == DriveState::fault_reaction_active) {
-    if (s == DriveState::fault_reaction_active) return cw::cmd_disable_voltage;
-    return (previous & cw::fault_reset) ? cw::cmd_disable_voltage : cw::cmd_fault_reset;
-  }
+std::uint16_t fault_reset_controlword(std::uint16_t previous) noexcept {
+  return (previous & cw::fault_reset) ? cw::cmd_disable_voltage : cw::cmd_fault_reset;
+}
+
+std::uint16_t controlword_toward(DriveState s, DriveState goal) noexcept {
+  if (s == DriveState::fault || s == DriveState::fault_reaction_active) return cw::cmd_disable_voltage;
   if (goal == DriveState::switch_on_disabled) return cw::cmd_disable_voltage;
   if (goal == DriveState::quick_stop_active) {
     if (s == DriveState::operation_enabled || s == DriveState::quick_stop_active) return cw::cmd_quick_stop;

@@ -94,7 +94,7 @@ std::uint16_t make_control_word(const Profile& p, DriveState current, PowerTarge
   const DriveState goal = target == PowerTarget::enabled      ? DriveState::operation_enabled
                           : target == PowerTarget::quick_stop ? DriveState::quick_stop_active
                                                               : DriveState::switch_on_disabled;
-  return cia402::controlword_toward(current, goal, 0);
+  return cia402::controlword_toward(current, goal);
 }
 
 std::uint16_t make_status_word(const Profile& p, DriveState s, bool referenced, bool target_reached) noexcept {

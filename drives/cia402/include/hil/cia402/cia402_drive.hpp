@@ -84,6 +84,7 @@ class Cia402Drive final : public Drive {
   std::optional<TimePoint> last_feedback_;
   DriveState raw_state_ = DriveState::not_ready;  ///< from the statusword, before reset masking
   bool reset_pending_ = false;
+  bool fault_latched_ = false;  ///< the drive reported a fault: disabled and reported until fault_reset
   std::optional<TimePoint> reset_deadline_;
   // pp set-point handshake: the move whose set-point is being handed over, and how far.
   enum class SetPoint : std::uint8_t { waiting, raised, acknowledged };

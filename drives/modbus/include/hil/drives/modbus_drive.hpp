@@ -135,6 +135,7 @@ class ModbusDrive final : public Drive {
   bool link_reset_armed_ = false;  ///< fault_reset given while connected; clears at the next fresh image
   modbus::PowerTarget target_ = modbus::PowerTarget::disabled;
   bool reset_pending_ = false;
+  bool drive_fault_latched_ = false;  ///< the drive reported a fault: switched off and reported until fault_reset
   std::uint64_t reset_start_seq_ = 0;
   DriveState drive_state_ = DriveState::not_ready;  ///< from the status word (without link fault)
   enum class Homing : std::uint8_t { idle, selecting, started };

@@ -83,8 +83,12 @@ inline constexpr std::uint16_t state_mask = 0x006F;
                                     bool quick_stop_stays) noexcept;
 
 /// Master side: the controlword (state bits only) that moves a drive in `s` one transition
-/// toward `goal` (operation_enabled, switch_on_disabled or quick_stop_active). For a fault
-/// it alternates: `previous` without bit 7 -> 0x0000, then 0x0080 (a rising edge).
-[[nodiscard]] std::uint16_t controlword_toward(DriveState s, DriveState goal, std::uint16_t previous) noexcept;
+/// toward `goal` (operation_enabled, switch_on_disabled or quick_stop_active). A drive in Fault
+/// or Fault Reaction Active gets Disable Voltage (0x0000) whatever the goal: a fault stays latched
+/// until the master is asked for a reset, which then sends fault_reset_controlword().
+[[nodiscard]] std::uint16_t controlword_toward(DriveState s, DriveState goal) noexcept;
+/// Master side, only while a fault reset was requested: bit 7 low first (`previous` has it
+/// high -> 0x0000), then 0x0080, the rising edge of transition 15.
+[[nodiscard]] std::uint16_t fault_reset_controlword(std::uint16_t previous) noexcept;
 
 }  // namespace hil::cia402
