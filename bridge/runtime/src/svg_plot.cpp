@@ -27,13 +27,13 @@ void PlotRecorder::on_start(const Scenario& scenario, const Machine& machine) {
     p.slave_name = c->spec->slave;
     p.master_name = c->spec->source_kind == MasterSource::time ? "time" : c->spec->master;
     p.slave_units = machine.axes()[c->slave].spec->units;
-    // (assign(1, 's'): GCC 12 reports a false -Wrestrict for `= "s"` here, GCC bug 105329)
-    if (c->master_axis)
-      p.master_units = machine.axes()[*c->master_axis].spec->units;
-    else
-      p.master_units.assign(1, 's');
+    // Built apart and moved in: g++ 12 warns (-Wrestrict, a false positive) on assigning a short
+    // literal to a member string here.
+    std::string master_units(c->spec->source_kind == MasterSource::time ? "s" : "");
+    if (c->master_axis) master_units = machine.axes()[*c->master_axis].spec->units;
     for (const auto& m : scenario.masters)
-      if (m.name == c->spec->master) p.master_units = m.units;
+      if (m.name == c->spec->master) master_units = m.units;
+    p.master_units = std::move(master_units);
     data_.couplings.push_back(std::move(p));
   }
 }
