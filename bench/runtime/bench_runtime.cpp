@@ -6,22 +6,11 @@
 
 #include <fmt/format.h>
 
-#include "hil/mocks/sim_drive.hpp"
+#include "hil/mocks/sim_transport.hpp"
 #include "hil/runtime/runner.hpp"
 #include "hil/runtime/scenario_loader.hpp"
 
 namespace {
-
-class SimFactory : public hil::TransportFactory {
- public:
-  std::expected<hil::DrivePtr, hil::ConfigError> make_drive(const std::string& axis, const YAML::Node& node,
-                                                            hil::RunEnvironment& env) override {
-    auto config = hil::mocks::parse_sim_drive_config(node, hil::yaml::Where{env.source_file, "drive"});
-    if (!config) return std::unexpected(config.error());
-    config->name = axis;
-    return std::make_unique<hil::mocks::SimDrive>(std::move(*config));
-  }
-};
 
 std::string scenario_text(int axes, bool moving) {
   std::string s = "duration: 1s\nmachine:\n  axes:\n";
@@ -46,7 +35,7 @@ void run_axes(benchmark::State& state, bool moving) {
     return;
   }
   hil::TransportRegistry registry;
-  registry.add("sim", [] { return std::make_unique<SimFactory>(); });
+  registry.add("sim", [] { return hil::mocks::make_sim_transport(); });
   std::uint64_t cycles = 0;
   for (auto _ : state) {
     auto r = hil::runtime::run_scenario(*scenario, registry, hil::runtime::RunOptions{});

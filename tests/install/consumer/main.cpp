@@ -43,6 +43,6 @@ int main(int argc, char** argv) {
   }
   std::printf("consumer: sim drive %s, modbus profile %s, device profile %s with %zu parameters\n",
               std::string(hil::to_string(drive.feedback().state)).c_str(), modbus->name.c_str(),
-              (*device)->name.c_str(), (*device)->parameters.size());
+              (*device)->device.c_str(), (*device)->all_refs().size());
   return 0;
 }
