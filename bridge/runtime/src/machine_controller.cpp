@@ -5,6 +5,7 @@
 
 #include <fmt/format.h>
 
+#include "hil/controllers/elg/elg_controller.hpp"
 #include "hil/controllers/io_stimulus.hpp"
 #include "hil/controllers/parameter_controller.hpp"
 #include "hil/runtime/condition.hpp"
@@ -26,6 +27,7 @@ std::optional<ConfigError> Machine::build_controller(const Scenario& scenario,
   controllers::ControllerRegistry builtin;
   if (registry == nullptr) {
     builtin = controllers::builtin_controllers();
+    controllers::elg::register_elg(builtin);
     registry = &builtin;
   }
   auto created = registry->create(spec);

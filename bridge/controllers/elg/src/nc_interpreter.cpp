@@ -134,6 +134,9 @@ NcState NcInterpreter::step(double now_s, NcMachine& machine) {
   const NcBlock& b = program_.blocks[pc_];
   in_block_ = false;
   if (std::find(b.m.begin(), b.m.end(), 30) != b.m.end() || std::find(b.m.begin(), b.m.end(), 2) != b.m.end()) {
+    // End of program: as on the System 3, M02/M30 also stop the spindle.
+    if (spindle_dir_ != 0) machine.spindle(spindle_rpm_, 0);
+    spindle_dir_ = 0;
     state_ = NcState::ended;
     return state_;
   }

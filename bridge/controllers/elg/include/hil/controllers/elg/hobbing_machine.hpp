@@ -56,6 +56,8 @@ class HobbingMachine final : public NcMachine {
   [[nodiscard]] const Gearbox& gearbox() const noexcept { return gearbox_; }
   [[nodiscard]] const NcInterpreter& nc() const noexcept { return nc_; }
   [[nodiscard]] const PcInterface& pc() const noexcept { return pc_; }
+  /// The PC's signals the NC does not drive (FE monitoring, RESET): set before step().
+  Signals& pc_signals() noexcept { return pc_.signals(); }
   /// Gaps cut so far (Gearing ON events).
   [[nodiscard]] int couplings() const noexcept { return couplings_; }
   /// The ELG's C set value and its deviation from the linkage equation evaluated in degrees on

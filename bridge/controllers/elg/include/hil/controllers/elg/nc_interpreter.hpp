@@ -4,7 +4,7 @@
 // A block: R operations, G modes, S and spindle M03/M04/M05, its other M functions (output at the
 // start of the block), then its motion, then its dwell (G04 F seconds); the next block starts when
 // motion is in position and the dwell has elapsed; the `@` jump is taken at the end of the block.
-// M02 and M30 end the program.
+// M02 and M30 end the program and stop the spindle.
 
 #include <array>
 #include <cstdint>

@@ -1,0 +1,55 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+// The SINUMERIK ELG as a controller of the runtime (docs/elg.md): a scenario's
+//   controller: {device: sinumerik-elg, parameters: md.tape, programs: [hobbing.nc]}
+// configures the gearbox from the MD/SD tape the serial link reads (MD 396* pulses, MD 5002
+// units, MD 5020/5021 axis declaration, MD 252* contour factor, MD 166/169/170 limits, MD 280*
+// speeds), declares the axes B (hob), C (table), Z (axial feed), X (radial infeed) and, with
+// MD 5021 naming a tangential axis, Y, and runs the System 3 NC program on them
+// (HobbingMachine). ELG alarms are device errors of the profile's catalogue "alarms".
+//
+// Options (controller block keys, as text): `start: auto | input` (NC start at power-up, the
+// default, or on the rising edge of the input `cycle_start`), `m_functions: "50=gearing_on,..."`
+// (the PC program's M assignment; default in pc_interface.hpp), `r_parameters:
+// "z0=20,z2=21,ud_z=12,ud_y=13,toler=40"`, `index: grid | relative`.
+//
+// I/O image (names): inputs `cycle_start`, `fe_monitor` (A67.1), `reset` (ELG-RESET);
+// outputs `computed` (E66.6), `coupled` (E66.7), `tooth_gap_reached` (E66.3), `elg_alarm`
+// (E65.5), `contact_closed` (FE relay), `program_running`; marker byte `tooth` (TOOTH NO.).
+
+#include <memory>
+
+#include "hil/controllers/controller.hpp"
+#include "hil/controllers/controller_registry.hpp"
+#include "hil/controllers/elg/hobbing_machine.hpp"
+#include "hil/controllers/parameter_file.hpp"
+
+namespace hil::controllers::elg {
+
+class ElgController final : public Controller {
+ public:
+  ElgController(LoadedParameters parameters, HobbingConfig config, NcProgram program, std::vector<ControllerAxis> axes,
+                bool auto_start, Duration cycle);
+
+  [[nodiscard]] const HobbingMachine* machine() const noexcept { return machine_.get(); }
+
+ protected:
+  void on_cycle(const CycleTime& cycle) noexcept override;
+  [[nodiscard]] std::optional<DeviceErrorCode> map_axis_fault(std::size_t axis, const hil::Fault& fault,
+                                                              const motion::AxisStatus& status) const noexcept override;
+
+ private:
+  HobbingConfig config_;
+  NcProgram program_;
+  std::unique_ptr<HobbingMachine> machine_;
+  bool auto_start_ = true;
+  bool enabled_ = false;
+  bool started_ = false;
+  std::size_t alarms_reported_ = 0;
+  const profiles::ErrorCatalogue* alarms_ = nullptr;
+};
+
+/// Registers `sinumerik-elg` in `registry`.
+void register_elg(ControllerRegistry& registry);
+
+}  // namespace hil::controllers::elg

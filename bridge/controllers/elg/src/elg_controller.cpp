@@ -1,0 +1,305 @@
+// SPDX-License-Identifier: MIT
+#include "hil/controllers/elg/elg_controller.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+
+#include "hil/core/text_file.hpp"
+#include "hil/profiles/validation.hpp"
+
+namespace hil::controllers::elg {
+namespace {
+
+constexpr std::uint32_t out_byte = 0, in_byte = 0;
+
+/// Reads a number (value or default) from the loaded tape; a missing one is a ConfigError.
+struct Tape {
+  const LoadedParameters& p;
+  profiles::Scope scope;
+  explicit Tape(const LoadedParameters& loaded) : p(loaded), scope(*loaded.profile, &loaded.set, {}) {}
+  std::expected<std::int64_t, ConfigError> integer(const std::string& name) const {
+    const auto v = scope.lookup(name);
+    if (v) {
+      if (const auto* d = std::get_if<long double>(&*v)) return static_cast<std::int64_t>(std::llround(*d));
+    }
+    return std::unexpected(ConfigError{p.file.string(), 0, 0, name, name + " has no value in the tape or profile"});
+  }
+};
+
+/// Measuring-system unit of the linear axes in nm from MD 5002 bits 2-0 (12.1).
+std::optional<std::int64_t> linear_ms_nm(std::int64_t code) {
+  switch (code) {
+    case 0:
+      return 5000;  // 0.5e-2 mm
+    case 1:
+      return 12700;  // 0.5e-3 inch
+    case 2:
+      return 500;  // 0.5e-3 mm (released)
+    case 3:
+      return 1270;  // 0.5e-4 inch
+    case 4:
+      return 50;  // 0.5e-4 mm
+    case 5:
+      return 127;  // 0.5e-5 inch
+    case 6:
+      return 200;  // 2e-4 mm
+    case 7:
+      return 508;  // 2e-5 inch
+    default:
+      return std::nullopt;
+  }
+}
+
+ControllerAxis make_axis(const std::string& name, const std::string& units, motion::Ratio ratio, double velocity,
+                         double window) {
+  ControllerAxis a;
+  a.name = name;
+  a.units = units;
+  auto& c = a.config;
+  c.name = name;
+  c.inc_per_unit = ratio;
+  // [I] The ELG's MD list has no acceleration: a 0.1 s ramp to the maximum speed (docs/elg.md).
+  c.limits = {velocity, velocity * 10.0, velocity * 200.0};
+  c.quick_stop_deceleration = velocity * 20.0;
+  c.jog_velocity = velocity / 10.0;
+  c.following_error.static_window = window;
+  c.standstill_window = window;
+  c.in_position_window = window / 2.0;
+  c.in_position_timeout = std::chrono::seconds(2);
+  return a;
+}
+
+std::expected<std::map<std::string, int>, std::string> parse_pairs(const std::string& text) {
+  std::map<std::string, int> out;
+  std::size_t pos = 0;
+  while (pos < text.size()) {
+    const auto comma = text.find(',', pos);
+    const std::string item = text.substr(pos, comma == std::string::npos ? std::string::npos : comma - pos);
+    pos = comma == std::string::npos ? text.size() : comma + 1;
+    const auto eq = item.find('=');
+    if (eq == std::string::npos) return std::unexpected("'" + item + "' is not KEY=VALUE");
+    auto trim = [](std::string s) {
+      s.erase(0, s.find_first_not_of(' '));
+      s.erase(s.find_last_not_of(' ') + 1);
+      return s;
+    };
+    const std::string key = trim(item.substr(0, eq)), value = trim(item.substr(eq + 1));
+    if (key.empty() || value.empty()) return std::unexpected("'" + item + "' is not KEY=VALUE");
+    int number = -1;
+    const auto [end, ec] = std::from_chars(value.data(), value.data() + value.size(), number);
+    if (ec != std::errc{} || end != value.data() + value.size())
+      return std::unexpected("'" + item + "': VALUE must be a number");
+    out[key] = number;
+  }
+  return out;
+}
+
+}  // namespace
+
+ElgController::ElgController(LoadedParameters parameters, HobbingConfig config, NcProgram program,
+                             std::vector<ControllerAxis> axes, bool auto_start, Duration cycle)
+    : Controller(parameters.profile, std::move(parameters.set), IoLayout{{1, 1, 2, 0}}, cycle),
+      config_(std::move(config)),
+      program_(std::move(program)),
+      auto_start_(auto_start) {
+  for (auto& a : axes) add_axis(std::move(a));
+  alarms_ = catalogue("alarms");
+  (void)io().name_bit("cycle_start", {IoArea::input, in_byte, 0});
+  (void)io().name_bit("fe_monitor", {IoArea::input, in_byte, 1});
+  (void)io().name_bit("reset", {IoArea::input, in_byte, 2});
+  (void)io().name_bit("computed", {IoArea::output, out_byte, 0});
+  (void)io().name_bit("coupled", {IoArea::output, out_byte, 1});
+  (void)io().name_bit("tooth_gap_reached", {IoArea::output, out_byte, 2});
+  (void)io().name_bit("elg_alarm", {IoArea::output, out_byte, 3});
+  (void)io().name_bit("contact_closed", {IoArea::output, out_byte, 4});
+  (void)io().name_bit("program_running", {IoArea::output, out_byte, 5});
+  (void)io().name_byte("tooth", ByteAddress{IoArea::marker, 1});
+}
+
+void ElgController::on_cycle(const CycleTime& cycle) noexcept {
+  if (!machine_) {
+    HobbingAxes axes{&axis(0), &axis(1), &axis(2), &axis(3), axis_count() > 4 ? &axis(4) : nullptr};
+    machine_ = std::make_unique<HobbingMachine>(program_, config_, axes);
+  }
+  // Power-up: enable the axes (the PC's controller enables), then start the NC program.
+  if (!enabled_) {
+    for (std::size_t i = 0; i < axis_count(); ++i) (void)axis(i).enable();
+    enabled_ = true;
+  }
+  bool ready = true;
+  for (std::size_t i = 0; i < axis_count(); ++i) {
+    const auto s = axis(i).status().state;
+    ready = ready && s != motion::AxisState::disabled && s != motion::AxisState::enabling;
+  }
+  if (!started_ && ready && (auto_start_ || io().rising(BitAddress{IoArea::input, in_byte, 0}))) {
+    machine_->start();
+    started_ = true;
+  }
+  machine_->pc_signals().fe_monitor = io().get(BitAddress{IoArea::input, in_byte, 1});
+  machine_->pc_signals().reset = io().get(BitAddress{IoArea::input, in_byte, 2});
+  machine_->step(cycle);
+
+  const auto& gb = machine_->gearbox();
+  const auto& st = gb.status();
+  io().set(BitAddress{IoArea::output, out_byte, 0}, st.computed);
+  io().set(BitAddress{IoArea::output, out_byte, 1}, st.coupled);
+  io().set(BitAddress{IoArea::output, out_byte, 2}, st.tooth_gap_reached);
+  io().set(BitAddress{IoArea::output, out_byte, 3}, st.alarm);
+  io().set(BitAddress{IoArea::output, out_byte, 4}, st.contact_closed);
+  io().set(BitAddress{IoArea::output, out_byte, 5}, machine_->nc().state() == NcState::running && started_);
+  io().set(ByteAddress{IoArea::marker, 1}, static_cast<std::uint8_t>(std::clamp(st.tooth, 0, 255)));
+
+  // ELG alarms become device errors of the catalogue "alarms" on the table axis C.
+  const auto& alarms = gb.alarms();
+  if (alarms_ != nullptr) {
+    for (std::size_t i = alarms_reported_; i < alarms.size(); ++i) {
+      raise(*alarms_, static_cast<int>(alarms[i]), cycle.now, 1);
+    }
+    if (alarms.size() < alarms_reported_) {
+      // RESET with the coupling off cleared them in the ELG.
+      for (int code : {2000, 2201, 2202, 2203, 2205, 2206, 2207, 2214, 2215}) {
+        if (!gb.has_alarm(static_cast<Alarm>(code))) (void)clear_error(*alarms_, code, 1);
+      }
+    }
+  }
+  alarms_reported_ = alarms.size();
+  if (!machine_->error().empty() && alarms_ != nullptr && !errors().any()) {
+    // A command the motion core refused (the NC asked for more than an axis allows): stop.
+    raise(*alarms_, 2207, cycle.now, 1, machine_->error());
+  }
+}
+
+std::optional<DeviceErrorCode> ElgController::map_axis_fault(std::size_t, const hil::Fault&,
+                                                             const motion::AxisStatus&) const noexcept {
+  return std::nullopt;  // the ELG numbers no motion-core fault; they stay motion:N
+}
+
+void register_elg(ControllerRegistry& registry) {
+  registry.add(
+      "sinumerik-elg", [](const ControllerSpec& spec) -> std::expected<std::unique_ptr<Controller>, ConfigError> {
+        auto fail = [&](std::string key, std::string message) {
+          return std::unexpected(ConfigError{spec.file, spec.line, 0, "controller." + key, std::move(message)});
+        };
+        if (spec.programs.size() != 1) return fail("programs", "the ELG runs one NC program: programs: [FILE.nc]");
+        HobbingConfig config;
+        bool auto_start = true;
+        for (const auto& [key, value] : spec.options) {
+          if (key == "start") {
+            if (value != "auto" && value != "input") return fail(key, "start: auto or input");
+            auto_start = value == "auto";
+          } else if (key == "index") {
+            if (value != "grid" && value != "relative") return fail(key, "index: grid or relative");
+            config.gearbox.index_on_grid = value == "grid";
+          } else if (key == "m_functions") {
+            MFunctionMap map;
+            std::size_t pos = 0;
+            while (pos < value.size()) {
+              const auto comma = value.find(',', pos);
+              const std::string item = value.substr(pos, comma == std::string::npos ? std::string::npos : comma - pos);
+              pos = comma == std::string::npos ? value.size() : comma + 1;
+              const auto eq = item.find('=');
+              int m = -1;
+              if (eq != std::string::npos) std::from_chars(item.data(), item.data() + eq, m);
+              const auto command = eq == std::string::npos ? std::nullopt : parse_elg_command(item.substr(eq + 1));
+              if (m < 0 || m > 99 || !command)
+                return fail(key, "'" + item +
+                                     "': write M=COMMAND (commands: gearing_on, gearing_off, compute, "
+                                     "single_pitch_on, single_pitch_off, index_plus, index_minus, "
+                                     "fe_monitor_on, fe_monitor_off, hae_on, hae_off)");
+              map[m] = *command;
+            }
+            config.m_functions = std::move(map);
+          } else if (key == "r_parameters") {
+            auto pairs = parse_pairs(value);
+            if (!pairs) return fail(key, pairs.error());
+            for (const auto& [name, r] : *pairs) {
+              if (r < 0 || r > 999) return fail(key, name + ": an R number 0..999");
+              if (name == "z0")
+                config.r_z0 = r;
+              else if (name == "z2")
+                config.r_z2 = r;
+              else if (name == "ud_z")
+                config.r_ud_z = r;
+              else if (name == "ud_y")
+                config.r_ud_y = r;
+              else if (name == "toler")
+                config.r_toler = r;
+              else
+                return fail(key, "'" + name + "': known are z0, z2, ud_z, ud_y, toler");
+            }
+          } else {
+            return fail(key,
+                        "unknown controller key '" + key +
+                            "' (known: device, parameters, programs, cycle, start, index, m_functions, r_parameters)");
+          }
+        }
+        auto loaded = load_parameter_file(spec.device, spec.parameters);
+        if (!loaded) return std::unexpected(loaded.error());
+        const Tape tape(*loaded);
+        auto get = [&](const std::string& name) { return tape.integer(name); };
+        auto guide = get("MD5020.guide_axis"), drive = get("MD5020.drive_axis"), axial = get("MD5021.axial_z"),
+             tangential = get("MD5021.tangential_y"), units = get("MD5002.measuring_unit");
+        for (auto* v : {&guide, &drive, &axial, &tangential, &units})
+          if (!*v) return std::unexpected(v->error());
+        auto& md = config.gearbox.md;
+        md.axis_declaration_ok = *guide >= 1 && *guide <= 4 && *drive >= 1 && *drive <= 4 && *guide != *drive;
+        const std::int64_t guide_i = std::clamp<std::int64_t>(*guide, 1, 4) - 1;
+        const std::int64_t drive_i = std::clamp<std::int64_t>(*drive, 1, 4) - 1;
+        auto per_axis = [&](const char* md_name, std::int64_t index) {
+          return get(fmt::format("{}{}", md_name, index));
+        };
+        auto n00 = per_axis("MD396", guide_i), n02 = per_axis("MD396", drive_i), kv = per_axis("MD252", drive_i),
+             vb = per_axis("MD280", guide_i), vc = per_axis("MD280", drive_i);
+        auto md166 = get("MD166"), md169 = get("MD169"), md170 = get("MD170");
+        for (auto* v : {&n00, &n02, &kv, &vb, &vc, &md166, &md169, &md170})
+          if (!*v) return std::unexpected(v->error());
+        const auto ms = linear_ms_nm(*units);
+        if (!ms) return fail("parameters", "MD 5002 measuring unit code out of range");
+        if (*n00 <= 0 || *n02 <= 0)
+          return std::unexpected(ConfigError{loaded->file.string(), 0, 0, "MD396*",
+                                             "MD 396* of the guide and drive axes must be > 0 pulses"});
+        md.n00 = *n00;
+        md.n02 = *n02;
+        md.ms_z_nm = md.ms_y_nm = *ms;
+        md.contour_factor_c = static_cast<std::int32_t>(*kv);
+        md.hae_speed = static_cast<std::int32_t>(*md170);
+        config.gearbox.gearing_on_tolerance = *md166;
+        config.gearbox.fe_tolerance_min = *md169;
+        const Duration cycle = spec.cycle.value_or(std::chrono::milliseconds(2));
+        config.gearbox.cycle_s = hil::to_seconds(cycle);
+
+        // Speeds: MD 280* in 1000 units/min, 1 unit = 2 MS (12.1).
+        auto rotary_speed = [](std::int64_t md280, std::int64_t n) {
+          return static_cast<double>(md280) * 1000.0 * 180.0 / static_cast<double>(n) / 60.0;
+        };
+        const double linear_speed = 10000.0 * 1000.0 * 2.0 * static_cast<double>(*ms) * 1e-6 / 60.0;
+        std::vector<ControllerAxis> axes;
+        axes.push_back(make_axis("B", "deg", rotary_counts_per_degree(md.n00), rotary_speed(*vb, md.n00), 5.0));
+        axes.push_back(make_axis("C", "deg", rotary_counts_per_degree(md.n02), rotary_speed(*vc, md.n02), 1.0));
+        axes.push_back(make_axis("Z", "mm", linear_counts_per_mm(*ms), linear_speed, 1.0));
+        axes.push_back(make_axis("X", "mm", linear_counts_per_mm(*ms), linear_speed, 1.0));
+        if (*tangential != 0) axes.push_back(make_axis("Y", "mm", linear_counts_per_mm(*ms), linear_speed, 1.0));
+        for (auto& a : axes) {
+          if (auto v = motion::validate(a.config); !v)
+            return std::unexpected(ConfigError{loaded->file.string(), 0, 0, "axis " + a.name, v.error()});
+        }
+        if (*axial == 0)
+          axes[2].warnings.push_back("MD 5021 declares no axial axis: the Z term of the linkage is off (ud_z unused)");
+        config.rapid_mm_per_s = linear_speed;
+
+        auto text = read_text_file(spec.programs.front());
+        if (!text) return fail("programs", text.error());
+        auto program = parse_nc_program(*text);
+        if (!program) {
+          return std::unexpected(
+              ConfigError{spec.programs.front().string(), program.error().line, 0, "program", program.error().what()});
+        }
+        return std::make_unique<ElgController>(std::move(*loaded), std::move(config), std::move(*program),
+                                               std::move(axes), auto_start, cycle);
+      });
+}
+
+}  // namespace hil::controllers::elg
