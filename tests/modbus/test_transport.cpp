@@ -134,7 +134,7 @@ TEST(ModbusTransport, ConfigErrorsNameTheKey) {
       {"{transport: modbus, profile: cia402, host: h, plant: {kv: 1}}", "axes.x.drive.plant", "in-process"},
       {"{transport: modbus, profile: cia402, unit: 300}", "axes.x.drive.unit", "0..255"},
       {"{transport: modbus, profile: cia402, response_timeout: -1}", "axes.x.drive.response_timeout", "seconds"},
-      {"{transport: modbus, profile: cia402, plant: {kv: -1}}", "axes.x.drive.plant.kv", "> 0"},
+      {"{transport: modbus, profile: cia402, plant: {kv: -1}}", "axes.x.drive.plant.kv", "must be in (0, 10000]"},
   };
   for (const auto& c : cases) {
     SCOPED_TRACE(c.yaml);

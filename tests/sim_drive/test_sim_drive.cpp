@@ -150,7 +150,7 @@ TEST(SimDriveConfig, EveryNumericKeyHasItsDocumentedRange) {
   };
   const Case cases[] = {
       {"kv: 1e9", "drive.kv: must be in (0, 10000] 1/s, got 1000000000"},
-      {"kv: .nan", "drive.kv: must be in (0, 10000] 1/s, got nan"},
+      {"kv: .nan", "drive.kv: expected a number (a finite number)"},
       {"max_velocity: 1e13", "drive.max_velocity: must be in (0, 1e+12] inc/s, got 10000000000000"},
       {"velocity_lag: 11", "drive.velocity_lag: must be in [0, 10] s, got 11"},
       {"feedforward: 1.5", "drive.feedforward: must be in [0, 1], got 1.5"},

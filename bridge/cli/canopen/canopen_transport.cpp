@@ -156,7 +156,8 @@ class CanopenTransport final : public TransportFactory {
                          where.key(node["heartbeat_timeout"] ? "heartbeat_timeout" : "heartbeat"),
                          fmt::format("heartbeat_timeout {} ms must be longer than heartbeat {} ms (one late "
                                      "heartbeat must not fault the drive)",
-                                     hb_timeout->count(), hb->count())));
+                                     std::chrono::duration_cast<std::chrono::milliseconds>(*hb_timeout).count(),
+                                     std::chrono::duration_cast<std::chrono::milliseconds>(*hb).count())));
     // The master's own heartbeat, watched by the node (0x1016:1): a drive whose master dies stops.
     auto master_hb_timeout =
         ms("master_heartbeat_timeout", 3 * std::chrono::duration_cast<std::chrono::milliseconds>(*master_hb).count());

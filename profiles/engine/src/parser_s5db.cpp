@@ -10,6 +10,7 @@
 #include <fmt/format.h>
 
 #include <cctype>
+#include <algorithm>
 #include <charconv>
 #include <map>
 
@@ -59,6 +60,10 @@ class S5DbParser final : public ParameterSetParser {
             {line.number, "", "", std::string(trim(line.text)), "n: KF|KH|KY|DH|DD = value", std::move(msg)});
       };
       std::string_view t = trim(line.text);
+      // The header line of a STEP 5 DB listing ("DB1"): the DB number travels with the transfer.
+      if ((t.starts_with("DB") || t.starts_with("db")) && t.size() > 2 &&
+          std::all_of(t.begin() + 2, t.end(), [](char c) { return std::isdigit(static_cast<unsigned char>(c)) != 0; }))
+        continue;
       if (t.starts_with("DW") || t.starts_with("dw")) t.remove_prefix(2);
       t = trim(t);
       std::size_t i = 0;
