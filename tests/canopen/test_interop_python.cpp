@@ -81,3 +81,32 @@ TEST(CanopenInterop, PythonCanSdoRightAfterConnectIsAnsweredFiftyTimes) {
     return 0;
   });
 }
+
+// A python-canopen-style master (python-can only, the BaseNode402 sequence) against
+// `hilbridge emulate cia402 --eds` (a process) over our hub: NMT start/stop/start with TPDOs
+// after every start, the walk to Operation Enabled, a profile-position move.
+TEST(CanopenInterop, BaseNode402SequenceAgainstEmulateWithTheUsersEds) {
+  if (!can::test::python_has("can.interfaces.socketcand"))
+    GTEST_SKIP()
+        << "/usr/bin/python3 with python3-can's socketcand interface is not installed (apt install python3-can)";
+  can::socketcand::ServerOptions options;
+  options.join_hold = std::chrono::milliseconds(50);
+  can::test::Hub hub(options);
+  const std::string bus = "socketcand://127.0.0.1:" + std::to_string(hub.port()) + "/can0";
+  can::test::Subprocess emulate({HIL_BIN, "emulate", "cia402", "--bus", bus, "--node", "5", "--eds",
+                                 std::string(HIL_TEST_SOURCE_DIR) + "/corpus/v01_no_603f.eds", "--duration", "100"});
+  ASSERT_TRUE(emulate.started());
+  ASSERT_TRUE(emulate.wait_for_line("node 5 up", std::chrono::seconds(30))) << emulate.output();
+  EXPECT_NE(emulate.output().find("from " + std::string(HIL_TEST_SOURCE_DIR) + "/corpus/v01_no_603f.eds"),
+            std::string::npos)
+      << emulate.output();
+  can::test::Subprocess py({"/usr/bin/python3", std::string(HIL_TEST_SOURCE_DIR) + "/basenode402_peer.py", "127.0.0.1",
+                            std::to_string(hub.port()), "can0", "5"});
+  ASSERT_TRUE(py.started());
+  EXPECT_EQ(py.wait(std::chrono::seconds(120)), 0) << py.output() << "\nemulate:\n" << emulate.output();
+  const auto out = py.output();
+  for (const char* line : {"OK statusword TPDO after the first start", "OK no TPDOs while stopped",
+                           "OK statusword TPDO after the second start", "OK OPERATION ENABLED",
+                           "OK modes of operation display = 1 (PP)", "target reached", "DONE"})
+    EXPECT_NE(out.find(line), std::string::npos) << line << "\n" << out;
+}
