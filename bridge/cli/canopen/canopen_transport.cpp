@@ -289,6 +289,22 @@ class CanopenTransport final : public TransportFactory {
                          fmt::format("node {} on {} is already used by axis '{}'", nid, url, bus.axis_of_node[nid])));
     bus.axis_of_node[nid] = axis_name;
 
+    cia402::AxisOptions ao;
+    ao.node = static_cast<canopen::NodeId>(nid);
+    ao.heartbeat_producer = *hb;
+    ao.heartbeat_consumer = *hb_timeout;
+    ao.check_identity = check_identity->value_or(true);
+    ao.master_node = wanted.node_id;
+    ao.master_heartbeat_timeout = *master_hb_timeout;
+    ao.setup = setup;
+    ao.mapping = std::move(mapping);
+    auto axis = cia402::make_axis_config(*eds, ao);
+    if (!axis) {
+      // Point at the scenario key (eds:, or the override); the text names the EDS file.
+      const char* key = node["rpdo"] ? "rpdo" : node["tpdo"] ? "tpdo" : "eds";
+      return std::unexpected(yaml::error_at(node[key] ? node[key] : node, where.key(key),
+                                            fmt::format("{}: {}", axis.error().file, axis.error().message)));
+    }
     mocks::Cia402Node* sim = nullptr;
     if (simulated) {
       mocks::Cia402NodeOptions o;
@@ -312,30 +328,12 @@ class CanopenTransport final : public TransportFactory {
       o.eds_text = eds_text;  // the user's drive, rehearsed: its OD, PDO defaults and identity
       o.eds_name = eds_name;
       if (!eds_text.empty()) {
-        if (auto check = mocks::load_node_eds(eds_text, eds_name, o.node); !check) {
-          auto e = check.error();
-          if (e.key.empty()) e.key = where.key("eds").path;
-          return std::unexpected(e);
-        }
+        if (auto check = mocks::load_node_eds(eds_text, eds_name, o.node); !check)
+          return std::unexpected(yaml::error_at(node["eds"], where.key("eds"), check.error().describe()));
       }
       bus.node_channels.push_back(bus.vbus->attach(fmt::format("node{}", nid), po));
       bus.nodes.push_back(std::make_unique<mocks::Cia402Node>(*bus.node_channels.back(), o));
       sim = bus.nodes.back().get();
-    }
-    cia402::AxisOptions ao;
-    ao.node = static_cast<canopen::NodeId>(nid);
-    ao.heartbeat_producer = *hb;
-    ao.heartbeat_consumer = *hb_timeout;
-    ao.check_identity = check_identity->value_or(true);
-    ao.master_node = wanted.node_id;
-    ao.master_heartbeat_timeout = *master_hb_timeout;
-    ao.setup = setup;
-    ao.mapping = std::move(mapping);
-    auto axis = cia402::make_axis_config(*eds, ao);
-    if (!axis) {
-      auto e = axis.error();
-      e.key = where.key(node["rpdo"] || node["tpdo"] ? (node["rpdo"] ? "rpdo" : "tpdo") : "eds").path;
-      return std::unexpected(e);
     }
     for (const auto& w : eds->warnings) bus.lines.push_back(fmt::format("node {}: EDS warning: {}", nid, w.describe()));
     for (const auto& d : axis->layout.decisions) bus.lines.push_back(fmt::format("node {}: {}", nid, d));
