@@ -446,7 +446,8 @@ std::expected<void, std::string> Clm14Station::from_json(const nlohmann::json& j
       c["variables"] = j.contains("variables") ? j.at("variables") : nlohmann::json::object();
       if (j.contains("axis_enabled")) c["axis_enabled"] = j.at("axis_enabled");
     }
-    for (const auto& [k, v] : c.value("program", nlohmann::json::object()).items())
+    const nlohmann::json program_j = c.contains("program") ? c.at("program") : nlohmann::json::object();
+    for (const auto& [k, v] : program_j.items())
       if (!all_digits(k) || to_int(k) >= program_lines)
         return std::unexpected(fmt::format("program: bad line number '{}'", k));
     if (auto r = clm_.from_json(c); !r) return std::unexpected(r.error());
