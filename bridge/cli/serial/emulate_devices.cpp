@@ -5,6 +5,7 @@
 #include <expected>
 #include <asio/io_context.hpp>
 
+#include <cstdio>
 #include <fstream>
 #include <optional>
 #include <sstream>
@@ -14,6 +15,7 @@
 #include "hil/core/text_file.hpp"
 #include "hil/controllers/clm14/motion_axis_port.hpp"
 #include "hil/core/clock.hpp"
+#include "hil/controllers/s5/ip247_module_endpoint.hpp"
 #include "hil/mocks/legacy/clm14_line.hpp"
 #include "hil/mocks/legacy/elg_tape_endpoint.hpp"
 #include "hil/mocks/legacy/s5_block_endpoint.hpp"
@@ -278,17 +280,43 @@ void register_emulators(Context& ctx) {
                    "reads; no overwrite, delete = SEND of one word 0000 to DW0)"
                  : "Emulated WF 725/726 data codes behind 3964R/RK512 (DB number = data code; code 1 = MD1..MD50)");
     add_emulate_options(*cmd, *so);
-    cmd->callback([&ctx, so, dev] {
+    auto switches = std::make_shared<std::vector<std::string>>();
+    auto cycle_ms = std::make_shared<double>(1.0);
+    if (dev == "ip247") {
+      cmd->add_option("--switch", *switches,
+                      "Mock switch of an axis, actuated as a function of the pulses output: "
+                      "AXIS:limit-start:PULSES, AXIS:limit-end:PULSES or AXIS:cam:FROM:TO; repeatable");
+      cmd->add_option("--cycle-ms", *cycle_ms, "Module cycle in ms")->capture_default_str();
+    }
+    cmd->callback([&ctx, so, dev, switches, cycle_ms] {
       std::unique_ptr<lg::DbPolicy> policy;
+      hil::controllers::s5::Ip247ModulePolicy* module = nullptr;
       if (dev == "ip247") {
-        auto check = hil::serial::load_ip247_check();
-        if (!check) {
-          fmt::print(stderr, "error: device profile: {}\n", check.error());
-          ctx.exit_code = 2;
-          return;
+        // A running module: 3 axes on the IP247 step planner, DX1..3 = axis interface DBs
+        // (docs/ip247.md), DB n = MD and VP images.
+        hil::controllers::s5::Ip247ModuleOptions mo;
+        mo.cycle = std::chrono::nanoseconds(static_cast<std::int64_t>(*cycle_ms * 1e6));
+        for (const auto& sw : *switches) {
+          int axis = 0;
+          long long a = 0, b = 0;
+          char kind[16] = {};
+          const int n = std::sscanf(sw.c_str(), "%d:%15[a-z-]:%lld:%lld", &axis, kind, &a, &b);
+          const std::string k = kind;
+          if (n < 3 || axis < 1 || axis > 3 || (k == "cam" && n != 4) ||
+              (k != "cam" && k != "limit-start" && k != "limit-end") || mo.cycle.count() <= 0) {
+            fmt::print(stderr, "error: --switch '{}': expected AXIS:limit-start:P, AXIS:limit-end:P or AXIS:cam:A:B\n",
+                       sw);
+            ctx.exit_code = 2;
+            return;
+          }
+          auto& s = mo.switches[static_cast<std::size_t>(axis - 1)];
+          if (k == "cam") s.cam = std::pair<std::int64_t, std::int64_t>{a, b};
+          if (k == "limit-start") s.limit_start_at = a;
+          if (k == "limit-end") s.limit_end_at = a;
         }
-        policy = lg::make_ip247_policy(
-            [c = *check](std::uint8_t, const std::vector<std::uint16_t>& w) { return c(w).empty() ? 0 : 1; });
+        auto p = std::make_unique<hil::controllers::s5::Ip247ModulePolicy>(mo);
+        module = p.get();
+        policy = std::move(p);
       } else {
         auto check = hil::serial::load_wf725_check();
         if (!check) {
@@ -312,15 +340,28 @@ void register_emulators(Context& ctx) {
       const auto& state = *locked;
       if (auto text = read_file(state))
         if (auto r = ep.load_state(*text); !r) fmt::print(stderr, "warning: {}\n", r.error());
-      ctx.exit_code = serve(ep, *so, state, [](lg::Endpoint& e, const std::string& c) -> std::string {
+      if (module != nullptr) module->adopt(ep.store());  // battery-backed MD and programs
+      ctx.exit_code = serve(ep, *so, state, [module](lg::Endpoint& e, const std::string& c) -> std::string {
         auto& s = static_cast<lg::S5BlockEndpoint&>(e);
+        if (c == "axes" && module != nullptr) {
+          std::string out;
+          for (int n = 1; n <= 3; ++n) {
+            const auto& a = module->axis(n);
+            out += fmt::format("axis {}: BA{} actual {} remaining {} M{} attributes {:02X} error {}\n", n, a.ba(),
+                               a.actual(), a.remaining(), a.m_output(), a.attributes(), a.error());
+          }
+          return out;
+        }
+        if (c == "rejection" && module != nullptr) {
+          return module->last_rejection().empty() ? std::string("none") : module->last_rejection();
+        }
         if (c == "dbs") {
           std::string out;
           for (const auto& [n, w] : s.store()) out += fmt::format("DB{} {} words\n", n, w.size());
           return out.empty() ? std::string("no DBs") : out;
         }
         if (c == "error") return s.last_error().empty() ? std::string("no error") : s.last_error();
-        return "error: unknown command (dbs, error, quit)";
+        return "error: unknown command (dbs, error, axes, rejection, quit)";
       });
     });
   }
