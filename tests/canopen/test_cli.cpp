@@ -94,3 +94,52 @@ TEST_F(CliFixture, NmtAndScan) {
   std::tie(rc, out) = cli({"nmt", "start", "--bus", bus(), "128"});
   EXPECT_EQ(rc, 2) << out;
 }
+
+namespace {
+std::pair<int, std::string> run_cli(std::vector<std::string> args) {
+  args.insert(args.begin(), HIL_BIN);
+  can::test::Subprocess p(args);
+  const int rc = p.wait(std::chrono::seconds(30));
+  return {rc, p.output()};
+}
+}  // namespace
+
+// `hilbridge eds check` on every file of the regression corpus: drives are usable (exit 0) and
+// say what the master will do; the I/O module is refused naming the missing CiA 402 objects.
+TEST(EdsCli, CheckEveryCorpusFile) {
+  const std::string dir = HIL_CANOPEN_CORPUS_DIR;
+  for (const auto* file :
+       {"v01_no_603f.eds", "v02_fixed_pdo.eds", "v03_pp_hm_only.eds", "v04_four_entries.eds", "v05_16bit.eds",
+        "v06_manufacturer.eds", "v07_pdo_params.dcf", "v08_nodeid_cobs.eds", "v09_compact.eds", "v10_mixed_case.eds",
+        "v11_comments.eds", "v12_one_pdo.eds", "v13_guarding_only.eds"}) {
+    auto [rc, out] = run_cli({"eds", "check", dir + "/" + file});
+    EXPECT_EQ(rc, 0) << file << "\n" << out;
+    EXPECT_NE(out.find("identity: vendor 0x00000100 'Corpus Motion'"), std::string::npos) << out;
+    EXPECT_NE(out.find("axis (node"), std::string::npos) << out;
+    EXPECT_NE(out.find("TPDO1"), std::string::npos) << out;
+  }
+  auto [rc, out] = run_cli({"eds", "check", dir + "/v01_no_603f.eds", "--mode", "csp"});
+  EXPECT_NE(out.find("0x603F error code: not in the EDS, left out"), std::string::npos) << out;
+  EXPECT_NE(out.find("warnings: 0"), std::string::npos) << out;
+  std::tie(rc, out) = run_cli({"eds", "check", dir + "/v03_pp_hm_only.eds"});
+  EXPECT_NE(out.find("axis (node 1, mode csp): not usable: 0x6502 supported drive modes = 0x00000021 (PP, HM)"),
+            std::string::npos)
+      << out;
+  std::tie(rc, out) = run_cli({"eds", "check", dir + "/v07_pdo_params.dcf"});
+  EXPECT_NE(out.find("file: " + dir + "/v07_pdo_params.dcf (DCF)"), std::string::npos) << out;
+  EXPECT_NE(out.find("axis (node 3, mode csp): ok"), std::string::npos) << "the DCF's NodeID\n" << out;
+  std::tie(rc, out) = run_cli({"eds", "check", dir + "/v11_comments.eds"});
+  EXPECT_EQ(rc, 0) << out;
+  EXPECT_NE(out.find("v11_comments.eds:"), std::string::npos) << "warnings name the file\n" << out;
+  std::tie(rc, out) = run_cli({"eds", "check", dir + "/v14_io_module.eds"});
+  EXPECT_EQ(rc, 1) << out;
+  EXPECT_NE(out.find("the EDS lacks 0x6040 controlword, 0x6041 statusword"), std::string::npos) << out;
+  std::tie(rc, out) = run_cli({"eds", "show", dir + "/v06_manufacturer.eds", "--mode", "pp", "--json"});
+  EXPECT_EQ(rc, 0) << out;
+  EXPECT_NE(out.find("\"usable_as_axis\": true"), std::string::npos) << out;
+  EXPECT_NE(out.find("\"pp\": {\"ok\": true"), std::string::npos) << out;
+  std::tie(rc, out) = run_cli({"eds", "show", dir + "/v06_manufacturer.eds"});
+  EXPECT_NE(out.find("0x2000:0   Motor type"), std::string::npos) << out;
+  std::tie(rc, out) = run_cli({"eds", "check", "/nonexistent.eds"});
+  EXPECT_EQ(rc, 2) << out;
+}

@@ -64,7 +64,7 @@ struct Rig {
     EXPECT_TRUE(eds);
     cia402::AxisOptions ao;
     ao.node = kNode;
-    ao.profile_objects = setup == cia402::OperatingSetup::pp;
+    ao.setup = setup;
     network->master().add_node(cia402::make_axis_node_config(*eds, ao));
     cia402::DriveOptions dopt;
     dopt.setup = setup;

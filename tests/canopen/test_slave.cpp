@@ -127,6 +127,26 @@ TEST_F(SlaveFixture, EventDrivenTpdoHonoursInhibitTime) {
   EXPECT_EQ(step(1ms), Strings{"284#000002000000"});
 }
 
+TEST_F(SlaveFixture, TpdosGoOutAgainEveryTimeTheNodeEntersOperational) {
+  // Event-driven TPDOs (the EDS defaults) are sent on every entry to Operational, changed or not,
+  // as CANopenNode does; python-canopen's BaseNode402 waits for them after each NMT start.
+  send({"000#0100"});
+  rec.take();
+  EXPECT_EQ(step(1ms), (Strings{"184#000000", "284#000000000000"})) << "first start";
+  EXPECT_TRUE(step(5ms).empty());
+  send({"000#0200"});
+  EXPECT_TRUE(step(5ms).empty()) << "stopped: no PDOs";
+  send({"000#0100"});
+  EXPECT_EQ(step(1ms), (Strings{"184#000000", "284#000000000000"})) << "second start, nothing changed";
+  send({"000#8000", "000#0100"});
+  EXPECT_EQ(step(1ms), (Strings{"184#000000", "284#000000000000"})) << "pre-operational, then start";
+  // SYNC TPDOs count from the first SYNC after the new start.
+  send({"604#2300180184010080", "604#2F00180202000000", "604#2300180184010000", "000#0200", "000#0100"});
+  rec.take();
+  EXPECT_TRUE(send({"080#"}).empty());
+  EXPECT_EQ(send({"080#"}), Strings{"184#000000"});
+}
+
 TEST_F(SlaveFixture, RpdoWritesMappedObjectsAndLengthErrorsRaiseEmcy) {
   send({"000#0100"});
   rec.take();

@@ -87,6 +87,9 @@ TEST(ProfileCli, EncodeAndDecode) {
   EXPECT_TRUE(contains(r.out, "# K A112 03000 10.0$88"));
   r = hilbridge("profile decode clm14 A112 \"03000 10.0\"");
   EXPECT_TRUE(contains(r.out, "= 3000 10"));
+  r = hilbridge("profile encode clm14 A125 -00000.000");
+  ASSERT_EQ(r.status, 0) << r.out;
+  EXPECT_TRUE(contains(r.out, "# K A125 -00000.000$7B")) << "the manual's telegram keeps the minus: " << r.out;
   r = hilbridge("profile encode clm14 A106 60000");
   EXPECT_EQ(r.status, 1) << "out of range is reported";
   EXPECT_TRUE(contains(r.out, "range 0.1..50000"));

@@ -59,6 +59,20 @@ TEST(DecimalText, ClmTemplates) {
   }
 }
 
+// The CLM1.4 keeps the sign of a zero in a signed field: the manual's Ax25 default is
+// "# K A125 -00000.000$7B" (digest clm14.md §2.5), and it must be written back that way.
+TEST(DecimalText, SignedZeroKeepsItsSign) {
+  auto d = hp::parse_decimal_text("-00000.000", fmt("+5.3"));
+  ASSERT_TRUE(d);
+  EXPECT_EQ(*d, dec("0")) << "still zero in comparisons";
+  EXPECT_EQ(hp::make_decimal_text(*d, fmt("+5.3")).value(), "-00000.000");
+  EXPECT_EQ(hp::make_decimal_text(*d, fmt("+6.3")).value(), "-000000.000") << "kept across a rescale";
+  EXPECT_EQ(hp::make_decimal_text(*hp::parse_decimal_text("+00000.000", fmt("+5.3")), fmt("+5.3")).value(),
+            "+00000.000");
+  EXPECT_EQ(hp::make_decimal_text(*hp::parse_decimal("-0"), fmt("+5.3")).value(), "-00000.000");
+  EXPECT_EQ(hp::make_decimal_text(*hp::parse_decimal("-0"), fmt("4.1")).value(), "0000.0") << "unsigned: no sign";
+}
+
 TEST(DecimalText, RejectsWhatDoesNotFit) {
   using K = hp::CodecError::Kind;
   EXPECT_EQ(hp::make_decimal_text(dec("1234567"), fmt("+6.3")).error().kind, K::out_of_range);

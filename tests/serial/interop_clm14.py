@@ -48,7 +48,7 @@ def run_8n1():
         def ask(req: bytes) -> bytes:
             port.write(req)
             return port.read_until(b"\n")
-        check("empty line 0000", ask(telegram("? N0000")), b"# N0000 NOP   $40\r\n")
+        check("empty line 0000", ask(telegram("? N0000")), b"# N0000 NOP  $60\r\n")
         check("manual checksum example C0", ask(b"# N0101 AEA Q1.00.3 1 $C0\r\n"), b"Y\r\n")
         check("read back 0101", ask(telegram("? N0101")), b"# N0101 AEA Q1.00.3 1 $C0\r\n")
         check("B002 default (E4)", ask(telegram("? K B002")), b"# K B002 019200 0 1 8 1$E4\r\n")
@@ -76,7 +76,7 @@ def run_7e1():
         port.write(req)
         raw = port.read_until(bytes([even(0x0A)]))
         check("7E1 every reply byte has even parity", all(bin(b).count("1") % 2 == 0 for b in raw), True)
-        check("7E1 reply content", bytes(b & 0x7F for b in raw), b"# N0000 NOP   $40\r\n")
+        check("7E1 reply content", bytes(b & 0x7F for b in raw), b"# N0000 NOP  $60\r\n")
         bad = bytearray(req)
         bad[3] ^= 0x80  # one character with wrong parity
         port.write(bytes(bad))

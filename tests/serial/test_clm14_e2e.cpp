@@ -179,7 +179,7 @@ TEST(Clm14EndToEnd, ParityErrorOnTheWayIsReportedByTheDeviceAndRetried) {
   EXPECT_EQ(r.error().device_error, 2);
   EXPECT_EQ(r.error().code, SerialError::format_error);
   EXPECT_NE(r.error().message.find("RS Format Error"), std::string::npos) << r.error().message;
-  EXPECT_EQ(rig.line.station(0).program_line(6), "NOP   ") << "nothing half-written";
+  EXPECT_EQ(rig.line.station(0).program_line(6), "NOP  ") << "nothing half-written";
 }
 
 TEST(Clm14EndToEnd, ParityErrorInTheReplyIsDetectedByTheClient) {

@@ -31,8 +31,8 @@ std::string err(int code, char station = ' ') {
 
 TEST(Clm14Emulator, EmptyProgramLineAsInTheManual) {
   Clm14Station s(0, data());
-  // digest §2.4: "?␣N0000␣" of an empty line -> "#␣N0000␣NOP␣␣␣" (checksum 40)
-  EXPECT_EQ(ask(s, '?', "N0000"), "# N0000 NOP   $40\r\n");
+  // An empty line reads back as "NOP" + 2 spaces, like the manual's "#5N0123␣NOP␣␣$45" (§9.2)
+  EXPECT_EQ(ask(s, '?', "N0000"), "# N0000 NOP  $60\r\n");
 }
 
 TEST(Clm14Emulator, ProgramWriteConfirmAndReadBack) {
@@ -114,7 +114,7 @@ TEST(Clm14Emulator, Rs485StationsSilentOnWrongStationAndBroadcast) {
     return line.on_bytes(std::span(reinterpret_cast<const std::uint8_t*>(wire.data()), wire.size()), {});
   };
   // Only station 10 ('A') answers.
-  EXPECT_EQ(send(make_telegram('?', 'A', "N0000")), make_telegram('#', 'A', "N0000 NOP   "));
+  EXPECT_EQ(send(make_telegram('?', 'A', "N0000")), make_telegram('#', 'A', "N0000 NOP  "));
   EXPECT_EQ(send(make_telegram('?', 'W', "X  53 ")).substr(0, 6), "XW53 0");
   EXPECT_EQ(send(make_telegram('?', 'X', "N0000")), "") << "no station X: silence";
   EXPECT_EQ(send(":5\r\n"), ":500\r\n");
@@ -149,14 +149,14 @@ TEST(Clm14Emulator, Rs485ResponseDelayFromB005HoldsTheAnswerInOrder) {
   EXPECT_EQ(line.station(0).response_delay(), milliseconds(0));
 
   const auto t1 = t0 + milliseconds(100);
-  const std::string late = make_telegram('#', '2', "N0000 NOP   ");
+  const std::string late = make_telegram('#', '2', "N0000 NOP  ");
   EXPECT_EQ(send(make_telegram('?', '2', "N0000"), t1), "") << "held for 50 ms";
   // Station 1 answers at once by itself, but never overtakes the answer already on hold.
   EXPECT_EQ(send(make_telegram('?', '1', "N0000"), t1 + milliseconds(10)), "");
   EXPECT_EQ(line.next_deadline(), t1 + milliseconds(50));
-  EXPECT_EQ(line.on_idle(t1 + milliseconds(50)), late + make_telegram('#', '1', "N0000 NOP   "));
+  EXPECT_EQ(line.on_idle(t1 + milliseconds(50)), late + make_telegram('#', '1', "N0000 NOP  "));
   EXPECT_EQ(line.next_deadline(), hil::TimePoint::max());
-  EXPECT_EQ(send(make_telegram('?', '1', "N0000"), t1 + milliseconds(60)), make_telegram('#', '1', "N0000 NOP   "));
+  EXPECT_EQ(send(make_telegram('?', '1', "N0000"), t1 + milliseconds(60)), make_telegram('#', '1', "N0000 NOP  "));
 }
 
 TEST(Clm14Emulator, ParityErrorInATelegramIsAFormatError) {
@@ -164,7 +164,7 @@ TEST(Clm14Emulator, ParityErrorInATelegramIsAFormatError) {
   const std::string first = "# N0001 ";
   (void)line.on_bytes(std::span(reinterpret_cast<const std::uint8_t*>(first.data()), first.size()), {});
   (void)line.on_line_error(hil::serial::LineError::parity, {});
-  const std::string rest = "NOP   $00\r\n";
+  const std::string rest = "NOP  $00\r\n";
   EXPECT_EQ(line.on_bytes(std::span(reinterpret_cast<const std::uint8_t*>(rest.data()), rest.size()), {}), err(2));
 }
 

@@ -26,7 +26,7 @@ struct HubOptions {
   long latency_us = 0;
   std::size_t max_clients = 32;
   bool error_frames = false;
-  long join_grace_ms = 50;
+  long join_hold_ms = 50;
 };
 
 /// "HOST:PORT" or "[V6]:PORT" -> endpoint, or an error sentence.
@@ -104,7 +104,7 @@ int run_hub(const HubOptions& o) {
   }
   can::socketcand::ServerOptions server_options;
   server_options.max_clients = o.max_clients;
-  server_options.raw_mode_grace = std::chrono::milliseconds(o.join_grace_ms);
+  server_options.join_hold = std::chrono::milliseconds(o.join_hold_ms);
   can::socketcand::Server server(io.get_executor(), clock, opener, server_options);
   if (auto ec = server.listen(*endpoint)) {
     fmt::print(stderr, "hilbridge can hub: cannot listen on {}: {} (another hub or socketcand on that port?)\n",
@@ -128,8 +128,8 @@ int run_hub(const HubOptions& o) {
   const auto& s = server.stats();
   fmt::print(
       "hilbridge can hub: stopped; clients {} (refused {}), frames from clients {}, to clients {}, dropped for slow "
-      "clients {}, dropped while joining {}, protocol errors {}\n",
-      s.accepted, s.refused, s.frames_from_clients, s.frames_to_clients, s.dropped_slow_client, s.dropped_during_grace,
+      "clients {}, held while joining (delivered) {}, protocol errors {}\n",
+      s.accepted, s.refused, s.frames_from_clients, s.frames_to_clients, s.dropped_slow_client, s.held_at_join,
       s.protocol_errors);
   return 0;
 }
@@ -153,9 +153,10 @@ void add_hub(CLI::App& can, Context& ctx) {
       ->check(CLI::Range(0L, 1'000'000L))
       ->capture_default_str();
   cmd->add_option("--max-clients", o->max_clients, "Refuse clients beyond this many")->capture_default_str();
-  cmd->add_option("--join-grace-ms", o->join_grace_ms,
-                  "Do not forward frames to a client for this long after it entered raw mode (python-can 4.1 "
-                  "fails to connect when a frame follows its `< ok >` in the same read); 0 = like socketcand")
+  cmd->add_option("--join-hold-ms,--join-grace-ms", o->join_hold_ms,
+                  "A client that entered raw mode gets every frame from then on; frames are queued (never "
+                  "dropped) until it sends its first element or this time has passed, because python-can 4.1 "
+                  "fails to connect when a frame follows its `< ok >` in the same read; 0 = like socketcand")
       ->check(CLI::Range(0L, 10'000L))
       ->capture_default_str();
   cmd->add_flag("--error-frames", o->error_frames, "Forward error frames to clients as `< error CLASS TIME >`");

@@ -20,6 +20,7 @@
 namespace hil::cli {
 namespace canopen_cli {
 void register_emulate_cia402(Context& ctx);
+void register_eds(Context& ctx);
 void register_canopen_transport(Context& ctx);
 }  // namespace canopen_cli
 
@@ -291,6 +292,7 @@ void register_canopen(Context& ctx) {
   register_nmt(ctx);
   register_scan(ctx);
   canopen_cli::register_emulate_cia402(ctx);
+  canopen_cli::register_eds(ctx);
   canopen_cli::register_canopen_transport(ctx);
 }
 

@@ -4,9 +4,11 @@
 // in-process virtual bus, deterministic on the run's clock; with `bus: vcan0` / `can0` /
 // `socketcand://...` the master talks to real nodes (real-time runs only). SYNC at the cycle period.
 #include <filesystem>
+#include <fstream>
 #include <map>
 #include <memory>
 #include <optional>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -92,6 +94,7 @@ struct Bus {
   std::vector<std::unique_ptr<can::Channel>> node_channels;
   std::vector<std::unique_ptr<mocks::Cia402Node>> nodes;
   std::map<int, std::string> axis_of_node;
+  std::vector<std::string> lines;  ///< EDS warnings and layout decisions, per node
   bool started = false;
 };
 
@@ -100,11 +103,27 @@ class CanopenTransport final : public TransportFactory {
   std::expected<DrivePtr, ConfigError> make_drive(const std::string& axis_name, const YAML::Node& node,
                                                   RunEnvironment& env) override {
     const yaml::Where where{env.source_file, env.drive_path(axis_name)};
-    if (auto k =
-            yaml::check_keys(node, where,
-                             {"transport", "node", "bus", "eds", "heartbeat", "heartbeat_timeout", "sdo_timeout", "kv",
-                              "max_velocity", "velocity_lag", "feedforward", "homing", "check_identity", "mode",
-                              "position_gain", "master_heartbeat", "master_heartbeat_timeout", "master_node"});
+    if (auto k = yaml::check_keys(node, where,
+                                  {"transport",
+                                   "node",
+                                   "bus",
+                                   "eds",
+                                   "heartbeat",
+                                   "heartbeat_timeout",
+                                   "sdo_timeout",
+                                   "kv",
+                                   "max_velocity",
+                                   "velocity_lag",
+                                   "feedforward",
+                                   "homing",
+                                   "check_identity",
+                                   "mode",
+                                   "position_gain",
+                                   "master_heartbeat",
+                                   "master_heartbeat_timeout",
+                                   "master_node",
+                                   "rpdo",
+                                   "tpdo"});
         !k)
       return std::unexpected(k.error());
     auto id = yaml::get_int(node, where, "node");
@@ -211,17 +230,58 @@ class CanopenTransport final : public TransportFactory {
     auto eds_path = yaml::get_string(node, where, "eds");
     if (!eds_path) return std::unexpected(eds_path.error());
     std::expected<canopen::DeviceDescription, ConfigError> eds;
+    std::string eds_text;
+    std::string eds_name = "hil_cia402_drive.eds";
     if (eds_path->has_value()) {
       fs::path p = **eds_path;
       if (p.is_relative() && !env.source_file.empty()) p = fs::path(env.source_file).parent_path() / p;
-      eds = canopen::load_eds(p, static_cast<canopen::NodeId>(nid));
+      eds_name = p.string();
+      std::ifstream in(p, std::ios::binary);
+      if (!in)
+        return std::unexpected(yaml::error_at(
+            node["eds"], where.key("eds"), fmt::format("cannot open the EDS/DCF file '{}': check the path", eds_name)));
+      std::ostringstream ss;
+      ss << in.rdbuf();
+      eds_text = ss.str();
+      eds = canopen::parse_eds(eds_text, eds_name, static_cast<canopen::NodeId>(nid));
     } else {
-      eds = canopen::parse_eds(mocks::cia402_node_eds(), "hil_cia402_drive.eds", static_cast<canopen::NodeId>(nid));
+      eds = canopen::parse_eds(mocks::cia402_node_eds(), eds_name, static_cast<canopen::NodeId>(nid));
     }
     if (!eds) {
       auto e = eds.error();
       if (e.key.empty()) e.key = where.key("eds").path;
       return std::unexpected(e);
+    }
+    // Explicit PDO mapping: `rpdo: [[0x6040, 0x607A], ...]`, entries "0xIIII" or "0xIIII:S".
+    cia402::LayoutOverride mapping;
+    for (const char* key : {"rpdo", "tpdo"}) {
+      const auto list = node[key];
+      if (!list) continue;
+      auto bad = [&](const YAML::Node& at, std::string msg) {
+        return std::unexpected(yaml::error_at(at, where.key(key), std::move(msg)));
+      };
+      if (!list.IsSequence())
+        return bad(list, fmt::format("expected a list of PDOs, each a list of objects: {}: [[0x6041, 0x6064]]", key));
+      std::vector<std::vector<canopen::PdoMappingEntry>> pdos;
+      for (const auto& pdo : list) {
+        if (!pdo.IsSequence()) return bad(pdo, "each PDO is a list of objects, e.g. [0x6041, \"0x6064:0\"]");
+        std::vector<canopen::PdoMappingEntry> entries;
+        for (const auto& obj : pdo) {
+          const auto text = obj.IsScalar() ? obj.Scalar() : std::string();
+          const auto colon = text.find(':');
+          const auto idx = canopen::eval_eds_integer(text.substr(0, colon), 0);
+          const auto sub = colon == std::string::npos ? std::optional<std::int64_t>(0)
+                                                      : canopen::eval_eds_integer(text.substr(colon + 1), 0);
+          if (!idx || !sub || *idx < 1 || *idx > 0xFFFF || *sub < 0 || *sub > 0xFF)
+            return bad(obj, fmt::format("'{}' is not an object: write 0xIIII or 0xIIII:S", text));
+          const auto* v = eds->od.find(static_cast<std::uint16_t>(*idx), static_cast<std::uint8_t>(*sub));
+          if (v == nullptr) return bad(obj, fmt::format("0x{:04X}:{} is not in {}", *idx, *sub, eds->file));
+          entries.push_back({static_cast<std::uint16_t>(*idx), static_cast<std::uint8_t>(*sub),
+                             static_cast<std::uint8_t>(8 * canopen::data_type_size(v->type))});
+        }
+        pdos.push_back(std::move(entries));
+      }
+      (std::string_view(key) == "rpdo" ? mapping.rpdo : mapping.tpdo) = std::move(pdos);
     }
 
     const BusMaster wanted{*sdo_timeout, *master_hb,
@@ -246,6 +306,22 @@ class CanopenTransport final : public TransportFactory {
                          fmt::format("node {} on {} is already used by axis '{}'", nid, url, bus.axis_of_node[nid])));
     bus.axis_of_node[nid] = axis_name;
 
+    cia402::AxisOptions ao;
+    ao.node = static_cast<canopen::NodeId>(nid);
+    ao.heartbeat_producer = *hb;
+    ao.heartbeat_consumer = *hb_timeout;
+    ao.check_identity = check_identity->value_or(true);
+    ao.master_node = wanted.node_id;
+    ao.master_heartbeat_timeout = *master_hb_timeout;
+    ao.setup = setup;
+    ao.mapping = std::move(mapping);
+    auto axis = cia402::make_axis_config(*eds, ao);
+    if (!axis) {
+      // Point at the scenario key (eds:, or the override); the text names the EDS file.
+      const char* key = node["rpdo"] ? "rpdo" : node["tpdo"] ? "tpdo" : "eds";
+      return std::unexpected(yaml::error_at(node[key] ? node[key] : node, where.key(key),
+                                            fmt::format("{}: {}", axis.error().file, axis.error().message)));
+    }
     mocks::Cia402Node* sim = nullptr;
     if (simulated) {
       mocks::Cia402NodeOptions o;
@@ -267,20 +343,21 @@ class CanopenTransport final : public TransportFactory {
       po.filters = mocks::predefined_filters(static_cast<canopen::NodeId>(nid));  // like the node's CAN controller
       if (wanted.node_id != 0)
         po.filters.filters.push_back(can::Filter::exact(0x700u + wanted.node_id));  // the master's heartbeat
+      o.eds_text = eds_text;  // the user's drive, rehearsed: its OD, PDO defaults and identity
+      o.eds_name = eds_name;
+      if (!eds_text.empty()) {
+        if (auto check = mocks::load_node_eds(eds_text, eds_name, o.node); !check)
+          return std::unexpected(yaml::error_at(node["eds"], where.key("eds"), check.error().describe()));
+      }
       bus.node_channels.push_back(bus.vbus->attach(fmt::format("node{}", nid), po));
       bus.nodes.push_back(std::make_unique<mocks::Cia402Node>(*bus.node_channels.back(), o));
       sim = bus.nodes.back().get();
     }
-    cia402::AxisOptions ao;
-    ao.node = static_cast<canopen::NodeId>(nid);
-    ao.heartbeat_producer = *hb;
-    ao.heartbeat_consumer = *hb_timeout;
-    ao.check_identity = check_identity->value_or(true);
-    ao.master_node = wanted.node_id;
-    ao.master_heartbeat_timeout = *master_hb_timeout;
-    ao.profile_objects = setup == cia402::OperatingSetup::pp;
-    bus.network->master().add_node(cia402::make_axis_node_config(*eds, ao));
+    for (const auto& w : eds->warnings) bus.lines.push_back(fmt::format("node {}: EDS warning: {}", nid, w.describe()));
+    for (const auto& d : axis->layout.decisions) bus.lines.push_back(fmt::format("node {}: {}", nid, d));
+    bus.network->master().add_node(std::move(axis->node));
     cia402::DriveOptions dopt;
+    dopt.layout = axis->layout;
     dopt.name = fmt::format("canopen:{}/{}", url, nid);
     dopt.homing = homing->value_or(true);
     dopt.setup = setup;
@@ -333,6 +410,7 @@ class CanopenTransport final : public TransportFactory {
           r.ok = false;
         }
       }
+      for (const auto& l : bus.lines) r.lines.push_back(fmt::format("canopen {}: {}", name, l));
       r.lines.push_back(fmt::format("canopen {}: {} of {} node(s) started{}, {} transmit error(s)", name, started,
                                     m.nodes().size(), bus.simulated ? " (simulated CiA 402 nodes)" : "",
                                     bus.network->stats().tx_errors));

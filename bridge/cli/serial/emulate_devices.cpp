@@ -3,6 +3,9 @@
 #include <fmt/format.h>
 
 #include <expected>
+#include <asio/io_context.hpp>
+
+#include <cstdio>
 #include <fstream>
 #include <optional>
 #include <sstream>
@@ -10,9 +13,14 @@
 #include "emulate.hpp"
 #include "hil/cli/context.hpp"
 #include "hil/core/text_file.hpp"
+#include "hil/controllers/clm14/motion_axis_port.hpp"
+#include "hil/core/clock.hpp"
+#include "hil/controllers/s5/ip247_module_endpoint.hpp"
 #include "hil/mocks/legacy/clm14_line.hpp"
 #include "hil/mocks/legacy/elg_tape_endpoint.hpp"
 #include "hil/mocks/legacy/s5_block_endpoint.hpp"
+#include "hil/runtime/machine.hpp"
+#include "hil/runtime/scenario_loader.hpp"
 #include "hil/serial/clm14/device_data.hpp"
 #include "hil/serial/file_lock.hpp"
 #include "hil/serial/profile_checks.hpp"
@@ -50,6 +58,35 @@ std::optional<std::string> read_file(const std::filesystem::path& p) {
   return *text;
 }
 
+/// Retrofit mode: the CLM's axes 1..4 are the axes of a machine file (a scenario with only
+/// `machine:`), each on its transport (CANopen, Modbus, step/dir, sim), driven once per NC cycle.
+struct Retrofit {
+  asio::io_context io;
+  SteadyClock clock;
+  hil::runtime::Scenario scenario;
+  std::unique_ptr<RunEnvironment> env;
+  std::optional<hil::runtime::Machine> machine;
+  std::vector<std::unique_ptr<hil::controllers::clm14::MotionAxisPort>> ports;
+};
+
+std::expected<std::unique_ptr<Retrofit>, std::string> make_retrofit(const std::string& file,
+                                                                    const TransportRegistry& registry) {
+  auto r = std::make_unique<Retrofit>();
+  auto sc = hil::runtime::load_scenario(file);
+  if (!sc) return std::unexpected(sc.error().describe());
+  r->scenario = std::move(*sc);
+  if (r->scenario.axes.empty() || r->scenario.axes.size() > 4)
+    return std::unexpected(fmt::format("{}: machine.axes: give 1 to 4 axes (CLM axes 1..4, in IU)", file));
+  r->env = std::make_unique<RunEnvironment>(
+      RunEnvironment{r->clock, false, &r->io, r->scenario.file, r->scenario.period, false, {}});
+  auto m = hil::runtime::Machine::build(r->scenario, registry, *r->env);
+  if (!m) return std::unexpected(m.error().describe());
+  r->machine.emplace(std::move(*m));
+  for (auto& a : r->machine->axes())
+    r->ports.push_back(std::make_unique<hil::controllers::clm14::MotionAxisPort>(*a.axis));
+  return r;
+}
+
 std::expected<lg::ClmMode, std::string> parse_mode(std::string_view s) {
   if (s == "parameter") return lg::ClmMode::parameter;
   if (s == "manual") return lg::ClmMode::manual;
@@ -66,6 +103,7 @@ void register_emulators(Context& ctx) {
     std::string mode = "manual";
     int stations = 0;
     int axes = 2;
+    std::string machine;
   };
   auto co = std::make_shared<ClmOpts>();
   auto* clm = ctx.emulate.add_subcommand(
@@ -81,11 +119,17 @@ void register_emulators(Context& ctx) {
   clm->add_option("--axes", co->axes, "Axes (A1xx..A4xx parameter blocks)")
       ->check(CLI::Range(1, 4))
       ->capture_default_str();
+  clm->add_option("--machine", co->machine,
+                  "Retrofit mode: a machine file (scenario with machine.axes, units = the CLM's IU) whose axes 1..4 "
+                  "are the CLM's axes on real-transport drives (canopen, modbus, stepdir, sim)")
+      ->check(CLI::ExistingFile);
   clm->footer(
-      "Console commands (stdin): 'mode parameter|manual|auto' changes the mode inputs of every station, 'status' "
-      "prints "
-      "mode and fault per station, 'quit' stops (state is saved).\n"
-      "Example: hilbridge emulate clm14 --pty --format 7E2 --mode parameter --stations 32");
+      "Console commands (stdin): 'mode parameter|manual|auto' changes the mode inputs of every station, "
+      "'input I1.00.0 1' sets an input bit, 'start' / 'stop' / 'clear' act like the Start input, Immediate Stop "
+      "and External Clear, 'status' prints mode, run state, fault and positions per station, 'quit' stops (state "
+      "is saved).\n"
+      "Examples: hilbridge emulate clm14 --pty --format 7E2 --mode parameter --stations 32\n"
+      "          hilbridge emulate clm14 --machine machine.yaml --port /dev/ttyUSB0   (retrofit mode)");
   clm->callback([&ctx, co] {
     auto mode = parse_mode(co->mode);
     if (!mode) {
@@ -99,7 +143,32 @@ void register_emulators(Context& ctx) {
       ctx.exit_code = 2;
       return;
     }
+    std::unique_ptr<Retrofit> retrofit;
+    if (!co->machine.empty()) {
+      if (co->stations > 1) {
+        fmt::print(stderr, "error: --machine drives one unit; use --stations 0 or 1\n");
+        ctx.exit_code = 2;
+        return;
+      }
+      auto r = make_retrofit(co->machine, ctx.transports);
+      if (!r) {
+        fmt::print(stderr, "error: --machine: {}\n", r.error());
+        ctx.exit_code = 2;
+        return;
+      }
+      retrofit = std::move(*r);
+      co->axes = std::max(co->axes, static_cast<int>(retrofit->ports.size()));
+    }
     lg::Clm14Line line(*data, co->stations, co->axes);
+    if (retrofit) {
+      std::array<hil::controllers::clm14::AxisPort*, 4> ports{};
+      for (std::size_t i = 0; i < retrofit->ports.size(); ++i) ports[i] = retrofit->ports[i].get();
+      auto* rf = retrofit.get();
+      line.station(0).use_axes(ports, [rf](const CycleTime& c) {
+        rf->io.poll();
+        rf->machine->cycle(c);
+      });
+    }
     const auto locked = resolve_state(co->e, "clm14");
     if (!locked) {
       fmt::print(stderr, "error: {}\n", locked.error());
@@ -120,19 +189,43 @@ void register_emulators(Context& ctx) {
         l.set_mode(*m);
         return "ok " + cmd;
       }
+      namespace cc = hil::controllers::clm14;
+      if (cmd.starts_with("input ")) {
+        std::istringstream in(cmd.substr(6));
+        std::string addr;
+        int v = -1;
+        in >> addr >> v;
+        auto b = cc::parse_bit(addr);
+        if (!b || b->byte.area != cc::Area::input || (v != 0 && v != 1))
+          return "error: input ADDRESS 0|1, e.g. input I1.00.0 1";
+        for (std::size_t i = 0; i < l.size(); ++i) l.station(i).controller().image().set_bit(*b, v == 1);
+        return "ok " + cmd;
+      }
+      if (cmd == "start" || cmd == "stop" || cmd == "clear") {
+        for (std::size_t i = 0; i < l.size(); ++i) {
+          auto& c = l.station(i).controller();
+          if (cmd == "start") (void)c.command_start();
+          if (cmd == "stop") c.command_stop();
+          if (cmd == "clear") c.command_clear();
+        }
+        return "ok " + cmd;
+      }
       if (cmd == "status") {
         std::string s;
         for (std::size_t i = 0; i < l.size(); ++i) {
           const auto& st = l.station(i);
-          s += fmt::format("{}station {} mode {} fault {:02X}", i ? "\n" : "", st.station(),
-                           st.mode() == lg::ClmMode::parameter ? "parameter"
-                           : st.mode() == lg::ClmMode::manual  ? "manual"
-                                                               : "auto",
-                           st.fault());
+          const auto& c = st.controller();
+          s += fmt::format("{}station {} mode {} run {} fault {:02X} line {:04d} pos {:.3f} {:.3f}", i ? "\n" : "",
+                           st.station(), cc::to_string(c.mode()),
+                           c.run_state() == cc::RunState::running   ? "running"
+                           : c.run_state() == cc::RunState::stopped ? "stopped"
+                                                                    : "idle",
+                           st.fault(), c.task(1).pc, c.position(1), c.position(2));
+          if (!c.error_message().empty()) s += " (" + c.error_message() + ")";
         }
         return s;
       }
-      return "error: unknown command (mode parameter|manual|auto, status, quit)";
+      return "error: unknown command (mode parameter|manual|auto, input ADDR 0|1, start, stop, clear, status, quit)";
     });
   });
 
@@ -187,17 +280,43 @@ void register_emulators(Context& ctx) {
                    "reads; no overwrite, delete = SEND of one word 0000 to DW0)"
                  : "Emulated WF 725/726 data codes behind 3964R/RK512 (DB number = data code; code 1 = MD1..MD50)");
     add_emulate_options(*cmd, *so);
-    cmd->callback([&ctx, so, dev] {
+    auto switches = std::make_shared<std::vector<std::string>>();
+    auto cycle_ms = std::make_shared<double>(1.0);
+    if (dev == "ip247") {
+      cmd->add_option("--switch", *switches,
+                      "Mock switch of an axis, actuated as a function of the pulses output: "
+                      "AXIS:limit-start:PULSES, AXIS:limit-end:PULSES or AXIS:cam:FROM:TO; repeatable");
+      cmd->add_option("--cycle-ms", *cycle_ms, "Module cycle in ms")->capture_default_str();
+    }
+    cmd->callback([&ctx, so, dev, switches, cycle_ms] {
       std::unique_ptr<lg::DbPolicy> policy;
+      hil::controllers::s5::Ip247ModulePolicy* module = nullptr;
       if (dev == "ip247") {
-        auto check = hil::serial::load_ip247_check();
-        if (!check) {
-          fmt::print(stderr, "error: device profile: {}\n", check.error());
-          ctx.exit_code = 2;
-          return;
+        // A running module: 3 axes on the IP247 step planner, DX1..3 = axis interface DBs
+        // (docs/ip247.md), DB n = MD and VP images.
+        hil::controllers::s5::Ip247ModuleOptions mo;
+        mo.cycle = std::chrono::nanoseconds(static_cast<std::int64_t>(*cycle_ms * 1e6));
+        for (const auto& sw : *switches) {
+          int axis = 0;
+          long long a = 0, b = 0;
+          char kind[16] = {};
+          const int n = std::sscanf(sw.c_str(), "%d:%15[a-z-]:%lld:%lld", &axis, kind, &a, &b);
+          const std::string k = kind;
+          if (n < 3 || axis < 1 || axis > 3 || (k == "cam" && n != 4) ||
+              (k != "cam" && k != "limit-start" && k != "limit-end") || mo.cycle.count() <= 0) {
+            fmt::print(stderr, "error: --switch '{}': expected AXIS:limit-start:P, AXIS:limit-end:P or AXIS:cam:A:B\n",
+                       sw);
+            ctx.exit_code = 2;
+            return;
+          }
+          auto& s = mo.switches[static_cast<std::size_t>(axis - 1)];
+          if (k == "cam") s.cam = std::pair<std::int64_t, std::int64_t>{a, b};
+          if (k == "limit-start") s.limit_start_at = a;
+          if (k == "limit-end") s.limit_end_at = a;
         }
-        policy = lg::make_ip247_policy(
-            [c = *check](std::uint8_t, const std::vector<std::uint16_t>& w) { return c(w).empty() ? 0 : 1; });
+        auto p = std::make_unique<hil::controllers::s5::Ip247ModulePolicy>(mo);
+        module = p.get();
+        policy = std::move(p);
       } else {
         auto check = hil::serial::load_wf725_check();
         if (!check) {
@@ -221,15 +340,28 @@ void register_emulators(Context& ctx) {
       const auto& state = *locked;
       if (auto text = read_file(state))
         if (auto r = ep.load_state(*text); !r) fmt::print(stderr, "warning: {}\n", r.error());
-      ctx.exit_code = serve(ep, *so, state, [](lg::Endpoint& e, const std::string& c) -> std::string {
+      if (module != nullptr) module->adopt(ep.store());  // battery-backed MD and programs
+      ctx.exit_code = serve(ep, *so, state, [module](lg::Endpoint& e, const std::string& c) -> std::string {
         auto& s = static_cast<lg::S5BlockEndpoint&>(e);
+        if (c == "axes" && module != nullptr) {
+          std::string out;
+          for (int n = 1; n <= 3; ++n) {
+            const auto& a = module->axis(n);
+            out += fmt::format("axis {}: BA{} actual {} remaining {} M{} attributes {:02X} error {}\n", n, a.ba(),
+                               a.actual(), a.remaining(), a.m_output(), a.attributes(), a.error());
+          }
+          return out;
+        }
+        if (c == "rejection" && module != nullptr) {
+          return module->last_rejection().empty() ? std::string("none") : module->last_rejection();
+        }
         if (c == "dbs") {
           std::string out;
           for (const auto& [n, w] : s.store()) out += fmt::format("DB{} {} words\n", n, w.size());
           return out.empty() ? std::string("no DBs") : out;
         }
         if (c == "error") return s.last_error().empty() ? std::string("no error") : s.last_error();
-        return "error: unknown command (dbs, error, quit)";
+        return "error: unknown command (dbs, error, axes, rejection, quit)";
       });
     });
   }

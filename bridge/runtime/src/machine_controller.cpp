@@ -5,6 +5,7 @@
 
 #include <fmt/format.h>
 
+#include "hil/controllers/clm14/runtime_controller.hpp"
 #include "hil/controllers/elg/elg_controller.hpp"
 #include "hil/controllers/io_stimulus.hpp"
 #include "hil/controllers/parameter_controller.hpp"
@@ -27,6 +28,7 @@ std::optional<ConfigError> Machine::build_controller(const Scenario& scenario,
   controllers::ControllerRegistry builtin;
   if (registry == nullptr) {
     builtin = controllers::builtin_controllers();
+    controllers::clm14::register_clm14(builtin);  // the CLM1.4 with programs replaces the parameter-only one
     controllers::elg::register_elg(builtin);
     registry = &builtin;
   }

@@ -29,26 +29,68 @@ std::uint32_t profile_value(double v) {
 }
 }  // namespace
 
-std::string_view to_string(OperatingSetup s) noexcept {
-  switch (s) {
-    case OperatingSetup::csp:
-      return "csp";
-    case OperatingSetup::csv:
-      return "csv";
-    case OperatingSetup::pp:
-      return "pp";
-  }
-  return "?";
-}
-
 Cia402Drive::Cia402Drive(Network& network, canopen::NodeId node, DriveOptions options)
     : network_(network), node_(node), options_(std::move(options)) {
   if (options_.name.empty()) options_.name = fmt::format("canopen:{}/{}", network_.channel().name(), node);
+  polled_ = options_.layout.polled();
+  written_ = options_.layout.written();
   network_.attach(node, this);
 }
 
 Cia402Drive::~Cia402Drive() {
+  *alive_ = false;
   network_.detach(node_);
+}
+
+bool Cia402Drive::routed(std::uint16_t index) const noexcept {
+  return options_.layout.routes.empty() || options_.layout.has(index);
+}
+
+Mode Cia402Drive::mode_display(const canopen::ObjectDictionary& img) const {
+  if (routed(k_mode_display)) return static_cast<Mode>(img.get_int(k_mode_display, 0));
+  return commanded_mode_cycles_ >= 5 && sdo_writes_settled(img) ? commanded_mode_ : Mode::no_mode;
+}
+
+bool Cia402Drive::sdo_writes_settled(const canopen::ObjectDictionary& img) const {
+  if (writes_in_flight_ != 0) return false;
+  for (const auto index : written_) {
+    const auto* v = img.find(index, 0);
+    const auto it = last_written_.find(index);
+    if (v != nullptr && (it == last_written_.end() || it->second != v->value)) return false;
+  }
+  return true;
+}
+
+void Cia402Drive::sdo_service(TimePoint now, canopen::ObjectDictionary& img) {
+  if (!booted_) return;
+  auto& sdo = network_.master().sdo(node_);
+  if (!polled_.empty() && !poll_in_flight_ && now >= next_poll_at_) {
+    const auto index = polled_[next_poll_++ % polled_.size()];
+    poll_in_flight_ = true;
+    next_poll_at_ = now + options_.poll_period / static_cast<long>(polled_.size());
+    sdo.async_upload(index, 0, now, [this, alive = alive_, index](std::error_code ec, std::vector<std::uint8_t> d) {
+      if (!*alive) return;
+      poll_in_flight_ = false;
+      if (!ec) network_.master().image(node_).set_bytes(index, 0, d);
+    });
+  }
+  for (const auto index : written_) {
+    const auto* v = img.find(index, 0);
+    if (v == nullptr) continue;
+    auto& last = last_written_[index];
+    if (last == v->value) continue;
+    last = v->value;
+    ++writes_in_flight_;
+    sdo.async_download(
+        index, 0, v->value, now, [this, alive = alive_, index](std::error_code ec, std::vector<std::uint8_t>) {
+          if (!*alive) return;
+          --writes_in_flight_;
+          if (ec) {
+            last_written_[index].clear();  // try again with the next change... or the next cycle
+            set_fault(ec, fmt::format("node {}: SDO write of 0x{:04X} failed: {}", node_, index, ec.message()));
+          }
+        });
+  }
 }
 
 DriveCapabilities Cia402Drive::capabilities() const noexcept {
@@ -151,8 +193,8 @@ void Cia402Drive::read(const CycleTime& cycle) {
   } else if (feedback_.fault && !fault_latched_) {
     feedback_.fault = {};
   }
-  const auto mode_display = static_cast<Mode>(img.get_int(k_mode_display, 0));
-  if (homing_started_ && mode_display == Mode::homing) {
+  const auto display_now = mode_display(img);
+  if (homing_started_ && display_now == Mode::homing) {
     const bool attained = (statusword_ & sw::op_specific_12) != 0;
     const bool reached = (statusword_ & sw::target_reached) != 0;
     const bool error = (statusword_ & sw::op_specific_13) != 0;
@@ -198,7 +240,7 @@ void Cia402Drive::write(const CycleTime& cycle, const DriveCommand& command) {
   }
   if (homing_requested_) {
     mode = Mode::homing;
-    const auto display = static_cast<Mode>(img.get_int(k_mode_display, 0));
+    const auto display = mode_display(img);
     if (state == DriveState::operation_enabled && display == Mode::homing) {
       if (!homing_started_ && (controlword_ & cw::new_set_point) == 0) {
         homing_started_ = true;
@@ -217,10 +259,17 @@ void Cia402Drive::write(const CycleTime& cycle, const DriveCommand& command) {
   img.set_int(k_target_pos, 0, clamp32(static_cast<double>(target)));
   img.set_int(k_target_vel, 0, clamp32(velocity));
   controlword_ = cwv;
+  if (mode == commanded_mode_) {
+    ++commanded_mode_cycles_;
+  } else {
+    commanded_mode_ = mode;
+    commanded_mode_cycles_ = 0;
+  }
+  sdo_service(cycle.now, img);
 }
 
 Mode Cia402Drive::write_profile(const DriveMove& move, std::uint16_t& cwv, canopen::ObjectDictionary& img) {
-  const auto display = static_cast<Mode>(img.get_int(k_mode_display, 0));
+  const auto display = mode_display(img);
   const bool acknowledged = (statusword_ & sw::op_specific_12) != 0;
   img.set_int(k_profile_acc, 0, profile_value(move.acceleration_inc_per_s2));
   img.set_int(k_profile_dec, 0, profile_value(move.deceleration_inc_per_s2));
@@ -236,7 +285,9 @@ Mode Cia402Drive::write_profile(const DriveMove& move, std::uint16_t& cwv, canop
       switch (set_point_) {
         case SetPoint::waiting:
           // Raise bit 4 once the drive is in PP and has dropped the previous acknowledge.
-          if (display == Mode::profile_position && !acknowledged && (controlword_ & cw::new_set_point) == 0) {
+          // Set-points that go by SDO (no room in the RPDOs) must have arrived first.
+          if (display == Mode::profile_position && !acknowledged && (controlword_ & cw::new_set_point) == 0 &&
+              sdo_writes_settled(img)) {
             cwv |= cw::new_set_point;
             set_point_ = SetPoint::raised;
           }

@@ -17,10 +17,16 @@ using cia402::Mode;
 namespace cw = cia402::cw;
 namespace sw = cia402::sw;
 
-canopen::ObjectDictionary load_od(canopen::NodeId node) {
-  auto d = canopen::parse_eds(cia402_node_eds(), "hil_cia402_drive.eds (compiled in)", node);
-  if (!d) throw std::runtime_error("compiled-in CiA 402 EDS: " + d.error().describe());
+canopen::ObjectDictionary load_od(const Cia402NodeOptions& o) {
+  auto d = o.eds_text.empty() ? load_node_eds(cia402_node_eds(), "hil_cia402_drive.eds (compiled in)", o.node)
+                              : load_node_eds(o.eds_text, o.eds_name, o.node);
+  if (!d) throw std::runtime_error("simulated CiA 402 node: " + d.error().describe());
   return std::move(d->od);
+}
+
+/// An object the drive model reads, or `fallback` when the EDS lacks it.
+std::int64_t value_or(const canopen::ObjectDictionary& od, std::uint16_t index, std::int64_t fallback) {
+  return od.find(index, 0) != nullptr ? od.get_int(index, 0) : fallback;
 }
 
 double sign(double v) {
@@ -52,6 +58,24 @@ bool profile_step(double& pos, double& vel, double target, double vmax, double a
 
 }  // namespace
 
+std::expected<canopen::DeviceDescription, ConfigError> load_node_eds(std::string_view eds_text,
+                                                                     std::string_view eds_name, canopen::NodeId node) {
+  auto d = canopen::parse_eds(eds_text, eds_name, node);
+  if (!d) return d;
+  std::string missing;
+  for (std::uint16_t idx : {std::uint16_t{0x6040}, std::uint16_t{0x6041}})
+    if (d->od.find(idx, 0) == nullptr)
+      missing +=
+          fmt::format("{}0x{:04X} {}", missing.empty() ? "" : ", ", idx, idx == 0x6040 ? "controlword" : "statusword");
+  if (!missing.empty()) {
+    ConfigError e;
+    e.file = std::string(eds_name);
+    e.message = fmt::format("cannot simulate a CiA 402 drive from this EDS: it lacks {}", missing);
+    return std::unexpected(e);
+  }
+  return d;
+}
+
 can::FilterSet predefined_filters(canopen::NodeId node) {
   can::FilterSet f;
   f.filters = {can::Filter::exact(0x000), can::Filter::exact(0x080), can::Filter::exact(0x600u + node),
@@ -64,7 +88,7 @@ Cia402Node::Cia402Node(can::Channel& channel, Cia402NodeOptions options)
     : channel_(channel),
       options_(options),
       slave_(
-          load_od(options.node), options.node, [this](const can::Frame& f) { (void)channel_.send(f); }, options.sdo),
+          load_od(options), options.node, [this](const can::Frame& f) { (void)channel_.send(f); }, options.sdo),
       plant_(options.plant) {
   channel_.set_receive_handler([this](const can::Frame& f, TimePoint t) { on_frame(f, t); });
   slave_.on_sync = [this](std::optional<std::uint8_t>, TimePoint now) { on_sync(now); };
@@ -217,7 +241,8 @@ void Cia402Node::run_device(double dt, TimePoint now) {
   const auto requested = static_cast<Mode>(static_cast<std::int8_t>(od.get_int(0x6060, 0)));
   if (requested != mode_) {
     const auto bit = cia402::supported_mode_bit(requested);
-    if (requested == Mode::no_mode || (bit && (static_cast<std::uint32_t>(od.get_int(0x6502, 0)) & *bit))) {
+    const auto supported = static_cast<std::uint32_t>(value_or(od, 0x6502, 0xFFFFFFFF));
+    if (requested == Mode::no_mode || (bit && (supported & *bit))) {
       mode_ = requested;
       pp_active_ = homing_running_ = false;
       homing_attained_ = homing_error_ = false;
@@ -266,11 +291,11 @@ void Cia402Node::run_device(double dt, TimePoint now) {
   PlantInput in;
   in.powered = false;
   bool reached = false, bit12 = false, bit13 = false;
-  const double window = static_cast<double>(od.get_int(0x6067, 0));
+  const double window = static_cast<double>(value_or(od, 0x6067, 10));
   const bool halt = (cwv & cw::halt) != 0;
-  const double vmax = std::max(1.0, static_cast<double>(od.get_int(0x6081, 0)));
-  const double acc = std::max(1.0, static_cast<double>(od.get_int(0x6083, 0)));
-  const double dec = std::max(1.0, static_cast<double>(od.get_int(0x6084, 0)));
+  const double vmax = std::max(1.0, static_cast<double>(value_or(od, 0x6081, 100'000)));
+  const double acc = std::max(1.0, static_cast<double>(value_or(od, 0x6083, 1'000'000)));
+  const double dec = std::max(1.0, static_cast<double>(value_or(od, 0x6084, 1'000'000)));
   bool position_controlled = false;
   if (state_ == DriveState::operation_enabled) {
     in.powered = true;
@@ -350,7 +375,7 @@ void Cia402Node::run_device(double dt, TimePoint now) {
     }
   } else if (state_ == DriveState::quick_stop_active) {
     in.powered = true;
-    const double qsd = std::max(1.0, static_cast<double>(od.get_int(0x6085, 0)));
+    const double qsd = std::max(1.0, static_cast<double>(value_or(od, 0x6085, 1'000'000)));
     demand_velocity_ -= std::clamp(demand_velocity_, -qsd * dt, qsd * dt);
     in.mode = CommandMode::velocity;
     in.velocity_inc_per_s = demand_velocity_;
@@ -363,7 +388,7 @@ void Cia402Node::run_device(double dt, TimePoint now) {
 
   const double new_actual = static_cast<double>(plant_.encoder_position_inc()) + following_offset_;
   if (position_controlled) {
-    const auto fe_window = static_cast<std::uint32_t>(od.get_int(0x6065, 0));
+    const auto fe_window = static_cast<std::uint32_t>(value_or(od, 0x6065, 0xFFFFFFFF));
     if (fe_window != 0xFFFFFFFFu && std::abs(demand_ - new_actual) > static_cast<double>(fe_window)) {
       bit13 = true;
       if (!following_since_) following_since_ = now;

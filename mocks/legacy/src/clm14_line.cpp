@@ -31,6 +31,7 @@ void Clm14Line::answer(const Clm14Station& station, std::string bytes, TimePoint
 }
 
 std::string Clm14Line::on_idle(TimePoint now) {
+  for (auto& s : stations_) s->tick(now);
   std::string out;
   while (!held_.empty() && held_.front().due <= now) {
     out += held_.front().bytes;
@@ -40,10 +41,15 @@ std::string Clm14Line::on_idle(TimePoint now) {
 }
 
 TimePoint Clm14Line::next_deadline() const {
-  return held_.empty() ? TimePoint::max() : held_.front().due;
+  TimePoint t = held_.empty() ? TimePoint::max() : held_.front().due;
+  for (const auto& s : stations_) t = std::min(t, s->ticking() ? s->next_cycle() : TimePoint{});  // {}: start now
+  return t;
 }
 
 std::string Clm14Line::on_bytes(std::span<const std::uint8_t> data, TimePoint now) {
+  // The controllers run up to now first, so a status reply shows the present state.
+  for (auto& s : stations_)
+    if (s->ticking()) s->tick(now);
   std::string out;
   for (std::uint8_t b : data) {
     const auto ev = splitter_.feed(static_cast<char>(b));

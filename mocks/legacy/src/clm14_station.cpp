@@ -13,6 +13,7 @@ namespace hil::mocks::legacy {
 
 using serial::clm14::SerialError;
 using serial::clm14::Telegram;
+namespace cc = controllers::clm14;
 
 namespace {
 
@@ -64,13 +65,84 @@ Clm14Station::Clm14Station(int station, std::shared_ptr<const serial::clm14::Dev
     : station_(station),
       station_char_(serial::clm14::station_char(station).value_or(' ')),
       data_(std::move(data)),
-      axes_(std::clamp(axes, 1, 4)),
-      program_(program_lines, "NOP   "),
-      logic_(logic_lines, "NOP "),
-      variables_(variables, "+00000000.000000") {
-  logic_[0] = "END ";
+      axes_(std::clamp(axes, 1, 4)) {
   parameter_order_ = data_->parameter_numbers(axes_);
   reset_parameters();
+  clm_.set_parameters([this](std::string_view n) { return parameter(n); });
+  clm_.set_parameter_validator([this]() -> std::expected<void, cc::ProgramError> {
+    for (const auto& n : parameter_order_)
+      if (auto r = data_->check_parameter(n, parameter(n)); !r)
+        return std::unexpected(cc::ProgramError{cc::ClmError::parameter_invalid, -1, n + ": " + r.error().message});
+    return {};
+  });
+  clm_.on_settings([this](const cc::Settings& s) {
+    if (!external_axes_) sim_.rebuild(s);
+    attach_axes();
+  });
+  // The wiring of a unit on the bench: E-Stop and Immediate Stop closed, axis enables on.
+  auto& im = clm_.image();
+  im.set_bit(cc::sys::emergency_stop_ok, true);
+  im.set_bit(cc::sys::immediate_stop_ok, true);
+  for (const auto& e : cc::sys::enable) im.set_bit(e, true);
+}
+
+void Clm14Station::attach_axes() {
+  for (int ax = 1; ax <= 4; ++ax)
+    clm_.attach_axis(ax, external_axes_ ? external_ports_[static_cast<std::size_t>(ax - 1)] : sim_.port(ax));
+}
+
+void Clm14Station::use_axes(std::array<cc::AxisPort*, 4> ports, std::function<void(const CycleTime&)> update) {
+  external_axes_ = true;
+  external_ports_ = ports;
+  external_update_ = std::move(update);
+  sim_ = Clm14SimAxes{};
+  attach_axes();
+}
+
+void Clm14Station::cycle(TimePoint now) {
+  clm_.cycle(now);
+  const CycleTime c{now, clm_.cycle_time()};
+  if (external_axes_) {
+    if (external_update_) external_update_(c);
+  } else {
+    sim_.update(c);
+  }
+}
+
+void Clm14Station::tick(TimePoint now) {
+  if (!started_) {
+    started_ = true;
+    next_cycle_ = now;
+    last_save_ = now;
+  }
+  for (int n = 0; next_cycle_ <= now && n < 5000; ++n) {
+    cycle(next_cycle_);
+    next_cycle_ += clm_.cycle_time();
+  }
+  if (next_cycle_ <= now) next_cycle_ = now + clm_.cycle_time();  // too far behind: skip, do not replay
+  // A running program changes counters and variables all the time: persist about once a second.
+  if (clm_.run_state() == cc::RunState::running && now - last_save_ >= std::chrono::seconds(1)) {
+    last_save_ = now;
+    dirty_ = true;
+  }
+}
+
+ClmMode Clm14Station::mode() const noexcept {
+  switch (clm_.mode()) {
+    case cc::Mode::parameter:
+      return ClmMode::parameter;
+    case cc::Mode::automatic:
+      return ClmMode::automatic;
+    case cc::Mode::manual:
+      break;
+  }
+  return ClmMode::manual;
+}
+
+std::string Clm14Station::program_line(int n) const {
+  std::string t = clm_.line_text(n);
+  t += t.size() <= 3 ? "  " : " ";  // "MNE data " / "NOP  ": §9.2 "#5N0123 NOP  $45"
+  return t;
 }
 
 void Clm14Station::reset_parameters() {
@@ -127,31 +199,20 @@ std::string Clm14Station::confirm() const {
 }
 
 void Clm14Station::set_mode(ClmMode m) {
-  if (m == mode_) return;
-  const ClmMode old = mode_;
-  mode_ = m;
-  if (m == ClmMode::parameter) {
-    running_ = false;
-    checksum_off_latched_ = !checksum_required();
-  }
-  if (m != ClmMode::automatic) running_ = false;
-  if (old == ClmMode::parameter) {
-    checksum_off_latched_ = false;
-    validate_parameters();
+  const ClmMode old = mode();
+  if (m == ClmMode::parameter && old != ClmMode::parameter) checksum_off_latched_ = !checksum_required();
+  if (old == ClmMode::parameter && m != ClmMode::parameter) checksum_off_latched_ = false;
+  auto& im = clm_.image();
+  im.set_bit(cc::sys::parameter_mode, m == ClmMode::parameter);
+  im.set_bit(cc::sys::automatic, m == ClmMode::automatic);
+  // The mode switch acts at once: run the next cycle now (a ticking unit runs it a little early).
+  if (!started_) {
+    cycle(clm_.powered() ? clm_.now() + clm_.cycle_time() : clm_.now());
+  } else {
+    cycle(next_cycle_);
+    next_cycle_ += clm_.cycle_time();
   }
   dirty_ = true;
-}
-
-void Clm14Station::validate_parameters() {
-  invalid_item_.clear();
-  if (fault_ == 0x02) fault_ = 0x00;
-  for (const auto& n : parameter_order_) {
-    if (auto r = data_->check_parameter(n, parameter(n)); !r) {
-      fault_ = 0x02;
-      invalid_item_ = "0 " + n;
-      return;
-    }
-  }
 }
 
 std::string Clm14Station::on_damaged_line(std::string_view line) {
@@ -182,7 +243,7 @@ std::string Clm14Station::on_line(std::string_view line) {
   const Telegram& t = *parsed;
   std::string out;
   if (t.lead == ':') {
-    out = fmt::format(":{}{:02X}\r\n", station_char_, fault_ != 0 ? fault_ : (mode_ == ClmMode::parameter ? 1 : 0));
+    out = fmt::format(":{}{:02X}\r\n", station_char_, fault() != 0 ? fault() : (mode() == ClmMode::parameter ? 1 : 0));
   } else if (t.lead == '!' && !t.body.empty() && t.body[0] == 'K') {
     out = on_parameter(t);
   } else if (t.lead == '!') {
@@ -220,13 +281,13 @@ std::string Clm14Station::on_program(const Telegram& t) {
   if (num.size() != 4 || !all_digits(num)) return error(code(SerialError::block_number_wrong));
   const int n = to_int(num);
   if (n >= program_lines) return error(code(SerialError::block_number_too_large));
-  if (t.lead == '?') return reply('#', fmt::format("N{:04d} {}", n, program_[static_cast<std::size_t>(n)]));
+  if (t.lead == '?') return reply('#', fmt::format("N{:04d} {}", n, program_line(n)));
   const std::string_view text = body.size() > 5 ? trim(body.substr(5)) : std::string_view{};
   auto checked = data_->check_program_line(text);
   if (!checked) return error(checked.error().serial_error);
-  std::string stored = *checked;
-  stored += stored.size() <= 3 ? "   " : " ";  // "NOP   " as the device shows an empty line
-  program_[static_cast<std::size_t>(n)] = std::move(stored);
+  // The controller checks the operands (axis, I/O, line numbers); a line it cannot run is
+  // "RS Block Data Error" and nothing is stored.
+  if (auto r = clm_.store_line(n, *checked); !r) return error(code(SerialError::block_data_error));
   dirty_ = true;
   return confirm();
 }
@@ -246,7 +307,7 @@ std::string Clm14Station::on_parameter(const Telegram& t) {
   const auto it = parameters_.find(number);
   if (it == parameters_.end()) return error(code(SerialError::param_number_too_large));
   if (t.lead == '?') return reply('#', fmt::format("K {} {}", number, it->second));
-  if (mode_ != ClmMode::parameter) return error(code(SerialError::invalid_mode));
+  if (mode() != ClmMode::parameter) return error(code(SerialError::invalid_mode));
   std::string_view data = rest.size() > 4 ? rest.substr(4) : std::string_view{};
   if (!data.empty() && data.front() == ' ') data.remove_prefix(1);
   it->second = std::string(trim_right(data));
@@ -258,11 +319,11 @@ std::string Clm14Station::on_variable(const Telegram& t) {
   const std::string_view num = std::string_view(t.body).substr(1, 3);
   if (num.size() != 3 || !all_digits(num)) return error(code(SerialError::wrong_variable_number));
   const int n = to_int(num);
-  if (t.lead == '?') return reply('V', fmt::format("{:03d} {} ", n, variables_[static_cast<std::size_t>(n)]));
+  if (t.lead == '?') return reply('V', fmt::format("{:03d} {} ", n, cc::format_variable(clm_.variable(n))));
   if (n < 600) return error(code(SerialError::wrong_variable_number));
   const std::string v = canonical_variable(t.body.size() > 4 ? std::string_view(t.body).substr(4) : std::string_view{});
-  if (v.empty()) return error(code(SerialError::not_accepted));
-  variables_[static_cast<std::size_t>(n)] = v;
+  const auto m = cc::parse_micro(v);
+  if (v.empty() || !m || !clm_.set_variable(n, *m)) return error(code(SerialError::not_accepted));
   dirty_ = true;
   return confirm();
 }
@@ -274,10 +335,18 @@ std::string Clm14Station::on_logic(const Telegram& t) {
   if (num.size() != 4 || !all_digits(num)) return error(code(SerialError::block_number_wrong));
   const int n = to_int(num);
   if (n >= logic_lines) return error(code(SerialError::block_number_too_large));
-  if (t.lead == '?') return reply('P', fmt::format("{:04d} {}", n, logic_[static_cast<std::size_t>(n)]));
+  if (t.lead == '?') return reply('P', fmt::format("{:04d} {} ", n, clm_.logic_line(n)));
   const std::string_view instr = trim(rest.substr(4));
   if (instr.empty() || instr.size() > 16) return error(code(SerialError::invalid_operand));
-  logic_[static_cast<std::size_t>(n)] = std::string(instr) + " ";
+  // The operand is checked like the device does: by compiling the line on its own.
+  const std::string line(instr);
+  if (line != "END" && line != "NOP" && line != ")") {
+    if (auto p = cc::LogicProgram::compile({line, "END"}); !p) {
+      const auto par = cc::LogicProgram::compile({line, ")", "END"});  // an opening "AND(" alone is fine
+      if (!par) return error(code(SerialError::invalid_operand));
+    }
+  }
+  clm_.store_logic_line(n, line);
   dirty_ = true;
   return confirm();
 }
@@ -289,56 +358,16 @@ std::string Clm14Station::on_status(const Telegram& t) {
   if (num.size() != 2 || !all_digits(num)) return error(code(SerialError::wrong_status_number));
   const int n = to_int(num);
   const std::string_view arg = rest.size() > 2 ? trim(rest.substr(2)) : std::string_view{};
-  const int shown_fault = fault_ != 0 ? fault_ : (mode_ == ClmMode::parameter ? 0x01 : 0x00);
-  std::string content;
-  switch (n) {
-    case 0:
-    case 44:
-      content = " +00000.000  +000000.000";
-      break;
-    case 2:
-      content = "0000 0000";
-      break;
-    case 3:
-    case 40:
-      content = "00000000 00000000";
-      break;
-    case 5: {
-      std::string fw = data_->identification().substr(0, 20);
-      fw.resize(20, ' ');
-      content = " " + fw;
-      break;
-    }
-    case 8:
-      content = "0000 0000 0000 0000 0000 0000";
-      break;
-    case 10:
-    case 43:
-      content = "+00000.000 +000000.000";
-      break;
-    case 19:
-      content = data_->identification();
-      break;
-    case 39:
-      content = "0000 0000 0000 0000";
-      break;
-    case 53:
-      content = fmt::format("{:02X} {}", shown_fault, data_->fault_text(shown_fault));
-      break;
-    case 60: {
-      if (arg.size() != 1 || arg[0] < '0' || arg[0] > '3') return error(code(SerialError::not_accepted));
-      content = (arg[0] == '0' && !invalid_item_.empty()) ? invalid_item_ : std::string(6, ' ');
-      break;
-    }
-    default:
-      return error(code(SerialError::status_illegal));
-  }
+  bool ok = true;
+  int err = 0;
+  const std::string content = status_content(n, arg, ok, err);
+  if (!ok) return error(err);
   return reply('X', fmt::format("{:02d} {} ", n, content));
 }
 
 std::string Clm14Station::on_command(const Telegram& t) {
   const std::string_view c = trim_right(t.body);
-  const bool param = mode_ == ClmMode::parameter;
+  const bool param = mode() == ClmMode::parameter;
   const auto range = [&](std::string_view tail, int lo, int hi, int& a, int& b) {
     if (tail.empty()) {
       a = lo;
@@ -352,38 +381,37 @@ std::string Clm14Station::on_command(const Telegram& t) {
   };
   int a = 0, b = 0;
   if (c == "START") {
-    if (mode_ != ClmMode::automatic) return error(code(SerialError::invalid_mode));
-    running_ = true;
+    if (!clm_.command_start()) return error(code(SerialError::invalid_mode));
   } else if (c == "STOP") {
-    running_ = false;
+    clm_.command_stop();
   } else if (c == "CLEAR") {
-    if (fault_ != 0x02) fault_ = 0x00;
+    clm_.command_clear();
   } else if (c == "CSETPA") {
     if (!param) return error(code(SerialError::invalid_mode));
     reset_parameters();
   } else if (c.starts_with("CNOPNC")) {
     if (!param) return error(code(SerialError::invalid_mode));
     if (!range(c.substr(6), 0, program_lines - 1, a, b)) return error(code(SerialError::block_number_too_large));
-    for (int i = a; i <= b; ++i) program_[static_cast<std::size_t>(i)] = "NOP   ";
+    for (int i = a; i <= b; ++i) (void)clm_.store_line(i, "NOP");
   } else if (c.starts_with("CNOPLT")) {
     if (!param) return error(code(SerialError::invalid_mode));
     if (!range(c.substr(6), 0, logic_lines - 1, a, b)) return error(code(SerialError::block_number_too_large));
-    for (int i = a; i <= b; ++i) logic_[static_cast<std::size_t>(i)] = "NOP ";
-    if (a == 0) logic_[0] = "END ";
+    for (int i = a; i <= b; ++i) clm_.store_logic_line(i, "NOP");
+    if (a == 0) clm_.store_logic_line(0, "END");
   } else if (c == "CCLVAR0019") {
     if (!param) return error(code(SerialError::invalid_mode));
-    variables_[19] = "+00000000.000000";
+    clm_.clear_hour_counter();
   } else if (c.starts_with("CCLVAR")) {
     if (!param) return error(code(SerialError::invalid_mode));
     if (!range(c.substr(6), 600, variables - 1, a, b)) return error(code(SerialError::wrong_variable_number));
-    for (int i = a; i <= b; ++i) variables_[static_cast<std::size_t>(i)] = "+00000000.000000";
+    for (int i = a; i <= b; ++i) (void)clm_.set_variable(i, 0);
   } else if (c == "CL0") {
-    if (mode_ != ClmMode::manual) return error(code(SerialError::invalid_mode));
+    if (mode() != ClmMode::manual) return error(code(SerialError::invalid_mode));
   } else if (c == "CLL1" || c == "CLL2") {
-    // length counters are not modelled beyond accepting the command
+    // flying cutoff length counters: accepted; the flying cutoff is not modelled (docs/clm14.md)
   } else if (c.size() >= 4 && c[0] == 'M' && c[1] >= '1' && c[1] <= '4' &&
              (c.substr(2) == "ON" || c.substr(2) == "OFF")) {
-    axis_enabled_[static_cast<std::size_t>(c[1] - '1')] = c.substr(2) == "ON";
+    clm_.set_axis_software_enable(c[1] - '0', c.substr(2) == "ON");
   } else {
     return error(code(SerialError::format_error));
   }
@@ -394,57 +422,35 @@ std::string Clm14Station::on_command(const Telegram& t) {
 nlohmann::json Clm14Station::to_json() const {
   nlohmann::json j;
   j["station"] = station_;
-  j["fault"] = fault_;
-  j["invalid_item"] = invalid_item_;
-  nlohmann::json prog = nlohmann::json::object();
-  for (int i = 0; i < program_lines; ++i)
-    if (program_[static_cast<std::size_t>(i)] != "NOP   ")
-      prog[fmt::format("{:04d}", i)] = program_[static_cast<std::size_t>(i)];
-  j["program"] = prog;
-  nlohmann::json logic = nlohmann::json::object();
-  for (int i = 0; i < logic_lines; ++i) logic[fmt::format("{:04d}", i)] = logic_[static_cast<std::size_t>(i)];
-  j["logic"] = logic;
-  nlohmann::json vars = nlohmann::json::object();
-  for (int i = 0; i < variables; ++i)
-    if (variables_[static_cast<std::size_t>(i)] != "+00000000.000000")
-      vars[fmt::format("{:03d}", i)] = variables_[static_cast<std::size_t>(i)];
-  j["variables"] = vars;
   j["parameters"] = parameters_;
-  j["axis_enabled"] = axis_enabled_;
+  j["controller"] = clm_.to_json();
   return j;
 }
 
 std::expected<void, std::string> Clm14Station::from_json(const nlohmann::json& j) {
   try {
-    const auto index = [](const std::string& k, int limit) -> std::expected<std::size_t, std::string> {
-      if (!all_digits(k) || to_int(k) >= limit) return std::unexpected(fmt::format("bad line/variable number '{}'", k));
-      return static_cast<std::size_t>(to_int(k));
-    };
-    std::fill(program_.begin(), program_.end(), "NOP   ");
-    const nlohmann::json program_j = j.contains("program") ? j.at("program") : nlohmann::json::object();
-    for (const auto& [k, v] : program_j.items()) {
-      auto i = index(k, program_lines);
-      if (!i) return std::unexpected("program: " + i.error());
-      program_[*i] = v.get<std::string>();
-    }
-    const nlohmann::json logic_j = j.contains("logic") ? j.at("logic") : nlohmann::json::object();
-    for (const auto& [k, v] : logic_j.items()) {
-      auto i = index(k, logic_lines);
-      if (!i) return std::unexpected("logic: " + i.error());
-      logic_[*i] = v.get<std::string>();
-    }
-    const nlohmann::json variables_j = j.contains("variables") ? j.at("variables") : nlohmann::json::object();
-    for (const auto& [k, v] : variables_j.items()) {
-      auto i = index(k, variables);
-      if (!i) return std::unexpected("variables: " + i.error());
-      variables_[*i] = v.get<std::string>();
-    }
     const nlohmann::json parameters_j = j.contains("parameters") ? j.at("parameters") : nlohmann::json::object();
     for (const auto& [k, v] : parameters_j.items())
       if (parameters_.contains(k)) parameters_[k] = v.get<std::string>();
-    fault_ = j.value("fault", 0);
-    invalid_item_ = j.value("invalid_item", std::string{});
-    if (j.contains("axis_enabled")) axis_enabled_ = j["axis_enabled"].get<std::array<bool, 4>>();
+    nlohmann::json c;
+    if (j.contains("controller")) {
+      c = j.at("controller");
+    } else {
+      // State files written before the controller model: program/logic/variables per station.
+      c["program"] = nlohmann::json::object();
+      if (j.contains("program"))
+        for (const auto& [k, v] : j.at("program").items()) c["program"][k] = std::string(trim(v.get<std::string>()));
+      c["logic"] = nlohmann::json::object();
+      if (j.contains("logic"))
+        for (const auto& [k, v] : j.at("logic").items()) c["logic"][k] = std::string(trim(v.get<std::string>()));
+      c["variables"] = j.contains("variables") ? j.at("variables") : nlohmann::json::object();
+      if (j.contains("axis_enabled")) c["axis_enabled"] = j.at("axis_enabled");
+    }
+    const nlohmann::json program_j = c.contains("program") ? c.at("program") : nlohmann::json::object();
+    for (const auto& [k, v] : program_j.items())
+      if (!all_digits(k) || to_int(k) >= program_lines)
+        return std::unexpected(fmt::format("program: bad line number '{}'", k));
+    if (auto r = clm_.from_json(c); !r) return std::unexpected(r.error());
   } catch (const nlohmann::json::exception& e) {
     return std::unexpected(fmt::format("state file malformed: {}", e.what()));
   }

@@ -3,6 +3,8 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
+
 #include <nlohmann/json.hpp>
 
 #include "hil/serial/s5/rk512_client.hpp"
@@ -15,10 +17,11 @@ S5BlockEndpoint::S5BlockEndpoint(std::unique_ptr<DbPolicy> policy, S5EndpointOpt
     : policy_(std::move(policy)), o_(o), proc_(o.procedure) {}
 
 TimePoint S5BlockEndpoint::next_deadline() const {
-  return proc_.next_deadline();
+  return std::min(proc_.next_deadline(), policy_->next_deadline());
 }
 
 std::string S5BlockEndpoint::drain(TimePoint now) {
+  policy_->on_time(now);
   proc_.poll(now);
   while (auto blk = proc_.take_received()) {
     auto t = serial::s5::parse_rk512(*blk);
@@ -54,10 +57,14 @@ void S5BlockEndpoint::execute(const serial::s5::Rk512Telegram& job) {
     err = Rk512Error::header_error;
   } else if (job.header.command == serial::s5::Rk512Command::fetch) {
     std::vector<std::uint16_t> words;
-    err = policy_->on_read(store_, job.header.db, job.header.dw, job.header.length, words);
+    err = job.header.data_type == 'X'
+              ? policy_->on_read_dx(store_, job.header.db, job.header.dw, job.header.length, words)
+              : policy_->on_read(store_, job.header.db, job.header.dw, job.header.length, words);
     if (err == Rk512Error::ok) data = serial::s5::words_to_bytes(words);
   } else {
-    err = policy_->on_write(store_, job.header.db, job.header.dw, serial::s5::bytes_to_words(job.data));
+    const auto words = serial::s5::bytes_to_words(job.data);
+    err = job.header.data_type == 'X' ? policy_->on_write_dx(store_, job.header.db, job.header.dw, words)
+                                      : policy_->on_write(store_, job.header.db, job.header.dw, words);
     if (err == Rk512Error::ok) dirty_ = true;
   }
   if (err != Rk512Error::ok) last_error_ = make_error_code(err).message();

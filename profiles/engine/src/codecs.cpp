@@ -77,12 +77,13 @@ std::expected<std::string, CodecError> make_decimal_text(const Decimal& v, const
   if (!r)
     return std::unexpected(err(CodecError::Kind::precision, fmt::format("{} has more than {} decimals for field {}",
                                                                         v.to_string(), f.frac_digits, f.to_string())));
-  const bool neg = r->units < 0;
-  if (neg && f.sign == DecimalTextFormat::Sign::none)
+  // A signed field keeps the sign of a zero as written ("-00000.000"); an unsigned one has none.
+  const bool neg = r->units < 0 || (r->minus_zero && f.sign == DecimalTextFormat::Sign::always);
+  if (r->units < 0 && f.sign == DecimalTextFormat::Sign::none)
     return std::unexpected(err(CodecError::Kind::out_of_range,
                                fmt::format("{} is negative; field {} is unsigned", v.to_string(), f.to_string())));
   const std::uint64_t mag =
-      neg ? static_cast<std::uint64_t>(-(r->units + 1)) + 1u : static_cast<std::uint64_t>(r->units);
+      r->units < 0 ? static_cast<std::uint64_t>(-(r->units + 1)) + 1u : static_cast<std::uint64_t>(r->units);
   if (mag > static_cast<std::uint64_t>(f.max_magnitude().units))
     return std::unexpected(
         err(CodecError::Kind::out_of_range, fmt::format("{} does not fit field {} (at most {})", v.to_string(),
@@ -134,7 +135,7 @@ std::expected<Decimal, CodecError> parse_decimal_text(std::string_view text, con
     return std::unexpected(err(CodecError::Kind::precision, fmt::format("'{}' has {} decimals; field {} has {}", text,
                                                                         frac_digits, f.to_string(), f.frac_digits)));
   // Leading zeros beyond the width are harmless; significant digits are not.
-  Decimal d{neg ? -u : u, frac_digits};
+  Decimal d{neg ? -u : u, frac_digits, neg && u == 0};
   auto r = d.rescaled(f.frac_digits);
   if (!r) return std::unexpected(err(CodecError::Kind::out_of_range, r.error()));
   const std::int64_t mag = r->units < 0 ? -r->units : r->units;

@@ -23,6 +23,7 @@ detail::i128 pow10_i128(int n) {
 std::expected<Decimal, std::string> Decimal::rescaled(int new_scale) const {
   if (new_scale < 0 || new_scale > kMaxScale) return std::unexpected(fmt::format("scale {} out of 0..18", new_scale));
   if (new_scale == scale) return *this;
+  if (units == 0) return Decimal{0, new_scale, minus_zero};
   detail::i128 u = units;
   if (new_scale > scale) {
     u *= pow10_i128(new_scale - scale);
@@ -63,7 +64,7 @@ std::string Decimal::to_string() const {
     if (static_cast<int>(digits.size()) <= s) digits.insert(0, static_cast<std::size_t>(s + 1) - digits.size(), '0');
     digits.insert(digits.size() - static_cast<std::size_t>(s), 1, '.');
   }
-  return neg ? "-" + digits : digits;
+  return neg || (units == 0 && minus_zero) ? "-" + digits : digits;
 }
 
 bool Decimal::is_multiple_of(const Decimal& step) const {
@@ -119,7 +120,7 @@ std::expected<Decimal, std::string> parse_decimal(std::string_view text) {
   }
   if (digits == 0) return std::unexpected(fmt::format("'{}' is not a number", text));
   const auto s = static_cast<std::int64_t>(u);
-  return Decimal{neg ? -s : s, scale};
+  return Decimal{neg ? -s : s, scale, neg && s == 0};
 }
 
 }  // namespace hil::profiles

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 #include "hil/canopen/master.hpp"
 
+#include <algorithm>
 #include <stdexcept>
 
 #include <fmt/format.h>
@@ -61,6 +62,23 @@ Master::Master(FrameSink sink, MasterOptions options)
         if (e == HeartbeatEvent::resumed) st.heartbeat_lost = false;
         if (on_heartbeat) on_heartbeat(id, e, s);
       }),
+      guard_(sink_,
+             [this](NodeId id, NodeGuardMaster::Event e, NmtState s) {
+               auto it = nodes_.find(id);
+               if (it == nodes_.end()) return;
+               auto& st = it->second.status;
+               st.nmt = s;
+               HeartbeatEvent he = HeartbeatEvent::state_changed;
+               if (e == NodeGuardMaster::Event::lost || e == NodeGuardMaster::Event::toggle_error) {
+                 if (st.heartbeat_lost) return;
+                 st.heartbeat_lost = true;
+                 he = HeartbeatEvent::timeout;
+               } else if (e == NodeGuardMaster::Event::resumed) {
+                 st.heartbeat_lost = false;
+                 he = HeartbeatEvent::resumed;
+               }
+               if (on_heartbeat) on_heartbeat(id, he, s);
+             }),
       sync_(sink_) {}
 
 void Master::add_node(NodeConfig config) {
@@ -137,6 +155,7 @@ void Master::boot(NodeId id, TimePoint now) {
   n.boot_attempts = 0;
   n.config_step = 0;
   n.pdo->set_active(false);
+  guard_.guard(id, Duration::zero(), 0, now);  // guarding starts again after this boot
   if (n.config.reset_communication) {
     n.status.boot = NodeBootState::waiting_boot_up;
     n.boot_deadline = now + options_.boot_timeout;
@@ -202,8 +221,18 @@ void Master::configure(Node& n, TimePoint now) {
     if (nn.status.boot != NodeBootState::configuring) return;
     if (ec) {
       const auto& p = nn.config.configuration[nn.config_step];
+      std::string value;
+      if (p.bytes.size() <= 8) {
+        std::uint64_t v = 0;
+        for (std::size_t i = 0; i < p.bytes.size(); ++i) v |= std::uint64_t{p.bytes[i]} << (8 * i);
+        value = fmt::format("0x{:0{}X}", v, std::max<std::size_t>(2, 2 * p.bytes.size()));
+      } else {
+        value = fmt::format("{} bytes", p.bytes.size());
+      }
       return fail(nn, BootError::configuration,
-                  fmt::format("write of 0x{:04X}:{} failed: {}", p.index, p.sub, ec.message()), last_now_);
+                  fmt::format("write of 0x{:04X}:{} = {} (step {} of {}) failed: SDO abort {}", p.index, p.sub, value,
+                              nn.config_step + 1, nn.config.configuration.size(), ec.message()),
+                  last_now_);
     }
     ++nn.config_step;
     configure(nn, last_now_);
@@ -211,11 +240,11 @@ void Master::configure(Node& n, TimePoint now) {
 }
 
 void Master::finish_boot(Node& n, TimePoint now) {
-  (void)now;
   if (n.config.start) {
     sink_(make_nmt(NmtCommand::start, n.config.id));
     n.pdo->set_active(true);
   }
+  guard_.guard(n.config.id, n.config.guard_time, n.config.life_time_factor, now);
   n.status.boot = NodeBootState::started;
   if (on_boot) on_boot(n.config.id, {});
 }
@@ -231,6 +260,7 @@ bool Master::on_frame(const can::Frame& f, TimePoint now) {
     heartbeat_.on_frame(f, now);
     auto& n = it->second;
     if (f.dlc >= 1 && f.data[0] == 0x00 && n.status.boot == NodeBootState::waiting_boot_up) identify(n, now);
+    (void)guard_.on_frame(f, now);
     return true;
   }
   if (id > cob_sdo_tx_base && id <= cob_sdo_tx_base + 127) {
@@ -272,6 +302,7 @@ void Master::step(TimePoint now) {
     }
   }
   heartbeat_.step(now);
+  guard_.step(now);
   if (sync_.step(now)) {
     const auto counter = options_.sync_overflow >= 2 ? std::optional<std::uint8_t>(sync_.last_counter()) : std::nullopt;
     if (on_sync) on_sync(now);

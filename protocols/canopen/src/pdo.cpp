@@ -189,6 +189,18 @@ SdoAbort PdoEngine::add_tpdo(const PdoConfig& cfg) {
   return SdoAbort::none;
 }
 
+void PdoEngine::set_active(bool active) noexcept {
+  if (active && !active_) {
+    for (auto& p : tpdos_) {
+      p.has_last = false;
+      p.started = false;
+      p.sync_count = 0;
+      p.last_tx.reset();
+    }
+  }
+  active_ = active;
+}
+
 void PdoEngine::clear() {
   rpdos_.clear();
   tpdos_.clear();

@@ -6,6 +6,7 @@
 #include <chrono>
 #include <vector>
 
+#include <asio/steady_timer.hpp>
 #include <asio/write.hpp>
 
 namespace hil::can::socketcand {
@@ -24,6 +25,7 @@ class Server::Session : public std::enable_shared_from_this<Server::Session> {
   Session(asio::ip::tcp::socket socket, std::shared_ptr<Shared> shared)
       : socket_(std::move(socket)),
         shared_(std::move(shared)),
+        hold_timer_(socket_.get_executor()),
         handshake_timer_(socket_.get_executor()),
         stall_timer_(socket_.get_executor()) {
     std::error_code ec;
@@ -49,6 +51,7 @@ class Server::Session : public std::enable_shared_from_this<Server::Session> {
     if (closed_) return;
     closed_ = true;
     --shared_->stats.active;
+    hold_timer_.cancel();
     std::error_code ec;
     socket_.shutdown(asio::ip::tcp::socket::shutdown_both, ec);
     socket_.close(ec);
@@ -70,6 +73,8 @@ class Server::Session : public std::enable_shared_from_this<Server::Session> {
       self->splitter_.feed(std::string_view(self->rx_.data(), n));
       ElementSplitter::Item item;
       while (!self->closed_ && self->splitter_.next(item)) {
+        // The client speaks again after its `< ok >`: it has read it, so the held frames may follow.
+        if (self->holding_) self->release_held();
         if (item.error) {
           self->protocol_error(item.error, "");
           continue;
@@ -131,9 +136,10 @@ class Server::Session : public std::enable_shared_from_this<Server::Session> {
       if (state_ == State::no_bus) {
         reply_error("open a bus first: < open NAME >");
       } else if (mode->mode == Mode::raw || mode->mode == Mode::bcm) {
-        if (mode->mode == Mode::raw && state_ != State::raw) raw_since_ = shared_->clock.now();
+        const bool joining = mode->mode == Mode::raw && state_ != State::raw;
         state_ = mode->mode == Mode::raw ? State::raw : State::bcm;
         write(ok_element);
+        if (joining) hold_after_join();
       } else {
         reply_error("control and isotp modes are not supported by hilbridge");
       }
@@ -168,16 +174,36 @@ class Server::Session : public std::enable_shared_from_this<Server::Session> {
       ++shared_->stats.rtr_not_forwarded;
       return;
     }
-    if (shared_->options.raw_mode_grace > Duration{0} &&
-        shared_->clock.now() < raw_since_ + shared_->options.raw_mode_grace) {
-      ++shared_->stats.dropped_during_grace;
-      return;
-    }
-    if (pending_.size() >= shared_->options.max_output_bytes) {
+    std::string& out = holding_ ? held_ : pending_;
+    if (out.size() >= shared_->options.max_output_bytes) {
       ++shared_->stats.dropped_slow_client;
       return;
     }
-    if (format_rx_frame(pending_, f, shared_->options.to_wire_time(t))) ++shared_->stats.frames_to_clients;
+    if (format_rx_frame(out, f, shared_->options.to_wire_time(t))) {
+      ++shared_->stats.frames_to_clients;
+      if (holding_) ++shared_->stats.held_at_join;
+    }
+    note_queue();
+    if (!holding_) flush();
+  }
+
+  /// The client has joined (its `< ok >` is queued): frames from now on are its own. Hold them
+  /// until it has read that `< ok >` (see ServerOptions::join_hold).
+  void hold_after_join() {
+    if (shared_->options.join_hold <= Duration{0}) return;
+    holding_ = true;
+    hold_timer_.expires_after(shared_->options.join_hold);
+    hold_timer_.async_wait([self = shared_from_this()](const std::error_code& ec) {
+      if (ec || self->closed_ || !self->holding_) return;
+      self->release_held();
+    });
+  }
+
+  void release_held() {
+    holding_ = false;
+    hold_timer_.cancel();
+    pending_.append(held_);
+    held_.clear();
     note_queue();
     flush();
   }
@@ -190,7 +216,7 @@ class Server::Session : public std::enable_shared_from_this<Server::Session> {
 
   void note_queue() {
     auto& peak = shared_->stats.peak_queued_bytes;
-    peak = std::max<std::uint64_t>(peak, pending_.size() + outbox_.size());
+    peak = std::max<std::uint64_t>(peak, pending_.size() + outbox_.size() + held_.size());
   }
 
   void flush() {
@@ -234,7 +260,9 @@ class Server::Session : public std::enable_shared_from_this<Server::Session> {
   std::array<char, 4096> rx_{};
   ElementSplitter splitter_;
   State state_ = State::no_bus;
-  TimePoint raw_since_{};
+  asio::steady_timer hold_timer_;
+  bool holding_ = false;
+  std::string held_;  ///< frames for a client that has not yet read its raw-mode `< ok >`
   std::unique_ptr<Channel> channel_;
   std::string pending_;
   std::string outbox_;

@@ -13,22 +13,22 @@
 // the axis's Fault (category "cia402", value = the CiA 402 error code, text from the table).
 // Thread: the motion thread, the same one that runs its Network. Non-blocking, never throws.
 
+#include <map>
+#include <memory>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "hil/cia402/cia402.hpp"
+#include "hil/cia402/layout.hpp"
 #include "hil/cia402/network.hpp"
 #include "hil/core/drive.hpp"
 
 namespace hil::cia402 {
 
-/// How the drive is commanded (see the file comment).
-enum class OperatingSetup : std::uint8_t { csp, csv, pp };
-[[nodiscard]] std::string_view to_string(OperatingSetup s) noexcept;
-
 struct DriveOptions {
   std::string name;                            ///< "canopen:vbus/5"
-  OperatingSetup setup = OperatingSetup::csp;  ///< pp needs the profile objects mapped (AxisOptions::profile_objects)
+  OperatingSetup setup = OperatingSetup::csp;  ///< must match AxisOptions::setup of the node's configuration
   double csv_position_gain_per_s = 100.0;      ///< csv: master-side position loop gain (1/s)
   bool homing = true;                          ///< accepts DriveRequest::home (mode 6 with the node's 0x6098 method)
   Duration homing_timeout{std::chrono::seconds(30)};
@@ -37,6 +37,10 @@ struct DriveOptions {
   /// fault-reset edge, for at most this long; a fault that is still there afterwards is reported
   /// again ("fault reset refused").
   Duration reset_timeout{std::chrono::milliseconds(200)};
+  /// How each object is reached (make_axis_config). Empty (no routes): every object in a PDO, as
+  /// for the simulated drive.
+  AxisLayout layout{};
+  Duration poll_period{std::chrono::milliseconds(100)};  ///< SDO-polled objects: one upload per period
 };
 
 class Cia402Drive final : public Drive {
@@ -66,6 +70,13 @@ class Cia402Drive final : public Drive {
   void set_fault(std::error_code code, std::string text);
   /// pp: controlword bits, mode and profile objects for `move` (PP / PV / halt).
   Mode write_profile(const DriveMove& move, std::uint16_t& cwv, canopen::ObjectDictionary& img);
+  /// Mode in effect: 0x6061 when the layout has it, else the commanded mode once it has stood
+  /// for a few cycles and its SDO write (if any) is done.
+  Mode mode_display(const canopen::ObjectDictionary& img) const;
+  [[nodiscard]] bool routed(std::uint16_t index) const noexcept;
+  /// SDO side of the layout: one poll per period, writes of changed set-points.
+  void sdo_service(TimePoint now, canopen::ObjectDictionary& img);
+  [[nodiscard]] bool sdo_writes_settled(const canopen::ObjectDictionary& img) const;
 
   Network& network_;
   canopen::NodeId node_;
@@ -91,6 +102,16 @@ class Cia402Drive final : public Drive {
   std::uint32_t set_point_id_ = 0;
   SetPoint set_point_ = SetPoint::acknowledged;
   Mode profile_mode_ = Mode::profile_position;  ///< the profile mode last commanded (halt stays in it)
+  // SDO side of the layout.
+  std::vector<std::uint16_t> polled_, written_;
+  std::size_t next_poll_ = 0;
+  TimePoint next_poll_at_{};
+  bool poll_in_flight_ = false;
+  std::map<std::uint16_t, std::vector<std::uint8_t>> last_written_;
+  int writes_in_flight_ = 0;
+  Mode commanded_mode_ = Mode::no_mode;
+  int commanded_mode_cycles_ = 0;
+  std::shared_ptr<bool> alive_ = std::make_shared<bool>(true);  ///< SDO completions after destruction are ignored
 };
 
 }  // namespace hil::cia402

@@ -8,6 +8,7 @@
 // Runs on any hil::can::Channel: the in-process virtual bus, SocketCAN, socketcand.
 // Thread: the channel's executor; step() and the receive handler must run on it.
 
+#include <expected>
 #include <memory>
 #include <string>
 #include <string_view>
@@ -18,6 +19,7 @@
 #include "hil/canopen/eds.hpp"
 #include "hil/canopen/slave.hpp"
 #include "hil/cia402/cia402.hpp"
+#include "hil/core/config_error.hpp"
 #include "hil/core/fault.hpp"
 #include "hil/mocks/plant.hpp"
 
@@ -36,7 +38,19 @@ struct Cia402NodeOptions {
   PlantConfig plant{};
   canopen::SdoServerOptions sdo{};
   Duration fault_reaction_time{std::chrono::milliseconds(20)};  ///< fault reaction active -> fault
+  /// The node's own EDS/DCF text (object dictionary, PDO defaults, identity); empty = the shipped
+  /// one. Objects the drive model uses but the EDS lacks take sensible internal values (no
+  /// 0x6502: every mode; no 0x6065: no following-error supervision; no 0x6081/0x6083/0x6084/
+  /// 0x6085: 100 000 inc/s and 1 000 000 inc/s^2; no 0x6067: a window of 10 increments).
+  std::string eds_text{};
+  std::string eds_name{};  ///< for messages ("drive.eds")
 };
+
+/// Check that `eds_text` can be a simulated node's EDS: it must parse, and hold a statusword
+/// and a controlword. The error names the file, line and key (parser) or the missing objects.
+[[nodiscard]] std::expected<canopen::DeviceDescription, ConfigError> load_node_eds(std::string_view eds_text,
+                                                                                   std::string_view eds_name,
+                                                                                   canopen::NodeId node);
 
 struct Cia402NodeStats {
   std::uint64_t syncs = 0;
@@ -46,8 +60,8 @@ struct Cia402NodeStats {
 
 class Cia402Node {
  public:
-  /// Attaches to `channel` (which must outlive the node). Throws std::runtime_error only if the
-  /// compiled-in EDS fails to parse (a build defect).
+  /// Attaches to `channel` (which must outlive the node). Throws std::runtime_error if the EDS
+  /// fails load_node_eds() (check it first; for the compiled-in one that is a build defect).
   Cia402Node(can::Channel& channel, Cia402NodeOptions options);
   ~Cia402Node();
   Cia402Node(const Cia402Node&) = delete;

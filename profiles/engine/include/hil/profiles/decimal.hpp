@@ -14,6 +14,9 @@ namespace hil::profiles {
 struct Decimal {
   std::int64_t units = 0;  ///< signed mantissa
   int scale = 0;           ///< number of decimals (0..18)
+  /// A zero written with a minus sign ("-00000.000"). Equal to zero in every comparison, but a
+  /// signed text field writes it back with its '-' (the CLM1.4 keeps it: `A125 -00000.000$7B`).
+  bool minus_zero = false;
 
   [[nodiscard]] static Decimal from_int(std::int64_t v) noexcept { return {v, 0}; }
   /// The same value with `new_scale` decimals; fails (nullopt-like) when digits would be lost

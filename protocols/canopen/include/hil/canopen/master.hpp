@@ -58,8 +58,13 @@ struct NodeConfig {
   std::optional<std::uint32_t> serial;        ///< 0x1018:4 (0x1F88)
   std::vector<ParameterValue> configuration;  ///< SDO downloads in order (DCF ParameterValues, PDO remap)
   Duration heartbeat_consumer{};              ///< monitor the node's heartbeat (0 = off)
-  bool reset_communication = true;            ///< send NMT reset communication and wait for boot-up first
-  bool start = true;                          ///< NMT start after a successful boot
+  /// Node guarding (legacy nodes without a heartbeat producer): an RTR every guard time once the
+  /// node is started; no (or an untoggled) answer for life_time_factor x guard time is reported
+  /// like a heartbeat timeout. 0 = off. The node's 0x100C / 0x100D go in `configuration`.
+  Duration guard_time{};
+  std::uint8_t life_time_factor = 0;
+  bool reset_communication = true;  ///< send NMT reset communication and wait for boot-up first
+  bool start = true;                ///< NMT start after a successful boot
   /// Image of the node's OD for PDO exchange (usually from its EDS). Empty = no PDOs.
   ObjectDictionary image;
   std::vector<PdoConfig> rx_pdos;  ///< node TPDOs the master receives (mapping into `image`)
@@ -144,6 +149,7 @@ class Master {
   std::map<NodeId, Node> nodes_;
   std::unordered_map<std::uint32_t, NodeId> pdo_owner_;  ///< received PDO COB-ID -> node
   HeartbeatConsumer heartbeat_;
+  NodeGuardMaster guard_;
   std::optional<HeartbeatProducer> producer_;
   SyncProducer sync_;
   bool started_ = false;

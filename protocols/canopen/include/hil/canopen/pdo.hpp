@@ -68,8 +68,10 @@ class PdoEngine {
   SdoAbort add_tpdo(const PdoConfig& cfg);
   void clear();
 
-  /// PDOs are only exchanged in NMT Operational.
-  void set_active(bool active) noexcept { active_ = active; }
+  /// PDOs are only exchanged in NMT Operational. Entering it again (false -> true) restarts every
+  /// TPDO as on the first entry (as CANopenNode does): event-driven TPDOs go out at the next
+  /// step() whether or not their data changed, SYNC TPDOs count from the next SYNC again.
+  void set_active(bool active) noexcept;
   [[nodiscard]] bool active() const noexcept { return active_; }
 
   bool on_frame(const can::Frame& f, TimePoint now);

@@ -1,13 +1,16 @@
 // SPDX-License-Identifier: MIT
 #pragma once
-// Emulated Rexroth CLM1.4 serial side (manual §9.2): program memory (3000 lines), parameters
-// (writable only in Parameter mode, validated when leaving it), variables V000..V999 (V600..V999
-// writable), logic task lines (1000), status queries, interface commands and the status-01
-// error telegram. One object is one station; Clm14Line puts up to 32 of them on one RS-485 line.
-// Pure state machine: a received line in, the reply bytes out. No I/O, no clock.
+// Emulated Rexroth CLM1.4 (manual §9.2 on the wire, §5-§7 inside): the serial side (program
+// memory, parameters writable only in Parameter mode and validated when leaving it, variables,
+// logic task lines, status queries, interface commands, the status-01 error telegram) in front
+// of the running controller model (hil::controllers::clm14::Controller) whose axes are simulated
+// drives, or real-transport drives in retrofit mode (use_axes()). Every status reply comes from
+// the running model. One object is one station; Clm14Line puts up to 32 on one RS-485 line.
+// A received line in, the reply bytes out; time only through tick(now). No I/O.
 
 #include <array>
 #include <expected>
+#include <functional>
 #include <map>
 #include <memory>
 #include <string>
@@ -17,7 +20,10 @@
 
 #include <nlohmann/json_fwd.hpp>
 
+#include "hil/controllers/clm14/controller.hpp"
 #include "hil/core/clock.hpp"
+#include "hil/core/drive.hpp"
+#include "hil/mocks/legacy/clm14_sim_axes.hpp"
 #include "hil/serial/clm14/device_data.hpp"
 #include "hil/serial/clm14/telegram.hpp"
 
@@ -31,6 +37,9 @@ class Clm14Station {
   static constexpr int program_lines = 3000;
   static constexpr int logic_lines = 1000;
   static constexpr int variables = 1000;
+  /// An empty program line as the device reads it back: "NOP" + the blank operand field's two
+  /// spaces (manual §9.2 checksum example "#5N0123 NOP  $45").
+  static constexpr std::string_view empty_line = "NOP  ";
 
   /// `station` 0 = RS-232 (station character must be a space); 1..32 = RS-485 station number.
   Clm14Station(int station, std::shared_ptr<const serial::clm14::DeviceData> data, int axes = 2);
@@ -43,13 +52,27 @@ class Clm14Station {
   /// station answers "RS Format Error" (02), others stay silent.
   [[nodiscard]] std::string on_damaged_line(std::string_view line);
 
-  /// Change the mode inputs. Leaving Parameter mode validates every parameter (fault 02 and
-  /// status 60 name the first invalid one).
+  /// Change the mode inputs (I0.00.0 / I0.00.1) and run one cycle so the mode takes effect.
+  /// Leaving Parameter mode validates every parameter (fault 02 and status 60 name the first
+  /// invalid one).
   void set_mode(ClmMode m);
-  [[nodiscard]] ClmMode mode() const noexcept { return mode_; }
+  [[nodiscard]] ClmMode mode() const noexcept;
   [[nodiscard]] int station() const noexcept { return station_; }
-  /// Current fault code (hex per manual §6; 0x00/0x01 = none).
-  [[nodiscard]] int fault() const noexcept { return fault_; }
+  /// Current fault code (hex per manual §6; 0x00 = none).
+  [[nodiscard]] int fault() const noexcept { return clm_.error(); }
+
+  /// Run the controller's NC cycles up to `now` (at most 5000 per call: a long gap is skipped,
+  /// not replayed). The emulator calls it from its idle loop.
+  void tick(TimePoint now);
+  /// When the next NC cycle is due.
+  [[nodiscard]] TimePoint next_cycle() const noexcept { return next_cycle_; }
+  /// True once tick() ran (the unit is "powered" on the emulator's clock).
+  [[nodiscard]] bool ticking() const noexcept { return started_; }
+  /// Retrofit mode: the controller's axes are `ports` (axis 1..4, null = none), advanced once per
+  /// NC cycle by `update` after the controller's step. Replaces the simulated drives.
+  void use_axes(std::array<controllers::clm14::AxisPort*, 4> ports, std::function<void(const CycleTime&)> update);
+  [[nodiscard]] controllers::clm14::Controller& controller() noexcept { return clm_; }
+  [[nodiscard]] const controllers::clm14::Controller& controller() const noexcept { return clm_; }
   /// True when state changed since the last take_dirty() (for debounced persistence).
   [[nodiscard]] bool take_dirty() noexcept { return std::exchange(dirty_, false); }
 
@@ -58,7 +81,8 @@ class Clm14Station {
   /// field is missing or not a number.
   [[nodiscard]] hil::Duration response_delay() const;
 
-  [[nodiscard]] const std::string& program_line(int n) const { return program_.at(static_cast<std::size_t>(n)); }
+  /// Program line n as the device sends it after "Nnnnn ": "AEA Q1.00.3 1 ", "NOP  ".
+  [[nodiscard]] std::string program_line(int n) const;
   [[nodiscard]] std::string parameter(std::string_view number) const;
 
   [[nodiscard]] nlohmann::json to_json() const;
@@ -78,23 +102,25 @@ class Clm14Station {
   std::string on_logic(const serial::clm14::Telegram& t);
   std::string on_status(const serial::clm14::Telegram& t);
   std::string on_command(const serial::clm14::Telegram& t);
+  [[nodiscard]] std::string status_content(int n, std::string_view arg, bool& ok, int& error) const;
   void reset_parameters();
-  void validate_parameters();
+  void attach_axes();
+  void cycle(TimePoint now);
 
   int station_;
   char station_char_;
   std::shared_ptr<const serial::clm14::DeviceData> data_;
   int axes_;
-  ClmMode mode_ = ClmMode::manual;
   bool checksum_off_latched_ = false;  // checksum check state frozen while in Parameter mode
-  int fault_ = 0x00;
-  std::string invalid_item_;  // status 60: "0 B002"
-  bool running_ = false;
-  std::array<bool, 4> axis_enabled_{true, true, true, true};
-  std::vector<std::string> program_;  // body after "Nbbbb ": "NOP   ", "AEA Q1.00.3 1 "
-  std::vector<std::string> logic_;
-  std::vector<std::string> variables_;
   std::map<std::string, std::string, std::less<>> parameters_;
+  controllers::clm14::Controller clm_;
+  Clm14SimAxes sim_;
+  bool external_axes_ = false;
+  std::array<controllers::clm14::AxisPort*, 4> external_ports_{};
+  std::function<void(const CycleTime&)> external_update_;
+  TimePoint next_cycle_{};
+  TimePoint last_save_{};
+  bool started_ = false;
   std::vector<std::string> parameter_order_;
   bool dirty_ = false;
 };

@@ -32,6 +32,19 @@ class DbPolicy {
   virtual serial::s5::Rk512Error on_read(const DbStore& store, std::uint8_t db, std::uint8_t dw, std::uint16_t length,
                                          std::vector<std::uint16_t>& out) = 0;
   [[nodiscard]] virtual std::string name() const = 0;
+  /// DX blocks (RK512 data type 'X'); by default the same as DBs.
+  virtual serial::s5::Rk512Error on_write_dx(DbStore& store, std::uint8_t dx, std::uint8_t dw,
+                                             const std::vector<std::uint16_t>& words) {
+    return on_write(store, dx, dw, words);
+  }
+  virtual serial::s5::Rk512Error on_read_dx(const DbStore& store, std::uint8_t dx, std::uint8_t dw,
+                                            std::uint16_t length, std::vector<std::uint16_t>& out) {
+    return on_read(store, dx, dw, length, out);
+  }
+  /// Module time for devices that run (called before every job and whenever the endpoint is
+  /// idle); `next_deadline` = when the device needs its next call.
+  virtual void on_time(TimePoint /*now*/) {}
+  [[nodiscard]] virtual TimePoint next_deadline() const { return TimePoint::max(); }
 };
 
 /// Checks a complete image (e.g. an IP247 MD DB) against the device profile: 0 = valid, else

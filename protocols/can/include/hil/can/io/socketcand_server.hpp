@@ -41,10 +41,12 @@ struct ServerOptions {
   std::size_t max_output_bytes = 1u << 20;  ///< per client; frames beyond are dropped and counted
   /// Receive time (bus clock) -> wire timestamp. Default: wall clock (offset taken at construction).
   std::function<Timestamp(TimePoint)> to_wire_time{};
-  /// Frames from the bus are not forwarded during this time after a client entered raw mode.
-  /// python-can 4.1 (Debian 12) expects its `< ok >` alone in one recv(); a frame right behind
-  /// it makes its connect fail. The daemon has no such grace (0 = exact daemon behaviour).
-  Duration raw_mode_grace{0};
+  /// A client joins the bus when its `< rawmode >` is acknowledged: from then on every frame is
+  /// its own and none is dropped. python-can 4.1 (Debian 12) expects that `< ok >` alone in one
+  /// recv(), so frames that arrive right after it are queued (not dropped) until the client
+  /// sends its first element (proof that it has read its `< ok >`) or `join_hold` has passed,
+  /// whichever comes first. 0 = forward at once, like the daemon.
+  Duration join_hold{0};
   Duration handshake_timeout{std::chrono::seconds(10)};    ///< from connect to `< open >`
   Duration write_stall_timeout{std::chrono::seconds(30)};  ///< one write pending this long: the client is gone
   Duration accept_backoff_min{std::chrono::milliseconds(50)};
@@ -61,11 +63,11 @@ struct ServerStats {
   std::uint64_t send_failures = 0;        ///< Channel::send refused (bus-off, queue full)
   std::uint64_t frames_to_clients = 0;
   std::uint64_t dropped_slow_client = 0;
-  std::uint64_t rtr_not_forwarded = 0;     ///< socketcand raw mode has no RTR form
-  std::uint64_t dropped_during_grace = 0;  ///< see ServerOptions::raw_mode_grace
-  std::uint64_t accept_errors = 0;         ///< failed accepts (EMFILE, ENFILE, ...), each followed by a back-off
-  std::uint64_t timed_out = 0;             ///< closed: no bus opened in time, or not reading
-  std::uint64_t peak_queued_bytes = 0;     ///< largest output queue of any client (bounded, see above)
+  std::uint64_t rtr_not_forwarded = 0;  ///< socketcand raw mode has no RTR form
+  std::uint64_t held_at_join = 0;       ///< frames queued while joining (see ServerOptions::join_hold), all delivered
+  std::uint64_t accept_errors = 0;      ///< failed accepts (EMFILE, ENFILE, ...), each followed by a back-off
+  std::uint64_t timed_out = 0;          ///< closed: no bus opened in time, or not reading
+  std::uint64_t peak_queued_bytes = 0;  ///< largest output queue of any client (bounded, see above)
 };
 
 class Server {

@@ -1,0 +1,50 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+// What the CLM1.4 model needs from one of its axes: commands out (absolute moves that may be
+// re-planned while running, velocity runs, stops, enable, homing) and feedback in. Positions are
+// in the axis' own coordinates in IU; the CLM adds its homing offset and SAC offsets itself.
+// motion_axis_port.hpp implements it on hil::motion::Axis, which closes the loop over any
+// transport (sim, CANopen, Modbus, step/dir). Called on the controller's cycle thread only;
+// nothing blocks; nothing throws.
+
+#include <limits>
+
+namespace hil::controllers::clm14 {
+
+struct MoveLimits {
+  double velocity = 0.0;                                  ///< IU/s, > 0
+  double acceleration = 0.0;                              ///< IU/s², > 0
+  double jerk = std::numeric_limits<double>::infinity();  ///< IU/s³; inf = trapezoid
+};
+
+struct AxisFeedback {
+  double position = 0.0;         ///< actual, IU (axis coordinates)
+  double velocity = 0.0;         ///< actual, IU/s
+  double following_error = 0.0;  ///< IU
+  bool busy = false;             ///< a move or stop profile is running
+  bool in_position = false;      ///< the profile ended and the axis settled at its target
+  bool enabled = false;          ///< operation enabled
+  bool referenced = false;       ///< the drive's homing completed
+  bool fault = false;            ///< the axis holds a fault (following error, drive fault, lost drive)
+};
+
+class AxisPort {
+ public:
+  virtual ~AxisPort() = default;
+  [[nodiscard]] virtual AxisFeedback feedback() const = 0;
+  /// Absolute move in axis coordinates; re-plans from the current state when already moving.
+  virtual void move_to(double target, const MoveLimits& limits) = 0;
+  /// Run at a signed velocity until stop() or another command.
+  virtual void run(double velocity, const MoveLimits& limits) = 0;
+  /// Ramped stop (remaining distance is the caller's business).
+  virtual void stop() = 0;
+  /// E-Stop: command 0 without a ramp.
+  virtual void quick_stop() = 0;
+  virtual void set_enabled(bool on) = 0;
+  /// Start the drive's homing; feedback().referenced reports completion.
+  virtual void home() = 0;
+  /// Acknowledge an axis fault.
+  virtual void reset() = 0;
+};
+
+}  // namespace hil::controllers::clm14

@@ -1,0 +1,313 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+// The Rexroth CLM1.4 as a step function on the motion core (manual §5-§7, digest clm14.md §3-§7):
+// program memory (3000 lines), parameters, variables V000-V999, counters, markers and I/O,
+// 5 NC tasks executing one instruction each per NC cycle in the order 1..5, the logic task,
+// the modes Parameter / Manual / Automatic from the system inputs, Start, Immediate Stop,
+// E-Stop, drive enable / brake, errors with the device's numbers and the restart vector.
+//
+// Thread: every member on the controller's cycle thread. cycle() never blocks and never throws;
+// configuration calls return std::expected. Time comes only from the caller (`now`), so a run is
+// deterministic on virtual time.
+
+#include <array>
+#include <chrono>
+#include <cstdint>
+#include <expected>
+#include <functional>
+#include <map>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include <nlohmann/json_fwd.hpp>
+
+#include "hil/controllers/clm14/address.hpp"
+#include "hil/controllers/clm14/axis_port.hpp"
+#include "hil/controllers/clm14/instruction.hpp"
+#include "hil/controllers/clm14/logic_task.hpp"
+#include "hil/controllers/clm14/settings.hpp"
+#include "hil/core/clock.hpp"
+
+namespace hil::controllers::clm14 {
+
+enum class Mode : std::uint8_t { parameter, manual, automatic };
+/// Program run state of tasks 1, 2, 4, 5 (manual §7.2).
+enum class RunState : std::uint8_t { idle, running, stopped };
+
+/// Decisions where the manual lost a detail (docs/clm14.md lists each); defaults as documented.
+struct Options {
+  Duration logic_period{std::chrono::milliseconds(4)};   ///< §6: "minimum cycle 4 ms"
+  int mat_cycles_add = 1;                                ///< MAT + / -: cycles until the task proceeds
+  int mat_cycles_mul = 2;                                ///< MAT * and /
+  Duration brake_delay{std::chrono::milliseconds(200)};  ///< §9.1: brake released 200 ms after enable
+  /// CID Vnnn m ±value: mode 0 = set, 1 = add (manual: "changes the data in a variable", mode lost).
+  bool cid_mode1_adds = true;
+};
+
+/// One task's visible state (status 02/08/39, V002-V006).
+struct TaskView {
+  bool used = false;
+  bool active = false;
+  int pc = 0;       ///< current instruction
+  int main_pc = 0;  ///< instruction of the main program (caller of the outermost JSR + 1), = pc outside subroutines
+  int depth = 0;    ///< subroutine levels
+};
+
+class Controller {
+ public:
+  static constexpr int program_lines = 3000;
+  static constexpr int logic_lines = 1000;
+  static constexpr int max_stack = 127;
+
+  explicit Controller(Options options = {});
+
+  // ---- memory (the device's battery-buffered RAM) -----------------------------------------
+  /// Store one program line "MNE operands" (any mode, like the serial `#N` telegram). A COU/BAC
+  /// offset is applied to the line's counter now and the stored offset reset (manual §5.7 COU).
+  /// On error nothing changes; the error is the device's code for the fault (0A, 16, 1D, 0E).
+  std::expected<void, ProgramError> store_line(int line, std::string_view text);
+  /// Replace the whole program (lines not listed become NOP). All or nothing.
+  std::expected<void, ProgramError> load_program(const std::vector<std::pair<int, std::string>>& lines);
+  [[nodiscard]] const std::string& line_text(int line) const { return text_.at(static_cast<std::size_t>(line)); }
+  /// Logic-task line (compiled on power-up and on leaving Parameter mode). Outside Parameter
+  /// mode a change is error 39 "Logic Prg. Lost".
+  void store_logic_line(int line, std::string text);
+  [[nodiscard]] const std::string& logic_line(int line) const { return logic_text_.at(static_cast<std::size_t>(line)); }
+  /// The parameter set (read at power-up and on leaving Parameter mode).
+  void set_parameters(ParameterLookup lookup) { parameters_ = std::move(lookup); }
+  /// Extra check of the whole set run first (the profile's field ranges); its error is error 02.
+  void set_parameter_validator(std::function<std::expected<void, ProgramError>()> v) { validator_ = std::move(v); }
+  /// Called with new settings before the axes are checked (an owner may rebuild its axes here).
+  void on_settings(std::function<void(const Settings&)> f) { on_settings_ = std::move(f); }
+  /// Attach axis 1..4 (not owned). Axes without a port cannot be enabled in B000.
+  void attach_axis(int axis, AxisPort* port);
+
+  // ---- run ---------------------------------------------------------------------------------
+  /// Power-up sequence (§7.4): parameter check (02), logic compile (38), task 3 start.
+  void power_up(TimePoint now);
+  /// One NC cycle: inputs -> modes/safety -> tasks 1..5 -> logic task -> outputs.
+  void cycle(TimePoint now);
+  [[nodiscard]] Image& image() noexcept { return image_; }
+  [[nodiscard]] const Image& image() const noexcept { return image_; }
+
+  // ---- interface commands (§9.2 "!") -------------------------------------------------------
+  /// !START: start/resume in Automatic (false = not in Automatic).
+  bool command_start();
+  /// !STOP: immediate stop; afterwards only !START resumes.
+  void command_stop();
+  /// !CLEAR: acknowledge the error.
+  void command_clear();
+  /// !CCLVAR0019: clear the hour counter V019.
+  void clear_hour_counter() { hours_ms_ = 0.0; }
+  /// !MxON / !MxOFF.
+  void set_axis_software_enable(int axis, bool on);
+
+  // ---- state ---------------------------------------------------------------------------------
+  [[nodiscard]] Mode mode() const noexcept { return mode_; }
+  [[nodiscard]] RunState run_state() const noexcept { return run_; }
+  /// Current error code (0 = none).
+  [[nodiscard]] int error() const noexcept { return error_; }
+  /// What caused the error: "NC line 0012: ..." (empty when none).
+  [[nodiscard]] const std::string& error_message() const noexcept { return error_message_; }
+  /// Status 60: the item in error per kind (0 parameter, 1 NC line, 2 logic line, 3 variable), "" if none.
+  [[nodiscard]] std::string error_item(int kind) const;
+  [[nodiscard]] Micro variable(int n) const;
+  /// Serial/host write of V600..V999 (false: not writable).
+  bool set_variable(int n, Micro v);
+  /// Counter of the COU/BAC on `line`; nullopt when the line holds none.
+  struct CounterView {
+    int count = 0;
+    int preset = 0;
+  };
+  [[nodiscard]] std::optional<CounterView> counter(int line) const;
+  [[nodiscard]] TaskView task(int t) const;  ///< t = 1..5
+  /// Axis position in CLM coordinates (IU) and whether the axis is homed.
+  [[nodiscard]] double position(int axis) const;
+  [[nodiscard]] double following_error(int axis) const;
+  [[nodiscard]] double velocity(int axis) const;
+  [[nodiscard]] bool homed(int axis) const;
+  /// Position latched by the last SRM mark (status 41).
+  [[nodiscard]] double latched_position(int axis) const;
+  /// Status 53 text set by TXT 1 (empty when none); status 63 lines (TXT 0).
+  [[nodiscard]] const std::string& status_text() const noexcept { return txt53_; }
+  [[nodiscard]] const std::array<std::string, 4>& text_lines() const noexcept { return txt63_; }
+  [[nodiscard]] bool restart_possible() const noexcept { return restart_.valid; }
+  [[nodiscard]] const Settings& settings() const noexcept { return settings_; }
+  [[nodiscard]] std::uint64_t cycles() const noexcept { return cycle_count_; }
+  [[nodiscard]] Duration cycle_time() const;
+  /// Time of the last cycle.
+  [[nodiscard]] TimePoint now() const noexcept { return now_; }
+  [[nodiscard]] bool powered() const noexcept { return powered_; }
+
+  /// Battery-buffered state: program, logic, variables, counters, retentive markers, run state
+  /// and the restart snapshot. from_json() restores it as after a power loss (restart possible
+  /// when a program was running in Automatic).
+  [[nodiscard]] nlohmann::json to_json() const;
+  std::expected<void, std::string> from_json(const nlohmann::json& j);
+
+ private:
+  enum class Flow : std::uint8_t { next, jump, wait, halt };
+  struct Task {
+    bool used = false;
+    int start = 0;
+    int pc = 0;
+    std::vector<int> stack;
+    bool active = false;
+    int phase = 0;                 ///< progress of a waiting instruction (0 = not started)
+    TimePoint until{};             ///< WAI deadline
+    int aux = 0;                   ///< per-instruction scratch (MAT cycles left, ...)
+    int jump_to = 0;               ///< target when exec returns Flow::jump
+    bool restart_program = false;  ///< task 1 runs the B016 restart program
+    bool manual_vector = false;    ///< task 1 runs the B014 manual vector program
+  };
+  struct Vcc {
+    bool active = false;
+    bool absolute = false;
+    double at = 0.0;  ///< CLM coordinates: the position at which to switch / to have reached v
+    double velocity = 0.0;
+  };
+  struct AxisRun {
+    AxisPort* port = nullptr;
+    AxisFeedback fb{};
+    double base = 0.0;  ///< CLM position = raw + base (homing) + sac
+    double sac = 0.0;   ///< SAC offset
+    bool homed = false;
+    bool homing = false;
+    double target = 0.0;      ///< CLM coordinates
+    bool has_target = false;  ///< a feed is commanded (target valid)
+    bool feeding = false;     ///< the target is not reached yet (remaining distance > window)
+    bool held = false;        ///< stopped by JST/Immediate Stop/!STOP: resume to target on Start
+    bool pending = false;     ///< commanded while the drive was still enabling: sent once it is
+    double move_start = 0.0;  ///< CLM position where the last move started (VCC mode 0)
+    double velocity = 0.0;    ///< IU/s of the current feed
+    int acc_permille = 0;     ///< ACC (0 = Ax09)
+    int dec_permille = 0;
+    Micro fak = micro_one;
+    int rtm = 0;  ///< 0 from Ax05, 1 shortest, 2 programmed direction
+    bool con = false;
+    double con_velocity = 0.0;
+    bool srm = false;  ///< SRM searching
+    BitAddress srm_input{};
+    bool srm_input_last = false;
+    double srm_offset = 0.0;
+    double srm_start = 0.0;
+    double latched = 0.0;
+    bool srm_rep_hit = false;
+    bool rep = false;
+    int rep_line = 0;
+    double rep_distance = 0.0;
+    bool software_enabled = true;
+    bool drive_enable = false;
+    TimePoint enable_since{};
+    int override_permille = 1000;  ///< VEO source 4
+    bool override_limit = false;
+    bool presignal = false;
+    bool rmi_suspended = false;  ///< task-1 feed suspended by RMI
+    double rmi_saved_target = 0.0;
+    double rmi_base = 0.0;
+    bool rmi_offset_pending = false;
+    bool jog = false;
+    double presignal_since_s = 0.0;
+    TimePoint presignal_on{};
+  };
+  struct Restart {
+    bool valid = false;
+    std::array<int, 5> pc{};
+    std::array<int, 5> phase{};  ///< a PSI/PSA waiting for its window resumes waiting, not moving again
+    std::array<std::vector<int>, 5> stack{};
+    std::array<bool, 5> active{};
+    std::array<double, 4> target{};
+    std::array<bool, 4> has_target{};
+    std::array<std::uint8_t, 7> outputs{};
+  };
+
+  // controller.cpp
+  void apply_parameters(TimePoint now);
+  void compile_logic();
+  void update_mode(TimePoint now);
+  void enter_mode(Mode m, TimePoint now);
+  void update_safety(TimePoint now);
+  void update_axes_in(TimePoint now);
+  void update_system_variables();
+  void update_outputs();
+  void raise(int code, std::string message, int item_kind = -1, int item = 0);
+  void stop_program(bool keep_position);
+  void start_program(TimePoint now);
+  void resume_program();
+  void start_manual_vector();
+  void save_restart();
+  void restore_restart(bool outputs);
+  void reset_volatile_axis_state();
+  void run_tasks(TimePoint now);
+  void step_task(int t, TimePoint now);
+  void clear_nc_markers();
+  void write_bit(const BitAddress& a, bool v);
+  void write_byte(const ByteAddress& a, std::uint8_t v);
+  // commands.cpp
+  Flow exec(int t, Task& task, const Instruction& in, TimePoint now);
+  Flow exec_logic_ops(int t, Task& task, const Instruction& in);
+  Flow exec_counter(Task& task, const Instruction& in, int line);
+  [[nodiscard]] std::optional<Micro> value(const Num& n, int t);
+  /// An integer operand in lo..hi; a variable's fraction is truncated (§5.6: V601 = +999.9999 -> 999).
+  /// Out of range: error 32 for a variable, 0A for a constant. nullopt after raising.
+  [[nodiscard]] std::optional<int> integer(const Num& n, int t, int lo, int hi);
+  /// A 6.3 length field (±999999.999, truncated to 3 decimals); error 32 when it does not fit.
+  [[nodiscard]] std::optional<Micro> length(const Num& n, int t);
+  void fail(int t, int code, std::string why);
+  bool store_variable(int var, Micro v, int t);
+  // motion.cpp
+  Flow exec_motion(int t, Task& task, const Instruction& in, TimePoint now);
+  [[nodiscard]] MoveLimits limits_for(int axis, double velocity) const;
+  [[nodiscard]] double feed_velocity(int axis, int permille) const;
+  bool command_move(int axis, double target_clm, double velocity, int t);
+  void resume_axis(int axis);
+  void hold_axis(int axis);
+  [[nodiscard]] double clm_position(int axis) const;
+  [[nodiscard]] double raw_of(int axis, double clm) const;
+  [[nodiscard]] bool reached(int axis) const;
+  void step_axis_functions(TimePoint now);
+  void jog(TimePoint now);
+
+  Options options_;
+  ParameterLookup parameters_;
+  std::function<std::expected<void, ProgramError>()> validator_;
+  std::function<void(const Settings&)> on_settings_;
+  Settings settings_;
+  bool settings_ok_ = false;
+  std::vector<Instruction> program_;
+  std::vector<std::string> text_;
+  std::vector<std::string> logic_text_;
+  LogicProgram logic_;
+  bool logic_ok_ = false;
+  TimePoint logic_next_{};
+  std::array<Micro, 1000> vars_{};
+  std::map<int, int> counters_;  ///< line -> count (retentive)
+  Image image_;
+  Image previous_inputs_;  ///< for edges
+  std::array<Task, 5> tasks_{};
+  std::array<AxisRun, 4> axes_{};
+  Mode mode_ = Mode::manual;
+  bool mode_valid_ = false;  ///< false until the first cycle after power-up
+  RunState run_ = RunState::idle;
+  bool stopped_by_command_ = false;  ///< !STOP: only !START resumes
+  int error_ = 0;
+  std::string error_message_;
+  std::array<std::string, 4> error_item_{};
+  std::string txt53_;
+  std::array<std::string, 4> txt63_{};
+  Restart restart_;
+  bool restart_blocked_ = false;  ///< after Lag/Runaway on an incremental encoder
+  std::uint64_t cycle_count_ = 0;
+  std::uint64_t auto_cycles_ = 0;
+  double hours_ms_ = 0.0;  ///< operating time for V019
+  TimePoint now_{};
+  bool powered_ = false;
+  int mat_owner_ = -1;  ///< task using the calculation unit
+  int last_srm_axis_ = 0;
+};
+
+[[nodiscard]] const char* to_string(Mode m) noexcept;
+
+}  // namespace hil::controllers::clm14

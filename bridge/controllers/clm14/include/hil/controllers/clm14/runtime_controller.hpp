@@ -1,0 +1,54 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+// The CLM1.4 model on the controller runtime (issue 14): a hil::controllers::Controller that owns
+// a clm14::Controller, whose I/O image is the runtime's IoImage (CLM groups at byte group*64+yy,
+// io_address_clm.hpp) and whose axes are the runtime's motion::Axis objects. A scenario names
+// it with `controller: {device: clm14, parameters: clm.par, program: clm.prg}`.
+//
+// Parameter files: one parameter per line, either the hilbridge text form "B002 019200 0 1 8 1"
+// or the CLM telegram "# K B002 019200 0 1 8 1$E4"; program files "0000 POI 1 +000100.000 999".
+// Thread: the cycle thread; on_cycle never throws.
+
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "hil/controllers/clm14/controller.hpp"
+#include "hil/controllers/clm14/motion_axis_port.hpp"
+#include "hil/controllers/controller.hpp"
+#include "hil/controllers/controller_registry.hpp"
+
+namespace hil::controllers::clm14 {
+
+class RuntimeController final : public hil::controllers::Controller {
+ public:
+  /// Builds the controller from the scenario's block: reads and checks parameter and program
+  /// files (errors name file and line, with the device's error number), declares the enabled
+  /// axes in IU.
+  [[nodiscard]] static std::expected<std::unique_ptr<hil::controllers::Controller>, ConfigError> create(
+      const ControllerSpec& spec);
+
+  [[nodiscard]] std::expected<hil::controllers::BitAddress, std::string> resolve_bit(
+      std::string_view text) const override;
+  [[nodiscard]] clm14::Controller& model() noexcept { return model_; }
+
+  RuntimeController(std::shared_ptr<const profiles::Profile> profile, std::map<std::string, std::string> parameters,
+                    Duration cycle);
+
+ protected:
+  void on_cycle(const CycleTime& cycle) noexcept override;
+  [[nodiscard]] std::optional<DeviceErrorCode> map_axis_fault(std::size_t axis, const hil::Fault& fault,
+                                                              const motion::AxisStatus& status) const noexcept override;
+
+ private:
+  std::map<std::string, std::string> parameters_;
+  clm14::Controller model_;
+  std::vector<std::unique_ptr<MotionAxisPort>> ports_;
+  int shown_error_ = 0;
+};
+
+/// Registers "clm14" in `registry`.
+void register_clm14(ControllerRegistry& registry);
+
+}  // namespace hil::controllers::clm14

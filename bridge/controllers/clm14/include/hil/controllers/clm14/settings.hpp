@@ -1,0 +1,85 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+// The parameter values the CLM1.4 model runs on (manual §8, digest clm14.md §3.7-§3.9), taken
+// from the parameter texts as the device stores them ("B011" -> "0200 0000 0"). The texts are
+// checked field by field against the profile elsewhere (DeviceData::check_parameter); this
+// reads them. A text that cannot be read is error 02 naming the parameter, and nothing of the
+// set is taken over.
+
+#include <array>
+#include <expected>
+#include <functional>
+#include <optional>
+#include <string>
+#include <string_view>
+
+#include "hil/controllers/clm14/address.hpp"
+#include "hil/controllers/clm14/instruction.hpp"
+
+namespace hil::controllers::clm14 {
+
+enum class MotionType : std::uint8_t { rotary = 0, linear = 1, rotary_table = 2 };
+
+struct AxisSettings {
+  bool enabled = false;                    ///< axis 1 always; 2..4 per B000
+  MotionType motion = MotionType::linear;  ///< Ax00 field 1
+  int mode = 0;                            ///< Ax00 field 2 (0 normal .. 5 flying cutoff)
+  double feed_constant = 10.0;             ///< Ax01, IU per encoder revolution
+  double min_limit = -111111.111;          ///< Ax03, IU
+  double max_limit = 100000.0;             ///< Ax04, IU
+  double modulo = 0.0;                     ///< Ax05 value (rotary table), IU
+  int modulo_path = 0;                     ///< Ax05 m: 0 programmed direction, 1 shortest path
+  double vmax = 100.0;                     ///< Ax06, IU/s
+  double jog_velocity = 100.0;             ///< Ax07, IU/s
+  double acceleration = 10.0;              ///< Ax08, IU/s²
+  int accel_permille = 0;                  ///< Ax09 (0 = 1000 ‰)
+  int decel_permille = 0;
+  double jerk_time_s = 0.0;                           ///< Ax10 as entered (rounded up to 2^n cycles when used)
+  std::optional<BitAddress> feed_angle_input;         ///< Ax15 field 1
+  std::optional<BitAddress> interrupt_input;          ///< Ax15 field 2
+  int encoder_pulses = 1024;                          ///< Ax19 pulses/rev
+  int encoder_revolutions = 1024;                     ///< Ax19 revolutions / ratio
+  int encoder_type = 0;                               ///< Ax20 field 1: 0 incremental, 1/2 absolute, 3 controlled
+  std::optional<BitAddress> homing_start_input;       ///< Ax23 field 1
+  std::optional<BitAddress> home_switch_input;        ///< Ax23 field 2
+  std::optional<BitAddress> homed_output;             ///< Ax24 field 1
+  int homing_velocity_permille = -100;                ///< Ax24 field 2 (sign = direction)
+  int homing_type = 0;                                ///< Ax24 field 3
+  double home_offset = 0.0;                           ///< Ax25, IU
+  std::optional<BitAddress> reached_output;           ///< Ax27 "position reached"
+  double reached_window = 0.0;                        ///< Ax27 window, IU
+  std::optional<BitAddress> presignal_output;         ///< Ax29
+  double presignal_pulse_s = 0.0;                     ///< 0 = steady
+  double presignal_distance = 0.0;                    ///< IU
+  std::optional<BitAddress> velocity_reached_output;  ///< Ax32 left
+  std::optional<BitAddress> decelerating_output;      ///< Ax32 right
+
+  [[nodiscard]] bool absolute_encoder() const noexcept { return encoder_type == 1 || encoder_type == 2; }
+};
+
+struct Settings {
+  std::array<AxisSettings, 4> axes{};
+  int axis_count = 1;               ///< highest enabled axis
+  double cycle_ms = 2.0;            ///< B010 (0.0 = auto: 2 ms for 1-2 axes, 3 for 3, 4 for 4)
+  std::array<int, 5> task_start{};  ///< B011/B012 start lines of tasks 2..5 (index 1..4); task 1 = 0
+  std::array<bool, 5> task_used{true, false, false, false, false};  ///< a start line 0000 = task not used
+  std::optional<BitAddress> manual_vector_input;                    ///< B014
+  bool manual_vector_on_mode_change = false;
+  int manual_vector_line = 0;
+  std::optional<BitAddress> interrupt_vector_input;  ///< B015
+  int interrupt_vector_edge = 0;                     ///< 0..3 (rising/falling, inhibited in JSR or not)
+  bool interrupt_vector_aborts_move = false;
+  int interrupt_vector_line = 0;
+  int restart_line = 0;               ///< B016; 0 = no restart program
+  int error_code_byte = 0;            ///< B018 f: 0 off, 1..6 = Q1.00..Q1.05
+  std::array<int, 7> output_clear{};  ///< B018 g per output byte Q1.00..Q1.06: 0 clear, 1 keep until cleared, 2 never
+};
+
+/// Reads a parameter's stored text ("" when the set has none).
+using ParameterLookup = std::function<std::string(std::string_view number)>;
+
+/// Build the settings from a whole parameter set. Error 02 names the first parameter that
+/// cannot be read (ProgramError::message starts with its number, line = -1).
+[[nodiscard]] std::expected<Settings, ProgramError> make_settings(const ParameterLookup& lookup);
+
+}  // namespace hil::controllers::clm14

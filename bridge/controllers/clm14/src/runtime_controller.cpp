@@ -1,0 +1,169 @@
+// SPDX-License-Identifier: MIT
+#include "hil/controllers/clm14/runtime_controller.hpp"
+
+#include <fmt/format.h>
+
+#include <fstream>
+#include <sstream>
+
+#include "hil/controllers/io_address_clm.hpp"
+#include "hil/profiles/loader.hpp"
+#include "hil/serial/clm14/device_data.hpp"
+
+namespace hil::controllers::clm14 {
+
+namespace {
+
+namespace hc = hil::controllers;
+
+std::expected<std::string, ConfigError> read_text(const std::filesystem::path& file, const ControllerSpec& spec,
+                                                  std::string_view what) {
+  std::ifstream in(file, std::ios::binary);
+  if (!in)
+    return std::unexpected(ConfigError{spec.file, spec.line, 0, fmt::format("controller.{}", what),
+                                       fmt::format("cannot read {} file '{}'", what, file.string())});
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+std::string_view trim(std::string_view s) {
+  while (!s.empty() && (s.back() == ' ' || s.back() == '\r')) s.remove_suffix(1);
+  while (!s.empty() && s.front() == ' ') s.remove_prefix(1);
+  return s;
+}
+
+/// "B002 019200 0 1 8 1" or "# K B002 019200 0 1 8 1$E4" -> {"B002", "019200 0 1 8 1"}.
+std::optional<std::pair<std::string, std::string>> parameter_line(std::string_view l) {
+  l = trim(l);
+  if (l.empty() || l.front() == ';') return std::nullopt;
+  if (l.front() == '#' || l.front() == '!') {
+    const auto k = l.find('K');
+    if (k == std::string_view::npos) return std::nullopt;
+    l = trim(l.substr(k + 1));
+    if (const auto d = l.rfind('$'); d != std::string_view::npos && d + 3 == l.size()) l = l.substr(0, d);
+  }
+  const auto sp = l.find(' ');
+  if (sp == std::string_view::npos) return std::pair{std::string(l), std::string{}};
+  return std::pair{std::string(l.substr(0, sp)), std::string(trim(l.substr(sp + 1)))};
+}
+
+}  // namespace
+
+RuntimeController::RuntimeController(std::shared_ptr<const profiles::Profile> profile,
+                                     std::map<std::string, std::string> parameters, Duration cycle)
+    : hc::Controller(std::move(profile), profiles::ParameterSet{}, hc::clm_io_layout(3, 3, 7), cycle),
+      parameters_(std::move(parameters)) {
+  model_.set_parameters([this](std::string_view n) {
+    const auto it = parameters_.find(std::string(n));
+    return it == parameters_.end() ? std::string{} : it->second;
+  });
+}
+
+std::expected<std::unique_ptr<hc::Controller>, ConfigError> RuntimeController::create(const ControllerSpec& spec) {
+  auto profile = profiles::find_profile("clm14");
+  if (!profile) return std::unexpected(profile.error());
+  auto text = read_text(spec.parameters, spec, "parameters");
+  if (!text) return std::unexpected(text.error());
+  std::map<std::string, std::string> params;
+  // the profile's defaults first (as after !CSETPA); the file overrides them
+  auto data = serial::clm14::load_device_data();
+  if (!data) return std::unexpected(ConfigError{spec.file, spec.line, 0, "controller", data.error()});
+  for (const auto& n : (*data)->parameter_numbers(4)) params[n] = (*data)->parameter_default(n);
+  {
+    std::istringstream in(*text);
+    std::string line;
+    while (std::getline(in, line))
+      if (auto p = parameter_line(line)) params[p->first] = p->second;
+  }
+  auto settings = make_settings([&](std::string_view n) {
+    const auto it = params.find(std::string(n));
+    return it == params.end() ? std::string{} : it->second;
+  });
+  if (!settings)
+    return std::unexpected(ConfigError{spec.parameters.string(), 0, 0, "controller.parameters",
+                                       fmt::format("CLM error 02: {}", settings.error().message)});
+  const Duration cycle = spec.cycle.value_or(
+      std::chrono::duration_cast<Duration>(std::chrono::duration<double, std::milli>(settings->cycle_ms)));
+  auto c = std::make_unique<RuntimeController>(*profile, std::move(params), cycle);
+  for (int ax = 1; ax <= 4; ++ax) {
+    const auto& as = settings->axes[static_cast<std::size_t>(ax - 1)];
+    if (!as.enabled) continue;
+    hc::ControllerAxis a;
+    a.name = std::to_string(ax);
+    a.units = "IU";
+    a.config = make_axis_config(as, a.name);
+    c->add_axis(std::move(a));
+  }
+  std::vector<std::pair<int, std::string>> lines;
+  for (const auto& prg : spec.programs) {
+    auto p = read_text(prg, spec, "program");
+    if (!p) return std::unexpected(p.error());
+    std::istringstream in(*p);
+    std::string line;
+    int n = 0;
+    while (std::getline(in, line)) {
+      ++n;
+      const std::string_view l = trim(line);
+      if (l.empty() || l.front() == ';') continue;
+      if (l.size() < 6 || l.substr(0, 4).find_first_not_of("0123456789") != std::string_view::npos || l[4] != ' ')
+        return std::unexpected(
+            ConfigError{prg.string(), n, 1, "program", fmt::format("'{}': expected 'NNNN MNEMONIC operands'", l)});
+      lines.emplace_back(std::stoi(std::string(l.substr(0, 4))), std::string(trim(l.substr(5))));
+    }
+    if (auto r = c->model_.load_program(lines); !r)
+      return std::unexpected(
+          ConfigError{prg.string(), 0, 0, "program",
+                      fmt::format("CLM error {:02X}: {}", static_cast<int>(r.error().error), r.error().message)});
+  }
+  return std::unique_ptr<hc::Controller>(std::move(c));
+}
+
+std::expected<hc::BitAddress, std::string> RuntimeController::resolve_bit(std::string_view text) const {
+  if (auto named = hc::Controller::resolve_bit(text)) return named;
+  auto a = hc::parse_clm_address(text);
+  if (!a) return std::unexpected(a.error());
+  return hc::to_bit_address(*a);
+}
+
+void RuntimeController::on_cycle(const CycleTime& cycle) noexcept {
+  if (ports_.empty())
+    for (std::size_t i = 0; i < axis_count(); ++i) {
+      ports_.push_back(std::make_unique<MotionAxisPort>(axis(i)));
+      model_.attach_axis(static_cast<int>(i + 1), ports_.back().get());
+    }
+  // The runtime's image holds CLM group x byte yy at x * 64 + yy (io_address_clm.hpp).
+  auto& im = model_.image();
+  for (std::uint8_t s = 0; s < 3; ++s)
+    for (std::uint8_t b = 0; b < io_bytes; ++b)
+      im.set_byte({Area::input, s, b}, io().get(hc::ByteAddress{hc::IoArea::input, s * hc::clm_group_stride + b}));
+  model_.cycle(cycle.now);
+  for (std::uint8_t s = 0; s < 3; ++s)
+    for (std::uint8_t b = 0; b < io_bytes; ++b)
+      io().set(hc::ByteAddress{hc::IoArea::output, s * hc::clm_group_stride + b}, im.byte({Area::output, s, b}));
+  for (std::uint8_t g = 0; g < 7; ++g)
+    for (std::uint8_t b = 0; b < marker_bytes; ++b)
+      io().set(hc::ByteAddress{hc::IoArea::marker, g * hc::clm_group_stride + b}, im.byte({Area::marker, g, b}));
+  const int e = model_.error();
+  if (e != shown_error_) {
+    if (const auto* cat = catalogue("diagnostic")) {
+      if (shown_error_ != 0) (void)clear_error(*cat, shown_error_);
+      if (e != 0) raise(*cat, e, cycle.now, -1, model_.error_message());
+    }
+    shown_error_ = e;
+  }
+}
+
+std::optional<hc::DeviceErrorCode> RuntimeController::map_axis_fault(std::size_t axis, const hil::Fault&,
+                                                                     const motion::AxisStatus&) const noexcept {
+  // Supervision faults are the CLM's "Excess Pos Lag" of that axis (43/73/A3/D3); the model
+  // raises and reports it itself, so the runtime keeps the motion fault as it is.
+  (void)axis;
+  return std::nullopt;
+}
+
+void register_clm14(ControllerRegistry& registry) {
+  registry.add("clm14", [](const ControllerSpec& spec) { return RuntimeController::create(spec); });
+}
+
+}  // namespace hil::controllers::clm14

@@ -1,0 +1,134 @@
+// SPDX-License-Identifier: MIT
+#include "hil/controllers/clm14/settings.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <vector>
+
+namespace hil::controllers::clm14 {
+
+namespace {
+
+struct Reader {
+  const ParameterLookup& lookup;
+  std::string failed;  // "A106 'x': why"
+
+  std::vector<std::string> fields(std::string_view number, std::size_t min_fields) {
+    const std::string t = lookup(number);
+    std::vector<std::string> out;
+    std::size_t i = 0;
+    while (i < t.size()) {
+      while (i < t.size() && t[i] == ' ') ++i;
+      const std::size_t b = i;
+      while (i < t.size() && t[i] != ' ') ++i;
+      if (i > b) out.emplace_back(t.substr(b, i - b));
+    }
+    if (out.size() < min_fields && failed.empty())
+      failed = fmt::format("{} '{}': expected {} field(s)", number, t, min_fields);
+    out.resize(std::max(out.size(), min_fields));
+    return out;
+  }
+  double number(std::string_view param, const std::string& f) {
+    auto m = parse_micro(f);
+    if (!m) {
+      if (failed.empty()) failed = fmt::format("{}: '{}' is not a number", param, f);
+      return 0.0;
+    }
+    return to_double(*m);
+  }
+  int integer(std::string_view param, const std::string& f) { return static_cast<int>(number(param, f)); }
+  std::optional<BitAddress> io(std::string_view param, const std::string& f) {
+    auto b = parse_optional_bit(f);
+    if (!b.ok && failed.empty()) failed = fmt::format("{}: '{}' is not an I/O address", param, f);
+    return b.bit;
+  }
+};
+
+}  // namespace
+
+std::expected<Settings, ProgramError> make_settings(const ParameterLookup& lookup) {
+  Reader r{lookup, {}};
+  Settings s;
+  const auto b000 = r.fields("B000", 3);
+  s.axes[0].enabled = true;
+  for (std::size_t i = 1; i < 4; ++i) s.axes[i].enabled = b000[i - 1] == "1";
+  s.axis_count = 1;
+  for (int i = 0; i < 4; ++i)
+    if (s.axes[static_cast<std::size_t>(i)].enabled) s.axis_count = i + 1;
+  const auto b010 = r.fields("B010", 1);
+  s.cycle_ms = r.number("B010", b010[0]);
+  if (s.cycle_ms == 0.0) s.cycle_ms = s.axis_count <= 2 ? 2.0 : s.axis_count == 3 ? 3.0 : 4.0;
+  const auto b011 = r.fields("B011", 2);
+  const auto b012 = r.fields("B012", 2);
+  s.task_start[1] = r.integer("B011", b011[0]);
+  s.task_start[2] = r.integer("B011", b011[1]);
+  s.task_start[3] = r.integer("B012", b012[0]);
+  s.task_start[4] = r.integer("B012", b012[1]);
+  for (std::size_t t = 1; t < 5; ++t) s.task_used[t] = s.task_start[t] != 0;
+  const auto b014 = r.fields("B014", 3);
+  s.manual_vector_input = r.io("B014", b014[0]);
+  s.manual_vector_on_mode_change = b014[1] == "1";
+  s.manual_vector_line = r.integer("B014", b014[2]);
+  const auto b015 = r.fields("B015", 4);
+  s.interrupt_vector_input = r.io("B015", b015[0]);
+  s.interrupt_vector_edge = r.integer("B015", b015[1]);
+  s.interrupt_vector_aborts_move = b015[2] == "1";
+  s.interrupt_vector_line = r.integer("B015", b015[3]);
+  s.restart_line = r.integer("B016", r.fields("B016", 1)[0]);
+  const auto b018 = r.fields("B018", 2);
+  s.error_code_byte = r.integer("B018", b018[0]);
+  for (std::size_t i = 0; i < 7; ++i) s.output_clear[i] = i < b018[1].size() ? b018[1][i] - '0' : 0;
+  for (int ax = 1; ax <= 4; ++ax) {
+    AxisSettings& a = s.axes[static_cast<std::size_t>(ax - 1)];
+    if (!a.enabled) continue;
+    const auto p = [ax](int n) { return fmt::format("A{}{:02d}", ax, n); };
+    const auto x00 = r.fields(p(0), 2);
+    a.motion = static_cast<MotionType>(std::clamp(r.integer(p(0), x00[0]), 0, 2));
+    a.mode = r.integer(p(0), x00[1]);
+    a.feed_constant = r.number(p(1), r.fields(p(1), 1)[0]);
+    a.min_limit = r.number(p(3), r.fields(p(3), 1)[0]);
+    a.max_limit = r.number(p(4), r.fields(p(4), 1)[0]);
+    const auto x05 = r.fields(p(5), 2);
+    a.modulo = r.number(p(5), x05[0]);
+    a.modulo_path = r.integer(p(5), x05[1]);
+    a.vmax = r.number(p(6), r.fields(p(6), 1)[0]);
+    a.jog_velocity = r.number(p(7), r.fields(p(7), 1)[0]);
+    a.acceleration = r.number(p(8), r.fields(p(8), 1)[0]);
+    const auto x09 = r.fields(p(9), 2);
+    a.accel_permille = r.integer(p(9), x09[0]);
+    a.decel_permille = r.integer(p(9), x09[1]);
+    a.jerk_time_s = r.number(p(10), r.fields(p(10), 1)[0]);
+    const auto x15 = r.fields(p(15), 2);
+    a.feed_angle_input = r.io(p(15), x15[0]);
+    a.interrupt_input = r.io(p(15), x15[1]);
+    const auto x19 = r.fields(p(19), 2);
+    a.encoder_pulses = r.integer(p(19), x19[0]);
+    a.encoder_revolutions = r.integer(p(19), x19[1]);
+    a.encoder_type = r.integer(p(20), r.fields(p(20), 1)[0]);
+    const auto x23 = r.fields(p(23), 2);
+    a.homing_start_input = r.io(p(23), x23[0]);
+    a.home_switch_input = r.io(p(23), x23[1]);
+    const auto x24 = r.fields(p(24), 3);
+    a.homed_output = r.io(p(24), x24[0]);
+    a.homing_velocity_permille = r.integer(p(24), x24[1]);
+    a.homing_type = r.integer(p(24), x24[2]);
+    a.home_offset = r.number(p(25), r.fields(p(25), 1)[0]);
+    const auto x27 = r.fields(p(27), 2);
+    a.reached_output = r.io(p(27), x27[0]);
+    a.reached_window = r.number(p(27), x27[1]);
+    const auto x29 = r.fields(p(29), 3);
+    a.presignal_output = r.io(p(29), x29[0]);
+    a.presignal_pulse_s = r.number(p(29), x29[1]);
+    a.presignal_distance = r.number(p(29), x29[2]);
+    const auto x32 = r.fields(p(32), 2);
+    a.velocity_reached_output = r.io(p(32), x32[0]);
+    a.decelerating_output = r.io(p(32), x32[1]);
+    if (r.failed.empty() && (a.feed_constant <= 0.0 || a.vmax <= 0.0 || a.acceleration <= 0.0))
+      r.failed = fmt::format("{}: feed constant, Vmax (Ax06) and acceleration (Ax08) must be > 0", p(1));
+  }
+  if (!r.failed.empty()) return std::unexpected(ProgramError{ClmError::parameter_invalid, -1, r.failed});
+  return s;
+}
+
+}  // namespace hil::controllers::clm14

@@ -1,0 +1,100 @@
+// SPDX-License-Identifier: MIT
+// The CLM1.4 on the controller runtime (issue 14): built from parameter and program files by the
+// registry, its inputs and outputs on the runtime's IoImage, its axes the runtime's motion::Axis.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include "hil/controllers/clm14/runtime_controller.hpp"
+#include "hil/controllers/io_address_clm.hpp"
+#include "hil/mocks/sim_drive.hpp"
+
+namespace hil::controllers::clm14 {
+namespace {
+
+namespace hc = hil::controllers;
+using namespace std::chrono_literals;
+
+hc::BitAddress at(std::string_view s) {
+  return hc::to_bit_address(hc::parse_clm_address(s).value());
+}
+
+TEST(ClmRuntime, RunsAProgramFromFilesOnTheRuntimesImageAndAxes) {
+  const auto dir = std::filesystem::temp_directory_path() / "clm14_runtime_adapter";
+  std::filesystem::create_directories(dir);
+  {
+    std::ofstream par(dir / "clm.par");
+    par << "; hilbridge clm14 parameters\nB000 0 0 0\nB010 2.0\nB011 0000 0000 0\nB012 0000 0000\n"
+           "A100 1 0 0 0 0\nA101 0010.00000\nA106 000100.000\nA107 000050.000\nA108 001000\nA109 000 000\n"
+           "A110 0.000\nA119 01024 1024\nA120 0 0 00 1\n# K A124 00.00.0 +100 0$00\nA127 M2.00.0 0000.010\n";
+    std::ofstream prg(dir / "clm.prg");
+    prg << "; hilbridge clm14 program\n0000 AEA Q1.00.3 1\n0001 PSI 1 +000025.000 999\n0002 AEA Q1.00.3 0\n"
+           "0003 JST 0000\n";
+  }
+  hc::ControllerRegistry registry;
+  register_clm14(registry);
+  hc::ControllerSpec spec;
+  spec.device = "clm14";
+  spec.parameters = dir / "clm.par";
+  spec.programs = {dir / "clm.prg"};
+  auto c = registry.create(spec);
+  ASSERT_TRUE(c) << c.error().describe();
+  auto& ctl = **c;
+  ASSERT_EQ(ctl.axis_specs().size(), 1u);
+  EXPECT_EQ(ctl.cycle_period(), 2ms);
+  mocks::SimDriveConfig dc;
+  dc.plant.kv_per_s = 200.0;
+  dc.plant.velocity_feedforward = 1.0;
+  motion::Axis axis(ctl.axis_specs()[0].config, std::make_unique<mocks::SimDrive>(dc));
+  std::array<motion::Axis*, 1> axes{&axis};
+  ASSERT_TRUE(ctl.bind_axes(axes));
+  auto& io = ctl.io();
+  io.set(at("I0.00.2"), true);  // E-Stop closed
+  io.set(at("I0.00.4"), true);  // Immediate Stop closed
+  io.set(at("I0.00.5"), true);  // Enable axis 1
+  TimePoint now{};
+  const auto step = [&] {
+    now += 2ms;
+    axis.update(CycleTime{now, 2ms});
+    ctl.step(CycleTime{now, 2ms});
+  };
+  for (int i = 0; i < 20; ++i) step();
+  EXPECT_TRUE(io.get(at("Q0.00.3"))) << "drive enable";
+  io.set(at("I0.00.1"), true);  // Automatic
+  step();
+  io.set(at("I0.00.3"), true);  // Start
+  step();
+  io.set(at("I0.00.3"), false);
+  step();
+  EXPECT_TRUE(io.get(at("Q1.00.3")));
+  EXPECT_TRUE(io.get(at("Q0.01.1"))) << "Run Task";
+  for (int i = 0; i < 2000 && io.get(at("Q0.01.1")); ++i) step();
+  EXPECT_FALSE(io.get(at("Q1.00.3")));
+  EXPECT_NEAR(axis.status().position, 25.0, 0.011);
+  EXPECT_TRUE(ctl.resolve_bit("M2.00.0").has_value());
+  EXPECT_TRUE(ctl.errors().active().empty());
+}
+
+TEST(ClmRuntime, BadProgramFileNamesTheDevicesError) {
+  const auto dir = std::filesystem::temp_directory_path() / "clm14_runtime_adapter_bad";
+  std::filesystem::create_directories(dir);
+  {
+    std::ofstream par(dir / "clm.par");
+    par << "B000 0 0 0\n";
+    std::ofstream prg(dir / "clm.prg");
+    prg << "0000 POI 7 +000010.000 999\n";
+  }
+  hc::ControllerRegistry registry;
+  register_clm14(registry);
+  hc::ControllerSpec spec;
+  spec.device = "clm14";
+  spec.parameters = dir / "clm.par";
+  spec.programs = {dir / "clm.prg"};
+  auto c = registry.create(spec);
+  ASSERT_FALSE(c);
+  EXPECT_NE(c.error().describe().find("CLM error 16"), std::string::npos) << c.error().describe();
+}
+
+}  // namespace
+}  // namespace hil::controllers::clm14
