@@ -23,8 +23,8 @@
 #include <asio/io_context.hpp>
 #include <asio/ip/tcp.hpp>
 
-#include "hil/can/socketcand.hpp"
 #include "hil/can/io/socketcand_server.hpp"
+#include "hil/can/socketcand.hpp"
 #include "hil/can/virtual_bus.hpp"
 #include "hil/core/clock.hpp"
 

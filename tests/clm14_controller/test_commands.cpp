@@ -16,7 +16,7 @@ using testing::Rig;
 using namespace std::chrono_literals;
 
 /// Run `lines` in Automatic until task 1 reaches `stop_line` (or times out).
-bool run_to(Rig& r, int stop_line, Duration limit = 30s) {
+[[maybe_unused]] bool run_to(Rig& r, int stop_line, Duration limit = 30s) {
   r.start_auto();
   return r.run_until([&] { return r.clm.task(1).pc == stop_line || r.clm.error() != 0; }, limit);
 }

@@ -15,7 +15,9 @@
 
 namespace hil::cli {
 void register_sim(Context& ctx);
+namespace canopen_cli {
 void register_canopen_transport(Context& ctx);
+}  // namespace canopen_cli
 }  // namespace hil::cli
 
 namespace hil::controllers::clm14 {
@@ -61,7 +63,7 @@ Trace run_on(const Case& c) {
   CLI::App* emulate = app.add_subcommand("emulate");
   cli::Context ctx{app, *emulate, registry, 0};
   cli::register_sim(ctx);
-  cli::register_canopen_transport(ctx);
+  cli::canopen_cli::register_canopen_transport(ctx);
   registry.add("modbus", [] { return drives::make_modbus_transport(); });
   registry.add("stepdir", [] { return std::make_unique<drives::stepdir::StepDirTransportFactory>(); });
   auto scenario = runtime::parse_scenario(machine_yaml(c), c.name + ".yaml");

@@ -2,8 +2,8 @@
 // `hilbridge emulate clm14 | elg-tape | ip247 | wf725`.
 #include <fmt/format.h>
 
-#include <expected>
 #include <asio/io_context.hpp>
+#include <expected>
 
 #include <cstdio>
 #include <fstream>
@@ -12,10 +12,10 @@
 
 #include "emulate.hpp"
 #include "hil/cli/context.hpp"
-#include "hil/core/text_file.hpp"
 #include "hil/controllers/clm14/motion_axis_port.hpp"
-#include "hil/core/clock.hpp"
 #include "hil/controllers/s5/ip247_module_endpoint.hpp"
+#include "hil/core/clock.hpp"
+#include "hil/core/text_file.hpp"
 #include "hil/mocks/legacy/clm14_line.hpp"
 #include "hil/mocks/legacy/elg_tape_endpoint.hpp"
 #include "hil/mocks/legacy/s5_block_endpoint.hpp"

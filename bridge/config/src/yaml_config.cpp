@@ -53,7 +53,8 @@ std::expected<std::optional<T>, ConfigError> get_scalar(const YAML::Node& node, 
   try {
     T out = v.as<T>();
     if constexpr (std::is_floating_point_v<T>) {
-      if (!std::isfinite(out)) return std::unexpected(error_at(v, here, fmt::format("expected {} (a finite number)", what)));
+      if (!std::isfinite(out))
+        return std::unexpected(error_at(v, here, fmt::format("expected {} (a finite number)", what)));
     }
     return std::optional<T>{out};
   } catch (const YAML::Exception&) {

@@ -37,9 +37,8 @@ class Loader {
     const Field top(file_, root, "", YAML::Mark{});
     if (!root.IsMap())
       top.fail(fmt::format("a scenario is a map with 'machine:' and 'program:', got {}", top.describe()));
-    top.expect_map(
-        {"name", "description", "period", "duration", "timeout", "realtime", "controller", "machine", "io", "program",
-         "expect"});
+    top.expect_map({"name", "description", "period", "duration", "timeout", "realtime", "controller", "machine", "io",
+                    "program", "expect"});
     if (auto f = top.child("name"); f.present()) s.name = f.as_string("a scenario name");
     if (auto f = top.child("description"); f.present()) s.description = f.as_string("a text");
     if (auto f = top.child("period"); f.present()) {

@@ -9,8 +9,8 @@
 // from each parameter's word offset.
 #include <fmt/format.h>
 
-#include <cctype>
 #include <algorithm>
+#include <cctype>
 #include <charconv>
 #include <map>
 

@@ -15,8 +15,8 @@
 #include <yaml-cpp/yaml.h>
 
 #include "hil/core/clock.hpp"
-#include "hil/runtime/realtime.hpp"
 #include "hil/runtime/coupling_spec.hpp"
+#include "hil/runtime/realtime.hpp"
 
 namespace hil::runtime {
 
