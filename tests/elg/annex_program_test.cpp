@@ -6,33 +6,23 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <string>
 
 #include "hil/controllers/elg/gearbox.hpp"
 #include "hil/controllers/elg/nc_interpreter.hpp"
 #include "hil/controllers/elg/pc_interface.hpp"
+#include "hil/core/text_file.hpp"
 
 namespace elg = hil::controllers::elg;
 
 namespace {
 
-constexpr const char* annex_program = R"(%100 (Single pitch with helical teeth)
-N5 R20 0 R21 10 R12 8.18511
-   R13 0 R14 0 R15 1
-N10 G0 G90 X90 Z10 S500 M03 F.5 G95
-N15 M52 G04 F.25
-N16 M54
-N20 G18 G41 D10 X40
-N25 M50 G04 F.25
-N30 G1 Z60
-N35 G0 X80
-N40 G40 X90 Z10
-N45 M51 G04 F.25
-N50 M56 G04 F.25
-N55 R14 R15
-N60 @03 - 20 R21 R14
-N61 M55
-N65 M30
-)";
+/// The manual's annex program (13.2) as shipped with the ELG example; tests run in the source tree.
+std::string annex_program() {
+  auto text = hil::read_text_file("examples/controllers/elg-annex.nc");
+  EXPECT_TRUE(text) << text.error();
+  return text.value_or("");
+}
 
 /// Ideal axes: X, Z move at the commanded speed exactly; B turns at the spindle speed; C goes
 /// where the ELG says (following in one cycle, indexing at 10 deg/s). Units: mm, counts.
@@ -77,7 +67,7 @@ struct IdealMachine final : elg::NcMachine {
 }  // namespace
 
 TEST(ElgAnnexProgram, SinglePitchHelicalCycleOnIdealAxes) {
-  auto program = elg::parse_nc_program(annex_program);
+  auto program = elg::parse_nc_program(annex_program());
   ASSERT_TRUE(program) << program.error().what();
   elg::NcInterpreter nc(std::move(*program));
   elg::GearboxConfig config;  // N00 = N02 = 180 000, MS 0.5 um
@@ -147,7 +137,7 @@ TEST(ElgAnnexProgram, SinglePitchHelicalCycleOnIdealAxes) {
 }
 
 TEST(ElgNcProgram, ParsesTheAnnexProgram) {
-  auto p = elg::parse_nc_program(annex_program);
+  auto p = elg::parse_nc_program(annex_program());
   ASSERT_TRUE(p) << p.error().what();
   EXPECT_EQ(p->number, 100);
   EXPECT_EQ(p->comment, "Single pitch with helical teeth");

@@ -4,8 +4,10 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <string>
 
 #include "hil/controllers/elg/hobbing_machine.hpp"
+#include "hil/core/text_file.hpp"
 #include "hil/mocks/sim_drive.hpp"
 
 namespace elg = hil::controllers::elg;
@@ -14,24 +16,12 @@ using std::chrono::milliseconds;
 
 namespace {
 
-constexpr const char* annex_program = R"(%100 (Single pitch with helical teeth)
-N5 R20 0 R21 10 R12 8.18511
-   R13 0 R14 0 R15 1
-N10 G0 G90 X90 Z10 S500 M03 F.5 G95
-N15 M52 G04 F.25
-N16 M54
-N20 G18 G41 D10 X40
-N25 M50 G04 F.25
-N30 G1 Z60
-N35 G0 X80
-N40 G40 X90 Z10
-N45 M51 G04 F.25
-N50 M56 G04 F.25
-N55 R14 R15
-N60 @03 - 20 R21 R14
-N61 M55
-N65 M30
-)";
+/// The manual's annex program (13.2) as shipped with the ELG example; tests run in the source tree.
+std::string annex_program() {
+  auto text = hil::read_text_file("examples/controllers/elg-annex.nc");
+  EXPECT_TRUE(text) << text.error();
+  return text.value_or("");
+}
 
 std::unique_ptr<motion::Axis> make_axis(const std::string& name, motion::Ratio ratio, double v, double a,
                                         double window) {
@@ -58,7 +48,7 @@ std::unique_ptr<motion::Axis> make_axis(const std::string& name, motion::Ratio r
 }  // namespace
 
 TEST(ElgHobbingMachine, AnnexProgramOnSimulatedDrives) {
-  auto program = elg::parse_nc_program(annex_program);
+  auto program = elg::parse_nc_program(annex_program());
   ASSERT_TRUE(program) << program.error().what();
   elg::HobbingConfig config;  // MD 396* = 180 000, MS 0.5 um
   auto b = make_axis("B", elg::rotary_counts_per_degree(180000), 3600.0, 36000.0, 5.0);

@@ -72,8 +72,14 @@ ControllerAxis make_axis(const std::string& name, const std::string& units, moti
   return a;
 }
 
-std::expected<std::map<std::string, int>, std::string> parse_pairs(const std::string& text) {
-  std::map<std::string, int> out;
+/// "KEY=VALUE,KEY=VALUE" (blanks around either trimmed), as the controller options write maps.
+std::expected<std::vector<std::pair<std::string, std::string>>, std::string> split_pairs(const std::string& text) {
+  std::vector<std::pair<std::string, std::string>> out;
+  auto trim = [](std::string v) {
+    v.erase(0, v.find_first_not_of(' '));
+    v.erase(v.find_last_not_of(' ') + 1);
+    return v;
+  };
   std::size_t pos = 0;
   while (pos < text.size()) {
     const auto comma = text.find(',', pos);
@@ -81,20 +87,19 @@ std::expected<std::map<std::string, int>, std::string> parse_pairs(const std::st
     pos = comma == std::string::npos ? text.size() : comma + 1;
     const auto eq = item.find('=');
     if (eq == std::string::npos) return std::unexpected("'" + item + "' is not KEY=VALUE");
-    auto trim = [](std::string s) {
-      s.erase(0, s.find_first_not_of(' '));
-      s.erase(s.find_last_not_of(' ') + 1);
-      return s;
-    };
-    const std::string key = trim(item.substr(0, eq)), value = trim(item.substr(eq + 1));
+    std::string key = trim(item.substr(0, eq)), value = trim(item.substr(eq + 1));
     if (key.empty() || value.empty()) return std::unexpected("'" + item + "' is not KEY=VALUE");
-    int number = -1;
-    const auto [end, ec] = std::from_chars(value.data(), value.data() + value.size(), number);
-    if (ec != std::errc{} || end != value.data() + value.size())
-      return std::unexpected("'" + item + "': VALUE must be a number");
-    out[key] = number;
+    out.emplace_back(std::move(key), std::move(value));
   }
   return out;
+}
+
+/// A whole decimal number, nothing else.
+std::optional<int> whole_number(const std::string& text) {
+  int n = 0;
+  const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), n);
+  if (ec != std::errc{} || end != text.data() + text.size()) return std::nullopt;
+  return n;
 }
 
 }  // namespace
@@ -153,19 +158,16 @@ void ElgController::on_cycle(const CycleTime& cycle) noexcept {
   io().set(ByteAddress{IoArea::marker, 1}, static_cast<std::uint8_t>(std::clamp(st.tooth, 0, 255)));
 
   // ELG alarms become device errors of the catalogue "alarms" on the table axis C.
+  // An alarm the ELG no longer holds was cleared there (RESET with the coupling off).
   const auto& alarms = gb.alarms();
-  if (alarms_ != nullptr) {
-    for (std::size_t i = alarms_reported_; i < alarms.size(); ++i) {
-      raise(*alarms_, static_cast<int>(alarms[i]), cycle.now, 1);
-    }
-    if (alarms.size() < alarms_reported_) {
-      // RESET with the coupling off cleared them in the ELG.
-      for (int code : {2000, 2201, 2202, 2203, 2205, 2206, 2207, 2214, 2215}) {
-        if (!gb.has_alarm(static_cast<Alarm>(code))) (void)clear_error(*alarms_, code, 1);
-      }
-    }
+  if (alarms_ != nullptr && alarms != reported_) {
+    for (Alarm a : alarms)
+      if (std::find(reported_.begin(), reported_.end(), a) == reported_.end())
+        raise(*alarms_, static_cast<int>(a), cycle.now, 1);
+    for (Alarm a : reported_)
+      if (!gb.has_alarm(a)) (void)clear_error(*alarms_, static_cast<int>(a), 1);
+    reported_ = alarms;
   }
-  alarms_reported_ = alarms.size();
   if (!machine_->error().empty() && alarms_ != nullptr && !errors().any()) {
     // A command the motion core refused (the NC asked for more than an axis allows): stop.
     raise(*alarms_, 2207, cycle.now, 1, machine_->error());
@@ -194,28 +196,27 @@ void register_elg(ControllerRegistry& registry) {
             if (value != "grid" && value != "relative") return fail(key, "index: grid or relative");
             config.gearbox.index_on_grid = value == "grid";
           } else if (key == "m_functions") {
+            auto pairs = split_pairs(value);
+            if (!pairs) return fail(key, pairs.error() + ": write M=COMMAND");
             MFunctionMap map;
-            std::size_t pos = 0;
-            while (pos < value.size()) {
-              const auto comma = value.find(',', pos);
-              const std::string item = value.substr(pos, comma == std::string::npos ? std::string::npos : comma - pos);
-              pos = comma == std::string::npos ? value.size() : comma + 1;
-              const auto eq = item.find('=');
-              int m = -1;
-              if (eq != std::string::npos) std::from_chars(item.data(), item.data() + eq, m);
-              const auto command = eq == std::string::npos ? std::nullopt : parse_elg_command(item.substr(eq + 1));
-              if (m < 0 || m > 99 || !command)
-                return fail(key, "'" + item +
+            for (const auto& [m_text, name] : *pairs) {
+              const auto m = whole_number(m_text);
+              const auto command = parse_elg_command(name);
+              if (!m || *m < 0 || *m > 99 || !command)
+                return fail(key, "'" + m_text + "=" + name +
                                      "': write M=COMMAND (commands: gearing_on, gearing_off, compute, "
                                      "single_pitch_on, single_pitch_off, index_plus, index_minus, "
                                      "fe_monitor_on, fe_monitor_off, hae_on, hae_off)");
-              map[m] = *command;
+              map[*m] = *command;
             }
             config.m_functions = std::move(map);
           } else if (key == "r_parameters") {
-            auto pairs = parse_pairs(value);
+            auto pairs = split_pairs(value);
             if (!pairs) return fail(key, pairs.error());
-            for (const auto& [name, r] : *pairs) {
+            for (const auto& [name, r_text] : *pairs) {
+              const auto number = whole_number(r_text);
+              if (!number) return fail(key, "'" + name + "=" + r_text + "': VALUE must be a number");
+              const int r = *number;
               if (r < 0 || r > 999) return fail(key, name + ": an R number 0..999");
               if (name == "z0")
                 config.r_z0 = r;

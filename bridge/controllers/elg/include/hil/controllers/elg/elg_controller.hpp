@@ -45,7 +45,7 @@ class ElgController final : public Controller {
   bool auto_start_ = true;
   bool enabled_ = false;
   bool started_ = false;
-  std::size_t alarms_reported_ = 0;
+  std::vector<Alarm> reported_;  ///< the ELG's alarms as last reported as device errors
   const profiles::ErrorCatalogue* alarms_ = nullptr;
 };
 
