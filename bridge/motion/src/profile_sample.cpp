@@ -9,7 +9,7 @@ namespace hil::motion {
 namespace {
 
 State integrate(double p, double v, double a, double j, double t) noexcept {
-  return State{p + t * (v + t * (a / 2.0 + t * j / 6.0)), v + t * (a + t * j / 2.0), a + t * j, j};
+  return State{p + t * (v + t * (a / 2.0 + t * j * (1.0 / 6.0))), v + t * (a + t * j / 2.0), a + t * j, j};
 }
 
 }  // namespace

@@ -29,6 +29,7 @@ using detail::append_ramp;
 using detail::DistanceSlope;
 using detail::plan_ramp;
 using detail::ramp_from;
+using detail::ramp_shape;
 using detail::ramp_to;
 
 namespace {
@@ -44,12 +45,19 @@ struct Crossing {
 // to halving). D is piecewise a quadratic or a polynomial in sqrt(v - v_branch), so Newton
 // converges in 3-6 steps; the 60-step cap is a guard for degenerate limits only.
 template <class F>
-Crossing solve_crossing(const F& distance, double d, double lo, double hi, double dlo, double dhi,
-                        double scale) noexcept {
+Crossing solve_crossing(const F& distance, double d, double lo, double hi, double dlo, double dhi, double scale,
+                        double slope_hi = 0.0, double guess = -1.0) noexcept {
   Crossing best{lo, dlo};
   const double tol_x = 1e-15 * scale;
   const double tol_d = 4e-16 * std::max(1.0, std::fabs(d));
+  // First guess: a Newton step down from hi when its slope is known (D is convex on most of
+  // its pieces, so this lands close above the root), else the secant of the bracket.
   double v = dhi > dlo ? lo + (hi - lo) * (d - dlo) / (dhi - dlo) : 0.5 * (lo + hi);
+  if (slope_hi > 0.0 && slope_hi < std::numeric_limits<double>::infinity()) {
+    const double newton = hi - (dhi - d) / slope_hi;
+    if (newton > lo && newton < hi) v = newton;
+  }
+  if (guess > lo && guess < hi) v = guess;
   bool secant_last = true;
   for (int i = 0; i < 60; ++i) {
     const DistanceSlope e = distance(v);
@@ -80,6 +88,26 @@ Crossing solve_crossing(const F& distance, double d, double lo, double hi, doubl
   return best;
 }
 
+// The crossing in closed form on the piece where both ramps reach A (three quarters of the
+// crossings in the benchmark's cases): there, with (w0, b0) the normalised start,
+//   D(vc) = vc^2/A + vc A/J + c,  c = x1 - wa^2/(2A) - A^3/(24 J^2)
+// (x1, wa: the first jerk phase's distance and end velocity, as in ramp_distance.cpp; from rest
+// c = 0, the rest-to-rest distance vc T). Returns the root of D(vc) = d when it lies on that
+// piece, else -1. Written without cancellation: vc = 2e / (A/J + sqrt((A/J)^2 + 4e/A)), e = d - c.
+double both_reached_root(double w0, double b0, double d, const Limits& l) noexcept {
+  const double A = l.acceleration, J = l.jerk, iJ = 1.0 / J;
+  const double t1 = (A - b0) * iJ;
+  const double x1 = t1 * (w0 + t1 * (b0 * 0.5 + t1 * J * (1.0 / 6.0)));
+  const double wa = w0 + (A * A - b0 * b0) * (0.5 * iJ);
+  const double c = x1 - wa * wa * (0.5 / A) - A * A * A * (iJ * iJ * (1.0 / 24.0));
+  const double e = d - c;
+  if (!(e > 0.0)) return -1.0;
+  const double b = A * iJ;
+  const double vc = 2.0 * e / (b + std::sqrt(b * b + 4.0 * e / A));
+  if (J * (vc - w0) < A * A - b0 * b0 * 0.5 || J * vc < A * A) return -1.0;
+  return vc;
+}
+
 // The other candidate when the axis is decelerating towards a target just beyond its braking
 // point (normalised: vn >= 0 moving towards it, an < 0, D_brake < dn < D(v_stop)): instead of
 // slowing to vc, touching a = 0 and braking again (the family above), relax the deceleration
@@ -92,7 +120,7 @@ bool append_relaxed_brake(Profile& out, double vn, double an, double dn, double 
   const auto relax = [&](double am) {
     const double t1 = (am - an) / J;
     const double v1 = vn + (am * am - an * an) / (2.0 * J);
-    const double x1 = t1 * (vn + t1 * (an / 2.0 + t1 * J / 6.0));
+    const double x1 = t1 * (vn + t1 * (an / 2.0 + t1 * J * (1.0 / 6.0)));
     return DistanceSlope{x1 + ramp_to(v1, am, 0.0, limits).distance, std::numeric_limits<double>::quiet_NaN()};
   };
   const double e0 = relax(0.0).distance;
@@ -101,14 +129,14 @@ bool append_relaxed_brake(Profile& out, double vn, double an, double dn, double 
   const double am = c.v;
   const double t1 = (am - an) / J;
   const double v1 = vn + (am * am - an * an) / (2.0 * J);
-  const double t_relaxed = t1 + plan_ramp(v1, am, 0.0, limits).duration;
+  const double t_relaxed = t1 + ramp_shape(v1, am, 0.0, limits).duration;
   const double cruise = vc > 0.0 ? std::max(0.0, (dn - dvc) / vc) : 0.0;
   const double t_family =
-      plan_ramp(rel.v, rel.a, dir * vc, limits).duration + cruise + plan_ramp(dir * vc, 0.0, 0.0, limits).duration;
+      ramp_shape(rel.v, rel.a, dir * vc, limits).duration + cruise + ramp_shape(dir * vc, 0.0, 0.0, limits).duration;
   if (!(t_relaxed < t_family)) return false;
   out.append(t1, dir * J);
   const State cur = out.current();
-  append_ramp(plan_ramp(cur.v - target_v, cur.a, 0.0, limits), out);
+  append_ramp(ramp_shape(cur.v - target_v, cur.a, 0.0, limits), out);
   return true;
 }
 
@@ -128,7 +156,7 @@ void append_position(Profile& out, double target, double target_v, const Limits&
   const double p_stop = from.p + ramp_to(from.v, from.a, 0.0, limits).distance;
   const double gap = -p_stop;
   if (std::fabs(gap) <= 1e-12 * std::max(1.0, std::fabs(target))) {
-    append_ramp(plan_ramp(from.v, from.a, 0.0, limits), out);
+    append_ramp(ramp_shape(from.v, from.a, 0.0, limits), out);
     return;
   }
   const double dir = gap > 0 ? 1.0 : -1.0;
@@ -141,7 +169,7 @@ void append_position(Profile& out, double target, double target_v, const Limits&
     return DistanceSlope{dir * (r1.distance + r2.distance), r1.slope + r2.slope};
   };
   const double vn = dir * from.v, an = dir * from.a;
-  const double v_stop = limits.jerk_limited() ? vn + an * std::fabs(an) / (2.0 * limits.jerk) : vn;
+  const double v_stop = limits.jerk_limited() ? detail::stop_velocity(vn, an, limits.jerk) : vn;
   const double vmax = std::max(limits.velocity - dir * target_v, 0.0);
   const double vlo = std::clamp(v_stop, 0.0, vmax);
   // Bracket the crossing D(vc) = d. D(vlo) <= d: search [vlo, V] (monotone there). D(vlo) > d
@@ -150,45 +178,48 @@ void append_position(Profile& out, double target, double target_v, const Limits&
   // without stopping, cruises, and stops on target.
   // D(V) <= d (the common case): the cruise at V fills the rest, nothing to solve.
   double vc = vmax;
-  double dvc = distance(vmax).distance;
+  const DistanceSlope at_vmax = distance(vmax);
+  double dvc = at_vmax.distance;
   double d_brake = 0.0;
   bool slowing = false;
   if (dvc > dn) {
-    double lo = vlo, hi = vmax, dhi = dvc;
+    double lo = vlo, hi = vmax, dhi = dvc, slope_hi = at_vmax.slope;
     double dlo = distance(vlo).distance;
     if (dlo > dn) {
       slowing = true;
       const double d0 = distance(0.0).distance;
       if (d0 > dn) {  // cannot happen analytically (d0 is the braking distance); stay safe
-        append_ramp(plan_ramp(from.v, from.a, 0.0, limits), out);
+        append_ramp(ramp_shape(from.v, from.a, 0.0, limits), out);
         append_position(out, target, target_v, limits);
         return;
       }
       hi = vlo;
       dhi = dlo;
+      slope_hi = 0.0;
       lo = 0.0;
       dlo = d0;
       d_brake = d0;
     }
-    const Crossing c = solve_crossing(distance, dn, lo, hi, dlo, dhi, vmax);
+    const Crossing c = solve_crossing(distance, dn, lo, hi, dlo, dhi, vmax, slope_hi,
+                                      !slowing && limits.jerk_limited() ? both_reached_root(vn, an, dn, limits) : -1.0);
     vc = c.v;
     dvc = c.distance;
   }
   if (slowing && limits.jerk_limited() && an < 0.0 &&
       append_relaxed_brake(out, vn, an, dn, d_brake, dir, target_v, limits, vc, dvc, from))
     return;
-  append_ramp(plan_ramp(from.v, from.a, dir * vc, limits), out);
+  append_ramp(ramp_shape(from.v, from.a, dir * vc, limits), out);
   if (vc > 0.0) {
     const double cruise = (dn - dvc) / vc;
     if (cruise > 0.0) out.append_accel(cruise, 0.0);
   }
-  append_ramp(plan_ramp(dir * vc, 0.0, 0.0, limits), out);
+  append_ramp(ramp_shape(dir * vc, 0.0, 0.0, limits), out);
 }
 
 bool outside(const State& s, const Limits& l) noexcept {
   constexpr double tol = 1e-12;
   if (std::fabs(s.a) > l.acceleration * (1 + tol)) return true;
-  const double v_stop = l.jerk_limited() ? s.v + s.a * std::fabs(s.a) / (2.0 * l.jerk) : s.v;
+  const double v_stop = l.jerk_limited() ? detail::stop_velocity(s.v, s.a, l.jerk) : s.v;
   return std::fabs(v_stop) > l.velocity * (1 + tol) && std::fabs(v_stop) > std::fabs(s.v);
 }
 
@@ -196,8 +227,8 @@ bool outside(const State& s, const Limits& l) noexcept {
 void append_entry(Profile& out, const Limits& limits, const Limits& entry) noexcept {
   const State s = out.current();
   if (!outside(s, limits)) return;
-  const double v_stop = entry.jerk_limited() ? s.v + s.a * std::fabs(s.a) / (2.0 * entry.jerk) : s.v;
-  append_ramp(plan_ramp(s.v, s.a, std::clamp(v_stop, -limits.velocity, limits.velocity), entry), out);
+  const double v_stop = entry.jerk_limited() ? detail::stop_velocity(s.v, s.a, entry.jerk) : s.v;
+  append_ramp(ramp_shape(s.v, s.a, std::clamp(v_stop, -limits.velocity, limits.velocity), entry), out);
   out.append_accel(0.0, 0.0);
 }
 
@@ -223,7 +254,7 @@ void plan_velocity(const State& from, double velocity, const Limits& limits, con
   out.reset(from);
   append_entry(out, limits, entry);
   const State s = out.current();
-  append_ramp(plan_ramp(s.v, s.a, v1, limits), out);
+  append_ramp(ramp_shape(s.v, s.a, v1, limits), out);
   out.finish(State{out.current().p, v1, 0.0, 0.0});
 }
 

@@ -22,7 +22,7 @@ double integrate_distance(double v, double a, const Ramp& r) noexcept {
   double p = 0.0;
   for (int i = 0; i < 3; ++i) {
     const double t = r.t[i], jj = r.j[i];
-    p += t * (v + t * (a / 2.0 + t * jj / 6.0));
+    p += t * (v + t * (a / 2.0 + t * jj * (1.0 / 6.0)));
     v += t * (a + t * jj / 2.0);
     a += t * jj;
   }
@@ -32,6 +32,12 @@ double integrate_distance(double v, double a, const Ramp& r) noexcept {
 }  // namespace
 
 Ramp plan_ramp(double v0, double a0, double v1, const Limits& limits) noexcept {
+  Ramp r = ramp_shape(v0, a0, v1, limits);
+  r.distance = integrate_distance(v0, a0, r);
+  return r;
+}
+
+Ramp ramp_shape(double v0, double a0, double v1, const Limits& limits) noexcept {
   Ramp r;
   const double amax = limits.acceleration;
   const double scale = std::max({1.0, std::fabs(v0), std::fabs(v1)});
@@ -43,21 +49,21 @@ Ramp plan_ramp(double v0, double a0, double v1, const Limits& limits) noexcept {
       r.t[0] = std::fabs(dv) / amax;
     }
     r.duration = r.t[0];
-    r.distance = integrate_distance(v0, a0, r);
     return r;
   }
   const double j = limits.jerk;
-  const double v_stop = v0 + a0 * std::fabs(a0) / (2.0 * j);
+  const double ij = 1.0 / j;  // one division; the quotients below are products with it
+  const double v_stop = stop_velocity(v0, a0, j);
   const double dvs = v1 - v_stop;
   if (std::fabs(dvs) <= 1e-15 * scale) {
-    r.t[0] = std::fabs(a0) / j;
+    r.t[0] = std::fabs(a0) * ij;
     r.j[0] = a0 > 0 ? -j : j;
   } else {
     const double s = dvs > 0 ? 1.0 : -1.0;
     const double a0m = s * a0;
     const double dv = s * (v1 - v0);
-    const double dv1 = (a0m + amax) * std::fabs(amax - a0m) / (2.0 * j);
-    const double dv3 = amax * amax / (2.0 * j);
+    const double dv1 = (a0m + amax) * std::fabs(amax - a0m) * (0.5 * ij);
+    const double dv3 = amax * amax * (0.5 * ij);
     double ap = amax;
     double t2 = 0.0;
     if (dv1 + dv3 <= dv) {
@@ -66,14 +72,13 @@ Ramp plan_ramp(double v0, double a0, double v1, const Limits& limits) noexcept {
       ap = std::sqrt(std::max(0.0, j * dv + a0m * a0m / 2.0));
       ap = std::max(ap, a0m);
     }
-    r.t[0] = std::fabs(ap - a0m) / j;
+    r.t[0] = std::fabs(ap - a0m) * ij;
     r.j[0] = (ap >= a0m ? s : -s) * j;
     r.t[1] = t2;
-    r.t[2] = ap / j;
+    r.t[2] = ap * ij;
     r.j[2] = -s * j;
   }
   r.duration = r.t[0] + r.t[1] + r.t[2];
-  r.distance = integrate_distance(v0, a0, r);
   return r;
 }
 
