@@ -5,6 +5,9 @@
 // each parser's fuzz target runs in every CI build. A crash or sanitizer report fails the test.
 //
 //   fuzz_x [--iterations=N] [--seed=S] CORPUS...
+//
+// HIL_FUZZ_SAVE=FILE writes every input to FILE before running it, so after a crash FILE holds
+// the input that crashed (add it to the corpus as a regression once fixed).
 
 #include <algorithm>
 #include <cstdint>
@@ -90,12 +93,17 @@ int main(int argc, char** argv) {
     else
       load(argv[i], corpus);
   }
-  for (const auto& b : corpus) LLVMFuzzerTestOneInput(b.data(), b.size());
-  std::mt19937_64 rng(seed);
-  for (long i = 0; i < iterations; ++i) {
-    Bytes b = mutate(corpus, rng);
+  const char* save = std::getenv("HIL_FUZZ_SAVE");
+  const auto run = [save](const Bytes& b) {
+    if (save != nullptr) {
+      std::ofstream out(save, std::ios::binary | std::ios::trunc);
+      out.write(reinterpret_cast<const char*>(b.data()), static_cast<std::streamsize>(b.size()));
+    }
     LLVMFuzzerTestOneInput(b.data(), b.size());
-  }
+  };
+  for (const auto& b : corpus) run(b);
+  std::mt19937_64 rng(seed);
+  for (long i = 0; i < iterations; ++i) run(mutate(corpus, rng));
   std::printf("fuzz replay: %zu corpus inputs, %ld mutated inputs, no crash\n", corpus.size(), iterations);
   return 0;
 }

@@ -45,12 +45,15 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     image.m[static_cast<std::size_t>(c % 128)] = take();
     const auto step = static_cast<std::int16_t>(word());
     pos += step;
+    // The drive's 32-bit counters wrap as the hardware's do (the arithmetic on them is unsigned;
+    // a signed overflow here was the target's own undefined behaviour, found by fuzzing).
+    const auto wrap = [](std::uint32_t v) { return static_cast<std::int32_t>(v); };
     for (auto& d : image.aw) {
       d.position_feedback = pos;
-      d.message32 = pos * 100;
+      d.message32 = wrap(static_cast<std::uint32_t>(pos) * 100u);
       d.message16 = static_cast<std::int16_t>(pos);
     }
-    image.az[0] += step * 65536 + step;
+    image.az[0] = wrap(static_cast<std::uint32_t>(image.az[0]) + static_cast<std::uint32_t>(step) * 65537u);
     rt.cycle(image);
     if (c == 1000) {
       cmd.set_dr(1, 5);  // VALUE NEW in the middle

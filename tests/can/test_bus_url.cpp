@@ -48,6 +48,9 @@ TEST(BusUrl, RejectsWithSentencesThatSayWhatIsAccepted) {
       {"socketcand:///can0", "missing host"},
       {"socketcand://[::1/can0", "unterminated"},
       {"socketcand://::1:29536/can0", "brackets"},
+      // Found by fuzzing: a '[' inside the brackets made a URL that to_string() could not write back.
+      {"socketcand://[[0]/1", "characters no host"},
+      {"socketcand://ho st:1/can0", "characters no host"},
       {"socketcand://h/abcdefghijklmnopq", "bus name"},
       {"virtual:", "virtual bus name"},
       {"socketcan:", "interface name"},

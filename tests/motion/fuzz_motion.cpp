@@ -147,6 +147,7 @@ void fuzz_axis(Reader& r) {
     if (g_trace) {
       std::fprintf(stderr, "op %d ec %d lim %s state %s\n", op & 0x0f, ec.value(), lim ? "custom" : "-",
                    to_string(axis.status().state));
+      if (lim) std::fprintf(stderr, "  limits v %.17g a %.17g j %.17g\n", lim->velocity, lim->acceleration, lim->jerk);
     }
     if (!ec && lim && (op & 0x0f) <= 2) v_envelope = std::max(v_envelope, lim->velocity);
     const int cycles = r.byte();

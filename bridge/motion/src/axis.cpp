@@ -14,9 +14,17 @@ namespace hil::motion {
 namespace {
 
 // A move's own limits may only lower the configured (machine) limits.
+// A move's limits lie between the axis' own and a billionth of them: smaller ones (found by
+// fuzzing: 1e-270 units/s, denormal accelerations) make the planner's squares and quotients
+// underflow, and a move would then jump to its target in one cycle.
+constexpr double min_limit_ratio = 1e-9;
+
 bool valid_limits(const Limits& l, const Limits& machine) {
-  return std::isfinite(l.velocity) && l.velocity > 0 && std::isfinite(l.acceleration) && l.acceleration > 0 &&
-         l.jerk > 0 && l.velocity <= machine.velocity && l.acceleration <= machine.acceleration &&
+  const double min_jerk =
+      machine.jerk_limited() ? machine.jerk * min_limit_ratio : machine.acceleration * min_limit_ratio;
+  return std::isfinite(l.velocity) && l.velocity >= machine.velocity * min_limit_ratio &&
+         std::isfinite(l.acceleration) && l.acceleration >= machine.acceleration * min_limit_ratio &&
+         l.jerk >= min_jerk && l.velocity <= machine.velocity && l.acceleration <= machine.acceleration &&
          l.jerk <= machine.jerk && (l.jerk_limited() || !machine.jerk_limited());
 }
 
@@ -257,10 +265,15 @@ std::error_code Axis::move_velocity(double velocity, std::optional<Limits> limit
     const bool cannot_stop = velocity > 0 ? sp > *limit : sp < *limit;
     if (beyond || cannot_stop) return make_error_code(MotionFault::software_limit);
     lim.velocity = std::fabs(velocity);
-    plan_position(from, *limit, lim, entry, profile_);
+    // The stop lands on the increment nearest the limit on its inner side (a coarse increment
+    // rounded outward would stop beyond the limit; found by fuzzing).
+    std::int64_t stop_inc = scaling_.to_inc(*limit);
+    if (velocity > 0 && scaling_.to_units(stop_inc) > *limit) --stop_inc;
+    if (velocity < 0 && scaling_.to_units(stop_inc) < *limit) ++stop_inc;
+    plan_position(from, scaling_.to_units(stop_inc), lim, entry, profile_);
     mode_ = Mode::velocity_to_limit;
     limit_target_ = *limit;
-    target_inc_ = scaling_.to_inc(*limit);
+    target_inc_ = stop_inc;
     if (drive_profile_) set_drive_move(hil::DriveMove::Kind::position, target_inc_, lim.velocity, lim);
   } else {
     plan_velocity(from, velocity, lim, entry, profile_);

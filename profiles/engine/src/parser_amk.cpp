@@ -88,7 +88,10 @@ class AmkParser final : public ParameterSetParser {
                 "expected a data address DRn, DLn, DWn or DDn (INIT prefix for the FB 207 init DB)");
         continue;
       }
-      const int word = std::stoi(addr.substr(2));
+      // Digits only (checked above), but any number of them: "DR99999999999" must be a problem, not
+      // std::stoi's out_of_range (found by fuzzing). Five digits already exceed every DB.
+      const std::string digits = addr.substr(2);
+      const int word = digits.size() > 5 ? 99999 : std::stoi(digits);
       if (word > (init ? 9 : 33) || (addr.starts_with("DD") && word > (init ? 8 : 32))) {
         problem(addr, std::string(t),
                 fmt::format("{} is outside the {} DB", addr, init ? "10-word init" : "34-word commanding"));

@@ -165,8 +165,19 @@ class SinumerikParser final : public ParameterSetParser {
               "V.24 DATA FORMAT ERROR (alarm 32): wrong number of digits");
       return;
     }
+    // Leading zeros of the integer part carry no digit of the value: "0.18511" and ".18511" are the
+    // same 5 digits (the writer prints the first; found by fuzzing the write/parse round trip).
     std::size_t digits = 0;
-    for (char c : value) digits += std::isdigit(static_cast<unsigned char>(c)) ? 1 : 0;
+    bool leading = true;
+    for (char c : value) {
+      if (!std::isdigit(static_cast<unsigned char>(c))) {
+        if (c == '.') leading = false;
+        continue;
+      }
+      if (leading && c == '0') continue;
+      leading = false;
+      ++digits;
+    }
     if (f.type != FieldType::bits && f.type != FieldType::hex &&
         digits > static_cast<std::size_t>(f.text.int_digits + f.text.frac_digits)) {
       problem(ref->id(), value, fmt::format("at most {} digits", f.text.int_digits + f.text.frac_digits),

@@ -20,6 +20,18 @@ bool valid_name(std::string_view s, std::size_t max) {
   return true;
 }
 
+// A host name or IPv4 address (letters, digits, '-', '.', '_'), or inside brackets an IPv6 address
+// (hex digits, ':', '.', and a '%zone' of name characters): what to_string() can write back.
+bool valid_host(std::string_view s, bool v6) {
+  if (s.empty() || s.size() > 253) return false;
+  for (char c : s) {
+    const bool name =
+        (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '_' || c == '-' || c == '.';
+    if (!name && !(v6 && (c == ':' || c == '%'))) return false;
+  }
+  return true;
+}
+
 std::unexpected<std::string> bad(std::string_view text, std::string_view why) {
   return std::unexpected("bad bus URL '" + std::string(text) + "': " + std::string(why));
 }
@@ -79,6 +91,10 @@ std::expected<BusUrl, std::string> parse_bus_url(std::string_view text) {
       if (url.host.find(':') != std::string::npos) return bad(text, "write IPv6 hosts in brackets: [::1]:29536");
     }
     if (url.host.empty()) return bad(text, "missing host");
+    if (!valid_host(url.host, authority.starts_with("[")))
+      return bad(text,
+                 "the host has characters no host name or address has (letters, digits, '-', '.', and ':' "
+                 "inside [IPv6] brackets)");
     if (authority.find(':') != std::string_view::npos && port_text.empty() && !authority.starts_with("["))
       return bad(text, "empty port after ':'");
     if (!port_text.empty()) {

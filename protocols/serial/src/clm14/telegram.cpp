@@ -94,6 +94,12 @@ std::expected<Telegram, ParseFailure> parse_telegram(std::string_view line, bool
   } else if (require_checksum) {
     return std::unexpected(
         ParseFailure{SyntaxError::checksum, fmt::format("telegram '{}' has no $hh checksum", printable(line))});
+  } else if (line.size() + 3 > max_line_length) {
+    // Without a checksum the body may not take the room of one: the answer to it is made with
+    // "$hh" and must fit the same limit (found by fuzzing the parse/make round trip).
+    return std::unexpected(
+        ParseFailure{SyntaxError::format, fmt::format("telegram of {} characters without a checksum is longer than {}",
+                                                      line.size(), max_line_length - 3)});
   }
   for (char c : body) {
     const auto u = static_cast<unsigned char>(c);
