@@ -6,6 +6,7 @@
 #include <fcntl.h>
 #include <gtest/gtest.h>
 #include <netinet/in.h>
+#include <poll.h>
 #include <sys/resource.h>
 #include <sys/socket.h>
 #include <unistd.h>
@@ -53,7 +54,7 @@ TEST(TcpListener, AcceptOutOfFileDescriptorsBacksOffAndRecovers) {
   hil::SteadyClock clock;
   auto listener = linux_io::TcpListener::create("127.0.0.1", 0);
   ASSERT_TRUE(listener) << listener.error().message;
-  const int client = ::socket(AF_INET, SOCK_STREAM | SOCK_CLOEXEC, 0);
+  const int client = ::socket(AF_INET, SOCK_STREAM | SOCK_CLOEXEC | SOCK_NONBLOCK, 0);
   ASSERT_GE(client, 0);
   int calls = 0;
   std::uint64_t errors = 0;
@@ -66,7 +67,15 @@ TEST(TcpListener, AcceptOutOfFileDescriptorsBacksOffAndRecovers) {
     a.sin_port = htons((*listener)->port());
     a.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
     // The kernel completes the connection into the backlog; accepting it needs a descriptor.
-    ASSERT_EQ(::connect(client, reinterpret_cast<const sockaddr*>(&a), sizeof a), 0) << std::strerror(errno);
+    // Non-blocking with a bounded wait: a SYN dropped (a full backlog) fails the test, never hangs it.
+    ASSERT_TRUE(::connect(client, reinterpret_cast<const sockaddr*>(&a), sizeof a) == 0 || errno == EINPROGRESS)
+        << std::strerror(errno);
+    pollfd p{client, POLLOUT, 0};
+    ASSERT_EQ(::poll(&p, 1, 5000), 1) << "the connection did not complete within 5 s";
+    int so_error = 0;
+    socklen_t len = sizeof so_error;
+    ASSERT_EQ(::getsockopt(client, SOL_SOCKET, SO_ERROR, &so_error, &len), 0);
+    ASSERT_EQ(so_error, 0) << std::strerror(so_error);
     // The emulator's loop: accept with a short timeout, again and again, for one second.
     const auto start = std::chrono::steady_clock::now();
     while (std::chrono::steady_clock::now() - start < 1s) {
