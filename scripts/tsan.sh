@@ -31,20 +31,22 @@ done
 
 # The threaded parts and the test programs that run them on threads:
 #   Modbus drive worker + server  test_modbus_loopback, test_modbus_faults, test_modbus_transport,
-#                                 test_modbus_server_abuse
+#                                 test_modbus_server_abuse, test_modbus_interop_pymodbus_server (the
+#                                 worker against Debian's pymodbus; skips without it)
 #   socketcand hub + client       test_can_socketcand (loopback), test_can_socketcand_abuse
 #   GPIO edge writer              test_gpio_edge_writer (AsyncEdgeWriter on mock lines)
 #   serial emulator host, TCP     test_serial_line (TcpLine, TcpListener), test_serial_clm14_e2e
 #                                 (EndpointHost on its own thread against a pty client)
 targets=(
   test_modbus_loopback test_modbus_faults test_modbus_transport test_modbus_server_abuse
+  test_modbus_interop_pymodbus_server
   test_can_socketcand test_can_socketcand_abuse
   test_gpio_edge_writer
   test_serial_line test_serial_clm14_e2e
 )
 # Their googletest suites, as ctest names them (Suite.Test).
 suites=(
-  ModbusLoopback ModbusFaults ModbusServer ModbusTransport ModbusServerAbuse
+  ModbusLoopback ModbusFaults ModbusServer ModbusTransport ModbusServerAbuse ModbusPymodbusServer
   SocketcandLoopback SocketcandAbuse
   AsyncEdgeWriter
   SerialStream PtyPair TcpLine TcpListener
