@@ -12,6 +12,13 @@ if(HIL_SANITIZE)
     -fno-sanitize-recover=undefined)
   target_link_options(hil_warnings INTERFACE -fsanitize=address,undefined)
 endif()
+if(HIL_SANITIZE_THREAD)
+  # -Wno-tsan: Asio's handler invocation (asio/detail/std_fenced_block.hpp) uses
+  # std::atomic_thread_fence, which TSan does not model (g++ warns); the synchronisation TSan does
+  # see, the scheduler's and reactor's mutexes, is what orders a handler after its initiation.
+  target_compile_options(hil_warnings INTERFACE -fsanitize=thread -fno-omit-frame-pointer -Wno-tsan)
+  target_link_options(hil_warnings INTERFACE -fsanitize=thread)
+endif()
 add_library(hil::warnings ALIAS hil_warnings)
 
 function(hil_add_subfolders parent)

@@ -5,7 +5,8 @@
 # `asan`) and run the unit and fuzz tests there, then the `kernel`-labelled tests inside a VM with
 # Debian's real kernel (vcan, gpio-sim). Exits non-zero if anything fails; every stage runs even
 # when an earlier one failed, and the time of each is printed at the end.
-# HIL_CI_ASAN=0 skips the sanitizer stage (a quicker local run; CI keeps it).
+# HIL_CI_ASAN=0 skips the sanitizer stage (a quicker local run; CI keeps it). The ThreadSanitizer
+# stage (scripts/tsan.sh: the threaded parts' tests, build-tsan/) follows it; HIL_CI_TSAN=0 skips it.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/install-deps.sh --with-vm
@@ -53,6 +54,11 @@ if [[ "${HIL_CI_ASAN:-1}" != 0 ]]; then
   }
   advisory "asan+ubsan build" asan_build
   advisory "asan+ubsan suite (unit, fuzz)" ctest --preset asan -j"$(nproc)" -L 'unit|fuzz' --no-tests=error
+fi
+if [[ "${HIL_CI_TSAN:-1}" != 0 ]]; then
+  # ThreadSanitizer on the threaded parts only (Modbus worker and server, socketcand hub and
+  # client, edge writer, serial emulator host): build-tsan/, their test programs, their tests.
+  advisory "tsan (threaded parts)" bash scripts/tsan.sh
 fi
 if [[ -x tests/vm/run-in-kernel.sh ]]; then
   stage "kernel tests (VM)" tests/vm/run-in-kernel.sh -- ctest --test-dir build --output-on-failure -L kernel --no-tests=error

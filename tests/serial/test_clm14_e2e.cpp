@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include <atomic>
+#include <functional>
 #include <thread>
 
 #include "hil/mocks/legacy/clm14_line.hpp"
@@ -55,6 +56,11 @@ struct PtyRig {
     host->stop();
     thread.join();
   }
+  /// The line while its host thread serves it: under the host's lock, as the emulator's console
+  /// commands reach it (the stations run their NC cycles on the host thread).
+  void on_line(const std::function<void(Clm14Line&)>& fn) {
+    host->with_endpoint([&](Endpoint&) { fn(line); });
+  }
 };
 
 std::vector<Item> program(int lines) {
@@ -72,7 +78,7 @@ TEST_P(PtyFormats, ProgramAndParametersRoundTrip) {
   f.baud = 115200;
   f.flow = FlowControl::xon_xoff;
   PtyRig rig(f, 0);
-  rig.line.set_mode(ClmMode::parameter);
+  rig.on_line([](Clm14Line& l) { l.set_mode(ClmMode::parameter); });
   Client client(*rig.client_stream, rig.clock, ClientOptions{});
   ProgramDevice prog(client);
   const auto items = program(40);
@@ -84,7 +90,7 @@ TEST_P(PtyFormats, ProgramAndParametersRoundTrip) {
   ParameterDevice par(client);
   ASSERT_TRUE(par.write_item(Item{"A101", "0020.00000"}));
   EXPECT_EQ(par.read_item("A101").value(), "0020.00000");
-  EXPECT_EQ(rig.line.station(0).program_line(39), "WAI 00.500 ");
+  rig.on_line([](Clm14Line& l) { EXPECT_EQ(l.station(0).program_line(39), "WAI 00.500 "); });
 }
 
 INSTANTIATE_TEST_SUITE_P(LineFormats, PtyFormats, ::testing::Values("8N1", "7E2", "7O1", "8E1"));
@@ -101,7 +107,9 @@ TEST(Clm14EndToEnd, ThirtyTwoRs485StationsOnOnePty) {
     Client c(*rig.client_stream, rig.clock, ClientOptions{.station = st});
     EXPECT_EQ(c.read_program_line(st).value(), fmt::format("WAI {:02d}.000", st));
     EXPECT_EQ(c.read_program_line(0).value(), "NOP");
-    EXPECT_EQ(rig.line.station(static_cast<std::size_t>(st - 1)).program_line(st), fmt::format("WAI {:02d}.000 ", st));
+    rig.on_line([st](Clm14Line& l) {
+      EXPECT_EQ(l.station(static_cast<std::size_t>(st - 1)).program_line(st), fmt::format("WAI {:02d}.000 ", st));
+    });
   }
 }
 

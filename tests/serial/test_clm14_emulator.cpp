@@ -4,6 +4,12 @@
 // persistence.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <chrono>
+#include <string>
+#include <utility>
+#include <vector>
+
 #include <nlohmann/json.hpp>
 
 #include "hil/mocks/legacy/clm14_line.hpp"
@@ -131,7 +137,29 @@ TEST(Clm14Emulator, Rs485StationsSilentOnWrongStationAndBroadcast) {
   EXPECT_EQ(send(bad_mine), err(4, '3'));
 }
 
-TEST(Clm14Emulator, DISABLED_Rs485ResponseDelayFromB005HoldsTheAnswerInOrder) {
+namespace {
+/// The emulator host's idle loop (EndpointHost::step) on virtual time: wake at every
+/// next_deadline() from `from` up to `until` and call on_idle(). Returns what was sent, and when.
+/// The deadline covers the held answers and the stations' NC cycles (the CLM1.4 model runs on the
+/// emulator's clock), so an answer leaves at its due time only if the line asks to be woken then.
+std::vector<std::pair<hil::TimePoint, std::string>> idle_until(Clm14Line& line, hil::TimePoint from,
+                                                               hil::TimePoint until) {
+  std::vector<std::pair<hil::TimePoint, std::string>> sent;
+  hil::TimePoint now = from;
+  for (int wakeups = 0; wakeups < 100'000; ++wakeups) {
+    const hil::TimePoint next = std::max(now, line.next_deadline());
+    if (next > until) return sent;
+    now = next;
+    if (std::string out = line.on_idle(now); !out.empty()) sent.emplace_back(now, std::move(out));
+    if (line.next_deadline() <= now) now += std::chrono::nanoseconds(1);  // due work done: time moves on
+  }
+  ADD_FAILURE() << "the line asked to be woken more than 100000 times";
+  return sent;
+}
+using Sent = std::vector<std::pair<hil::TimePoint, std::string>>;
+}  // namespace
+
+TEST(Clm14Emulator, Rs485ResponseDelayFromB005HoldsTheAnswerInOrder) {
   using std::chrono::milliseconds;
   Clm14Line line(data(), 3);
   const hil::TimePoint t0{};
@@ -141,21 +169,23 @@ TEST(Clm14Emulator, DISABLED_Rs485ResponseDelayFromB005HoldsTheAnswerInOrder) {
   // Station 2 gets B005 DDD = 050 ms (fields H C NN E DDD RRR); station 1 keeps 000.
   line.set_mode(ClmMode::parameter);
   EXPECT_EQ(send(make_telegram('#', '2', "K B005 0 1 02 0 050 000"), t0), "");
-  EXPECT_EQ(line.next_deadline(), t0 + milliseconds(50)) << "even its confirmation waits";
-  EXPECT_EQ(line.on_idle(t0 + milliseconds(49)), "");
-  EXPECT_EQ(line.on_idle(t0 + milliseconds(50)), "Y\r\n");
+  EXPECT_EQ(idle_until(line, t0, t0 + milliseconds(60)), (Sent{{t0 + milliseconds(50), "Y\r\n"}}))
+      << "even its confirmation waits 50 ms, and the line wakes its host for it";
   line.set_mode(ClmMode::manual);
   EXPECT_EQ(line.station(1).response_delay(), milliseconds(50));
   EXPECT_EQ(line.station(0).response_delay(), milliseconds(0));
 
-  const auto t1 = t0 + milliseconds(100);
+  // Between two NC cycles (they run on whole milliseconds from t0): at t1 + 50 ms only the held
+  // answer's own deadline wakes the host.
+  const auto t1 = t0 + milliseconds(100) + std::chrono::microseconds(250);
   const std::string late = make_telegram('#', '2', "N0000 NOP  ");
   EXPECT_EQ(send(make_telegram('?', '2', "N0000"), t1), "") << "held for 50 ms";
   // Station 1 answers at once by itself, but never overtakes the answer already on hold.
   EXPECT_EQ(send(make_telegram('?', '1', "N0000"), t1 + milliseconds(10)), "");
-  EXPECT_EQ(line.next_deadline(), t1 + milliseconds(50));
-  EXPECT_EQ(line.on_idle(t1 + milliseconds(50)), late + make_telegram('#', '1', "N0000 NOP  "));
-  EXPECT_EQ(line.next_deadline(), hil::TimePoint::max());
+  EXPECT_EQ(idle_until(line, t1 + milliseconds(10), t1 + milliseconds(60)),
+            (Sent{{t1 + milliseconds(50), late + make_telegram('#', '1', "N0000 NOP  ")}}))
+      << "both leave when the first is due, in request order";
+  // Nothing is held any more: station 1 answers at once again.
   EXPECT_EQ(send(make_telegram('?', '1', "N0000"), t1 + milliseconds(60)), make_telegram('#', '1', "N0000 NOP  "));
 }
 

@@ -93,10 +93,25 @@ int serve(mocks::legacy::Endpoint& endpoint, const EmulateOptions& o, const std:
   std::mutex endpoint_mutex;  // guards the endpoint between the line thread and stdin commands
   std::unique_ptr<mocks::legacy::EndpointHost> host;
   std::thread line([&] {
+    // Failed accepts: one line when they start, one when a client is accepted again.
+    std::uint64_t errors_before = 0;  // listener->accept_errors() when the present run of failures began
+    bool failing = false;
     while (!stop && !interrupted()) {
       if (listener && !stream) {
+        // A failed accept (out of file descriptors) returns after its whole 200 ms: no busy loop.
         auto raw = listener->accept(std::chrono::milliseconds(200));
+        const std::uint64_t errors = listener->accept_errors();
+        if (!failing && errors != errors_before) {
+          failing = true;
+          fmt::print(stderr, "accepting a TCP client failed: {}; retrying every 200 ms\n",
+                     listener->last_accept_error().message());
+        }
         if (!raw) continue;
+        if (failing) {
+          fmt::print(stderr, "accepted a TCP client after {} failed accepts\n", errors - errors_before);
+          failing = false;
+        }
+        errors_before = errors;
         stream = std::make_unique<hil::serial::SerialStream>(std::move(raw), *fmt_ok, d, clock);
       }
       {

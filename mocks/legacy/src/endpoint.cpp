@@ -34,6 +34,7 @@ std::error_code EndpointHost::step(Duration max_wait) {
   const serial::ReadResult r = stream_.read_some(buf, wait);
   if (r.size > 0) last_rx_ = clock_.now();
   std::string out;
+  bool save = false;
   {
     std::lock_guard lock(mutex_);
     if (r.size > 0) out += endpoint_.on_bytes(std::span(buf.data(), r.size), clock_.now());
@@ -41,9 +42,10 @@ std::error_code EndpointHost::step(Duration max_wait) {
       out += endpoint_.on_line_error(r.error, clock_.now());
     if (clock_.now() >= endpoint_.next_deadline()) out += endpoint_.on_idle(clock_.now());
     if (endpoint_.take_dirty()) pending_save_ = true;
+    save = pending_save_;  // read under the lock: with_endpoint() sets it from the console thread
   }
   send(out);
-  if (r.size == 0 && pending_save_) (void)persist();
+  if (r.size == 0 && save) (void)persist();
   return r.error;
 }
 

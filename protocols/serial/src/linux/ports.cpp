@@ -271,12 +271,23 @@ class AsioTcpListener final : public TcpListener {
     return acceptor_.local_endpoint(ec).port();
   }
   std::unique_ptr<RawLine> accept(Duration timeout) override {
-    auto line = std::make_unique<AsioLine<asio::ip::tcp::socket>>();
+    const auto start = std::chrono::steady_clock::now();
+    // The line's own io_context needs descriptors (epoll, eventfd): made first, so that when
+    // there are none the client stays in the backlog, and this counts as a failed accept (Asio
+    // throws; an exception here would end the emulator's line thread and the emulator).
+    std::unique_ptr<AsioLine<asio::ip::tcp::socket>> line;
+    try {
+      line = std::make_unique<AsioLine<asio::ip::tcp::socket>>();
+    } catch (const std::system_error& e) {
+      ++accept_errors_;
+      last_accept_error_ = e.code();
+      std::this_thread::sleep_until(start + timeout);
+      return nullptr;
+    }
     std::error_code ec;
     // Accept on our own io_context into a socket, then move the native handle into the line.
     asio::ip::tcp::socket sock(io_);
     bool done = false;
-    const auto start = std::chrono::steady_clock::now();
     acceptor_.async_accept(sock, [&](const std::error_code& e) {
       done = true;
       ec = e;
@@ -293,6 +304,8 @@ class AsioTcpListener final : public TcpListener {
       // Out of file descriptors (EMFILE) or another accept error: the client stays in the
       // backlog and would fail again at once. A failed accept takes the whole timeout, so a
       // caller that loops on accept() backs off instead of spinning.
+      ++accept_errors_;
+      last_accept_error_ = ec;
       std::this_thread::sleep_until(start + timeout);
       return nullptr;
     }
@@ -302,10 +315,14 @@ class AsioTcpListener final : public TcpListener {
     if (ec) return nullptr;
     return line;
   }
+  std::uint64_t accept_errors() const noexcept override { return accept_errors_; }
+  std::error_code last_accept_error() const noexcept override { return last_accept_error_; }
 
  private:
   asio::io_context io_;
   asio::ip::tcp::acceptor acceptor_;
+  std::uint64_t accept_errors_ = 0;
+  std::error_code last_accept_error_;
 };
 }  // namespace
 

@@ -63,8 +63,13 @@ class TcpListener {
                                                                                      std::uint16_t port);
   virtual ~TcpListener() = default;
   [[nodiscard]] virtual std::uint16_t port() const noexcept = 0;
-  /// Wait at most `timeout` for a client; nullptr on timeout.
+  /// Wait at most `timeout` for a client; nullptr on timeout or error. A failed accept (out of
+  /// file descriptors: the client stays in the backlog and would fail again at once) returns only
+  /// when `timeout` has passed, so a caller looping on accept() backs off instead of spinning.
   [[nodiscard]] virtual std::unique_ptr<RawLine> accept(Duration timeout) = 0;
+  /// Failed accepts so far (EMFILE, ENFILE, ...), and the last one's error (empty if none).
+  [[nodiscard]] virtual std::uint64_t accept_errors() const noexcept = 0;
+  [[nodiscard]] virtual std::error_code last_accept_error() const noexcept = 0;
 };
 
 }  // namespace hil::serial::linux_io
