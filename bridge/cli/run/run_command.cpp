@@ -77,6 +77,8 @@ int run_command(Context& ctx, const RunArgs& args) {
     }
     scenario->duration = *d;
     scenario->timeout = std::max(scenario->timeout, *d);
+    // "Run this long, whatever the program does": a cut by --duration is what was asked for.
+    scenario->cut_off_expected = true;
   }
   const runtime::RealtimeOptions realtime = realtime_options(*scenario, args);
   if (realtime.enabled && args.virtual_time && args.realtime_priority > 0) {

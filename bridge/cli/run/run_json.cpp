@@ -100,9 +100,12 @@ std::string run_json(const runtime::RunResult& r) {
                        array(n.report.lines, [](const std::string& l) { return json_string(l); }));
   });
   return fmt::format(
-      "{{\"scenario\":{},\"file\":{},\"ok\":{},\"interrupted\":{},\"simulated_s\":{},\"failures\":{},\"axes\":{},"
-      "\"faults\":{},\"expectations\":{},\"scheduler\":{},\"realtime\":{},\"transports\":{}}}\n",
+      "{{\"scenario\":{},\"file\":{},\"ok\":{},\"interrupted\":{},\"simulated_s\":{},\"cut_off\":{},"
+      "\"failures\":{},\"axes\":{},\"faults\":{},\"expectations\":{},\"scheduler\":{},\"realtime\":{},\"transports\":{}"
+      "}}\n",
       json_string(r.scenario), json_string(r.file), r.ok, r.interrupted, number(to_seconds(r.simulated)),
+      r.cut_off ? fmt::format("{{\"reason\":{},\"expected\":{}}}", json_string(*r.cut_off), r.cut_off_expected)
+                : std::string("null"),
       array(r.failures, [](const std::string& f) { return json_string(f); }), axes, array(r.faults, fault_json),
       expectations, scheduler, r.realtime ? realtime_json(*r.realtime) : std::string("null"), reports);
 }
