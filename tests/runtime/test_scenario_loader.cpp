@@ -37,6 +37,7 @@ TEST(ScenarioLoader, FullFileEveryKey) {
   EXPECT_EQ(s.description, "every key once");
   EXPECT_EQ(s.period, 500us);
   EXPECT_EQ(s.duration, 3s);
+  EXPECT_TRUE(s.cut_off_expected);
   EXPECT_EQ(s.timeout, 10s);
   ASSERT_EQ(s.axes.size(), 2u);
   const AxisSpec& x = s.axes[0];
