@@ -103,8 +103,11 @@ for t in "${targets[@]}"; do
   # their logs (fuzz-N.log) to the working folder: $bd.
   (cd "$bd" && "$bin" "$fresh" "$corpus" "${dict[@]}" -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 \
     -max_len=65536 -print_final_stats=1 -artifact_prefix="$findings/" "${par[@]}") >"$log" 2>&1 || rc=$?
-  execs=$(grep -h 'stat::number_of_executed_units' "$log" "$bd"/fuzz-*.log 2>/dev/null | awk '{s+=$2} END {print s+0}')
-  last=$(grep -E '^#[0-9]+.*(cov|DONE)' "$log" | tail -1)
+  # Parallel jobs leave fuzz-N.log beside the main log; without them the glob matches nothing.
+  job_logs=("$log")
+  for f in "$bd"/fuzz-*.log; do if [[ -e "$f" ]]; then job_logs+=("$f"); fi; done
+  execs=$(cat "${job_logs[@]}" | awk '/stat::number_of_executed_units/ {s+=$2} END {print s+0}')
+  last=$(grep -E '^#[0-9]+.*(cov|DONE)' "$log" | tail -1 || true)
   cov=$(sed -n 's/.*cov: \([0-9]*\).*/\1/p' <<<"$last")
   ft=$(sed -n 's/.*ft: \([0-9]*\).*/\1/p' <<<"$last")
   if [[ "$keep" == 1 ]]; then

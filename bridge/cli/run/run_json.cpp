@@ -6,6 +6,7 @@
 #include <fmt/format.h>
 
 #include "hil/runtime/latency_report.hpp"
+#include "hil/runtime/run_monitor.hpp"
 
 namespace hil::cli {
 namespace {
@@ -27,8 +28,11 @@ std::string array(const std::vector<T>& items, F&& item) {
 }
 
 std::string fault_json(const runtime::FaultEvent& f) {
-  return fmt::format("{{\"t_s\":{},\"axis\":{},\"source\":{},\"fault\":{}}}", number(to_seconds(f.t)),
-                     json_string(f.axis), json_string(f.source), json_string(f.fault.describe()));
+  return fmt::format(
+      "{{\"t_s\":{},\"axis\":{},\"source\":{},\"fault\":{}}}", number(to_seconds(f.t)), json_string(f.axis),
+      json_string(f.source),
+      // A device error in the device's own notation (WF 725/726: hexadecimal "96").
+      json_string(f.source == "device" ? runtime::fault_code_text(f) + " " + f.fault.text : f.fault.describe()));
 }
 
 }  // namespace
@@ -99,15 +103,41 @@ std::string run_json(const runtime::RunResult& r) {
     return fmt::format("{{\"transport\":{},\"ok\":{},\"lines\":{}}}", json_string(n.transport), n.report.ok,
                        array(n.report.lines, [](const std::string& l) { return json_string(l); }));
   });
+  const auto optional_s = [](const std::optional<Duration>& d) {
+    return d ? number(to_seconds(*d)) : std::string("null");
+  };
+  const std::string controller =
+      r.controller.empty()
+          ? std::string("null")
+          : fmt::format("{{\"device\":{},\"device_errors\":{},\"io\":{}}}", json_string(r.controller),
+                        array(r.device_errors,
+                              [](const runtime::DeviceErrorEvent& e) {
+                                return fmt::format(
+                                    "{{\"t_s\":{},\"axis\":{},\"category\":{},\"code\":{},\"text\":{},\"reaction\":{},"
+                                    "\"acknowledge\":{}}}",
+                                    number(to_seconds(e.t)), json_string(e.axis), json_string(e.category),
+                                    json_string(e.code), json_string(e.text), json_string(e.reaction),
+                                    json_string(e.acknowledge));
+                              }),
+                        array(r.io, [&](const runtime::IoSummary& io) {
+                          return fmt::format(
+                              "{{\"name\":{},\"address\":{},\"final\":{},\"rising\":{},\"falling\":{},"
+                              "\"first_rising_s\":{},\"first_falling_s\":{}}}",
+                              json_string(io.name), json_string(io.address), io.final_state, io.rising, io.falling,
+                              optional_s(io.first_rising), optional_s(io.first_falling));
+                        }));
   return fmt::format(
       "{{\"scenario\":{},\"file\":{},\"ok\":{},\"interrupted\":{},\"simulated_s\":{},\"cut_off\":{},"
-      "\"failures\":{},\"axes\":{},\"faults\":{},\"expectations\":{},\"scheduler\":{},\"realtime\":{},\"transports\":{}"
-      "}}\n",
-      json_string(r.scenario), json_string(r.file), r.ok, r.interrupted, number(to_seconds(r.simulated)),
+      "\"failures\":{},\"warnings\":{},\"axes\":{},\"faults\":{},\"expectations\":{},\"controller\":{},"
+      "\"scheduler\":{},\"realtime\":{},\"transports\":{}}}
+      ",
+      json_string(r.scenario),
+      json_string(r.file), r.ok, r.interrupted, number(to_seconds(r.simulated)),
       r.cut_off ? fmt::format("{{\"reason\":{},\"expected\":{}}}", json_string(*r.cut_off), r.cut_off_expected)
                 : std::string("null"),
-      array(r.failures, [](const std::string& f) { return json_string(f); }), axes, array(r.faults, fault_json),
-      expectations, scheduler, r.realtime ? realtime_json(*r.realtime) : std::string("null"), reports);
+      array(r.failures, [](const std::string& f) { return json_string(f); }),
+      array(r.warnings, [](const std::string& w) { return json_string(w); }), axes, array(r.faults, fault_json),
+      expectations, controller, scheduler, r.realtime ? realtime_json(*r.realtime) : std::string("null"), reports);
 }
 
 }  // namespace hil::cli

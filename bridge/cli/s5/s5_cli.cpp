@@ -1,11 +1,12 @@
 // SPDX-License-Identifier: MIT
 // `hilbridge profile calc ip247 ...`: the IP247 machine-data calculator (docs/ip247.md). Registered
-// under the `profile` command of the profile module (modules register in name order).
+// under `profile calc` (calc_command.hpp), one subcommand per device.
 #include <fmt/format.h>
 
 #include <memory>
 #include <optional>
 
+#include "hil/cli/calc_command.hpp"
 #include "hil/cli/context.hpp"
 #include "hil/controllers/s5/ip247_calc.hpp"
 
@@ -13,7 +14,6 @@ namespace hil::cli {
 
 namespace {
 struct CalcOptions {
-  std::string device;
   double step_angle = 0.0;
   bool half_step = false;
   int ppr = 0;
@@ -21,11 +21,6 @@ struct CalcOptions {
 };
 
 void run_calc(Context& ctx, const CalcOptions& o) {
-  if (o.device != "ip247") {
-    fmt::print(stderr, "profile calc: no calculator for '{}' (available: ip247)\n", o.device);
-    ctx.exit_code = 2;
-    return;
-  }
   namespace s5 = hil::controllers::s5;
   s5::Ip247CalcInput in;
   const auto opt = [](double v) { return v > 0 ? std::optional<double>(v) : std::nullopt; };
@@ -53,18 +48,13 @@ void run_calc(Context& ctx, const CalcOptions& o) {
 }  // namespace
 
 void register_s5(Context& ctx) {
-  CLI::App* profile = nullptr;
-  try {
-    profile = ctx.app.get_subcommand("profile");
-  } catch (const CLI::OptionNotFound&) {
-    return;  // built without the profile module
-  }
+  CLI::App* parent = calc_command(ctx);
+  if (parent == nullptr) return;  // built without the profile module
   auto o = std::make_shared<CalcOptions>();
-  auto* calc = profile->add_subcommand(
-      "calc",
-      "Machine-data calculator: resolution, pulse frequency of a speed, vmax, ramp F/tau/t_b, braking distance,\n"
+  auto* calc = parent->add_subcommand(
+      "ip247",
+      "IP247 machine data: resolution, pulse frequency of a speed, vmax, ramp F/tau/t_b, braking distance,\n"
       "pulse-width bound, rotary reference reproducibility; says which MD to enter. Exit 1 when an MD rule fails.");
-  calc->add_option("device", o->device, "ip247")->required();
   calc->add_option("--step-angle", o->step_angle, "Motor step angle in degrees (pulses/rev = 360/angle)");
   calc->add_flag("--half-step", o->half_step, "Half-step operation (doubles pulses/rev)");
   calc->add_option("--pulses-per-rev", o->ppr, "Pulses per revolution (instead of --step-angle)");

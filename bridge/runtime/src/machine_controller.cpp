@@ -177,6 +177,8 @@ std::optional<ConfigError> Machine::attach_io(const Scenario& scenario) {
       case IoStimulus::Kind::pulse:
         if (st.at) {
           src = std::make_unique<controllers::TimedInput>(*bit, st.value, *st.at, width);
+          // The controller reads it at its next cycle after the end: run until then.
+          last_stimulus_ = std::max(last_stimulus_, *st.at + width + cycle);
         } else {
           motion::Axis* ax = find(st.when->axis)->axis.get();
           src = std::make_unique<controllers::ConditionInput>(

@@ -14,6 +14,9 @@ template <class... F>
 struct Overloaded : F... {
   using F::operator()...;
 };
+// Deduction guide: clang 16 (the fuzzing build) has no CTAD for aggregates yet.
+template <class... F>
+Overloaded(F...) -> Overloaded<F...>;
 
 motion::Direction to_motion(MoveDirection d) {
   switch (d) {

@@ -74,7 +74,11 @@ class Session {
     // At rest; let standstill axes settle into their in-position window (bounded by the longest
     // in-position timeout, after which supervision would have faulted anyway).
     const bool settled = all_in_position(machine_) || t - *rest_since_ >= settle_limit();
-    if (settled && t >= monitor_.latest_expectation_time()) return CycleControl::stop;
+    // The run also waits for the scenario's timed inputs and ends on a controller cycle, so
+    // what the last cycles did (a fault, an input) has been through the device's own cycle.
+    if (settled && t >= monitor_.latest_expectation_time() && t >= machine_.last_stimulus_time() &&
+        machine_.controller_cycle_complete())
+      return CycleControl::stop;
     return CycleControl::proceed;
   }
 

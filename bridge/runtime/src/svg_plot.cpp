@@ -36,6 +36,10 @@ void PlotRecorder::on_start(const Scenario& scenario, const Machine& machine) {
     p.master_units = std::move(master_units);
     data_.couplings.push_back(std::move(p));
   }
+  data_.signals.clear();
+  if (const auto* c = machine.controller()) {
+    for (auto& name : c->trace_signals()) data_.signals.push_back(PlotSignal{std::move(name), {}, {}});
+  }
 }
 
 void PlotRecorder::on_cycle(Duration t, const Machine& machine) noexcept {
@@ -58,6 +62,12 @@ void PlotRecorder::on_cycle(Duration t, const Machine& machine) noexcept {
       p.master.push_back(cs[i]->plot_master);
       p.slave.push_back(cs[i]->plot_slave);
       p.cam.push_back(cs[i]->plot_cam);
+    }
+    if (const auto* c = machine.controller()) {
+      for (std::size_t i = 0; i < data_.signals.size(); ++i) {
+        data_.signals[i].t.push_back(to_seconds(t));
+        data_.signals[i].value.push_back(c->trace_value(i));
+      }
     }
     if (!data_.axes.empty() && data_.axes.front().t.size() >= max_points_) decimate();
   } catch (...) {  // out of memory: stop recording rather than disturb the cycle
@@ -83,6 +93,10 @@ void PlotRecorder::decimate() {
     halve(p.master);
     halve(p.slave);
     halve(p.cam);
+  }
+  for (auto& s : data_.signals) {
+    halve(s.t);
+    halve(s.value);
   }
   stride_ *= 2;
 }
@@ -229,8 +243,11 @@ void chart(std::string& svg, double x0, double y0, const std::string& title, con
 
 std::string render_svg(const PlotData& data) {
   const double width = 3 * chart_w + 20;
+  const std::size_t signal_rows = (data.signals.size() + 2) / 3;
   const double height =
-      title_h + chart_h * static_cast<double>(std::max<std::size_t>(1, data.axes.size() + data.couplings.size())) + 10;
+      title_h +
+      chart_h * static_cast<double>(std::max<std::size_t>(1, data.axes.size() + data.couplings.size() + signal_rows)) +
+      10;
   double t_end = 0.0;
   for (const auto& s : data.axes)
     if (!s.t.empty()) t_end = std::max(t_end, s.t.back());
@@ -268,6 +285,20 @@ std::string render_svg(const PlotData& data) {
     chart(svg, 10 + 2 * chart_w, y, fmt::format("{}: cam table position [{}]", c.slave_name, c.master_units), c.t,
           {{&c.cam, "x in table", "#17becf", false, true}}, t_end);
     y += chart_h;
+  }
+  // The controller's analog values ("C_linkage_error_deg" -> "controller: C linkage error [deg]").
+  for (std::size_t i = 0; i < data.signals.size(); ++i) {
+    const auto& s = data.signals[i];
+    std::string label = s.name, unit;
+    if (const auto u = label.rfind('_'); u != std::string::npos && u + 1 < label.size()) {
+      unit = label.substr(u + 1);
+      label.resize(u);
+    }
+    std::ranges::replace(label, '_', ' ');
+    chart(svg, 10 + static_cast<double>(i % 3) * chart_w, y,
+          unit.empty() ? fmt::format("controller: {}", label) : fmt::format("controller: {} [{}]", label, unit), s.t,
+          {{&s.value, "value", "#e377c2", false}}, t_end);
+    if (i % 3 == 2 || i + 1 == data.signals.size()) y += chart_h;
   }
   svg += "</svg>\n";
   return svg;

@@ -49,7 +49,15 @@ void TraceCsvWriter::on_start(const Scenario&, const Machine& machine) {
     h += ',';
     h += csv_field(fmt::format("io_{}", name));
   }
-  if (machine.controller() != nullptr) h += ",controller_error";
+  if (const auto* c = machine.controller()) {
+    // Its analog values (ctl_NAME), then its newest active device error.
+    signals_ = c->trace_signals().size();
+    for (const auto& name : c->trace_signals()) {
+      h += ',';
+      h += csv_field("ctl_" + name);
+    }
+    h += ",controller_error";
+  }
   h += '\n';
   if (std::fputs(h.c_str(), file_.get()) < 0 && !error_) error_ = {errno, std::generic_category()};
 }
@@ -71,6 +79,8 @@ void TraceCsvWriter::on_cycle(Duration t, const Machine& machine) noexcept {
         line_ += ',';
         line_ += c->io().get(address) ? '1' : '0';
       }
+      for (std::size_t i = 0; i < signals_; ++i)
+        fmt::format_to(std::back_inserter(line_), ",{:.6f}", c->trace_value(i));
       line_ += ',';
       if (const auto active = c->errors().active(); !active.empty()) {
         const auto& e = active.back();

@@ -149,8 +149,10 @@ void HobbingMachine::step(const hil::CycleTime& cycle) noexcept {
         static_cast<double>(fb.y - latched_y_) * static_cast<double>(md.ms_y_nm) * 1e-6 * in.ud_y.value() / in.z2;
     linkage_error_ = static_cast<double>(st.c_set) - (static_cast<double>(latched_c_) + phi / ms_c);
     worst_linkage_error_ = std::max(worst_linkage_error_, std::abs(linkage_error_));
+    c_linkage_error_deg_ = (static_cast<double>(fb.c - latched_c_) - phi / ms_c) * ms_c;
   } else {
     linkage_error_ = 0.0;
+    c_linkage_error_deg_ = 0.0;
   }
   was_coupled_ = st.coupled;
 }

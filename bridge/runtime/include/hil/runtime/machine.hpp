@@ -79,6 +79,14 @@ class Machine {
   [[nodiscard]] const std::vector<std::pair<std::string, controllers::BitAddress>>& io_signals() const noexcept {
     return io_signals_;
   }
+  /// True when the last cycle ran the controller's step (always true without a controller): a
+  /// run ends only then, so a fault of the last cycles has reached the device's error handling.
+  [[nodiscard]] bool controller_cycle_complete() const noexcept {
+    return !controller_ || cycle_count_ == 0 || (cycle_count_ - 1) % controller_every_ == 0;
+  }
+  /// When the last timed input stimulus of the scenario (io: set/pulse at a time) has ended,
+  /// from the run's start; zero without any. A run lasts at least this long.
+  [[nodiscard]] Duration last_stimulus_time() const noexcept { return last_stimulus_; }
 
  private:
   struct Factory {
@@ -103,6 +111,7 @@ class Machine {
   std::vector<std::pair<std::string, controllers::BitAddress>> io_signals_;
   std::uint64_t controller_every_ = 1;  ///< run cycles per controller cycle
   std::uint64_t cycle_count_ = 0;
+  Duration last_stimulus_{};
 };
 
 }  // namespace hil::runtime

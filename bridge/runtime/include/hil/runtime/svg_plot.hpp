@@ -36,10 +36,18 @@ struct PlotCoupling {
   std::vector<double> slave;   ///< slave command, slave units
   std::vector<double> cam;     ///< cam table position, master units (NaN: no cam running)
 };
+/// One analog value of the scenario's controller (Controller::trace_signals), e.g. the ELG's
+/// "C_linkage_error_deg".
+struct PlotSignal {
+  std::string name;
+  std::vector<double> t;      ///< s
+  std::vector<double> value;  ///< in the unit its name ends with
+};
 struct PlotData {
   std::string title;
   std::vector<PlotSeries> axes;
   std::vector<PlotCoupling> couplings;  ///< one extra row each: slave vs master, master, cam position
+  std::vector<PlotSignal> signals;      ///< the controller's values, three charts per row
 };
 
 class PlotRecorder final : public RunObserver {

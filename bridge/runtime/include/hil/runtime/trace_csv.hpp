@@ -33,6 +33,7 @@ class TraceCsvWriter final : public RunObserver {
   std::unique_ptr<std::FILE, FileCloser> file_;
   std::error_code error_;
   std::uint64_t rows_ = 0;
+  std::size_t signals_ = 0;  ///< the controller's trace_signals()
   std::string line_;
 };
 

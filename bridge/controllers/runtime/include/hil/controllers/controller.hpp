@@ -141,6 +141,12 @@ class Controller {
   /// One controller cycle (see the file comment). Never throws.
   ControllerStatus step(const CycleTime& cycle) noexcept;
 
+  /// Analog values the device shows beside its I/O, fixed at construction (the ELG: C's error
+  /// against the hobbing linkage): trace columns `ctl_NAME` and one plot chart each. Names carry
+  /// the unit ("C_linkage_error_deg"); trace_value(i) is read once per run cycle.
+  [[nodiscard]] virtual std::vector<std::string> trace_signals() const { return {}; }
+  [[nodiscard]] virtual double trace_value(std::size_t) const noexcept { return 0.0; }
+
   /// Latched and past device errors.
   [[nodiscard]] const DeviceErrorLatch& errors() const noexcept { return errors_; }
   /// Clears what `how` may clear; axes in error whose device errors are all gone are reset

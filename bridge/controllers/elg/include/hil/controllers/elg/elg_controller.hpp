@@ -32,6 +32,11 @@ class ElgController final : public Controller {
                 bool auto_start, Duration cycle);
 
   [[nodiscard]] const HobbingMachine* machine() const noexcept { return machine_.get(); }
+  /// "C_linkage_error_deg": C's actual position against the hobbing linkage (HobbingMachine).
+  [[nodiscard]] std::vector<std::string> trace_signals() const override { return {"C_linkage_error_deg"}; }
+  [[nodiscard]] double trace_value(std::size_t i) const noexcept override {
+    return i == 0 && machine_ ? machine_->c_linkage_error_deg() : 0.0;
+  }
 
  protected:
   void on_cycle(const CycleTime& cycle) noexcept override;

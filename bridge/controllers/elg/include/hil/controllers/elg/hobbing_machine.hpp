@@ -65,6 +65,9 @@ class HobbingMachine final : public NcMachine {
   [[nodiscard]] std::int64_t c_set() const noexcept { return gearbox_.status().c_set; }
   [[nodiscard]] double linkage_error_counts() const noexcept { return linkage_error_; }
   [[nodiscard]] double worst_linkage_error_counts() const noexcept { return worst_linkage_error_; }
+  /// C's actual position against the linkage equation on the actual B/Z/Y values, in degrees
+  /// (the ELG's set-value error plus C's following error); 0 while uncoupled.
+  [[nodiscard]] double c_linkage_error_deg() const noexcept { return c_linkage_error_deg_; }
   [[nodiscard]] const std::string& error() const noexcept { return error_; }
 
   // NcMachine
@@ -88,7 +91,7 @@ class HobbingMachine final : public NcMachine {
   int couplings_ = 0;
   bool indexing_ = false;
   std::int64_t latched_b_ = 0, latched_z_ = 0, latched_y_ = 0, latched_c_ = 0;
-  double linkage_error_ = 0.0, worst_linkage_error_ = 0.0;
+  double linkage_error_ = 0.0, worst_linkage_error_ = 0.0, c_linkage_error_deg_ = 0.0;
   double now_s_ = 0.0;
   std::string error_;
   double last_r_[5] = {};
