@@ -129,10 +129,8 @@ std::string run_json(const runtime::RunResult& r) {
   return fmt::format(
       "{{\"scenario\":{},\"file\":{},\"ok\":{},\"interrupted\":{},\"simulated_s\":{},\"cut_off\":{},"
       "\"failures\":{},\"warnings\":{},\"axes\":{},\"faults\":{},\"expectations\":{},\"controller\":{},"
-      "\"scheduler\":{},\"realtime\":{},\"transports\":{}}}
-      ",
-      json_string(r.scenario),
-      json_string(r.file), r.ok, r.interrupted, number(to_seconds(r.simulated)),
+      "\"scheduler\":{},\"realtime\":{},\"transports\":{}}}\n",
+      json_string(r.scenario), json_string(r.file), r.ok, r.interrupted, number(to_seconds(r.simulated)),
       r.cut_off ? fmt::format("{{\"reason\":{},\"expected\":{}}}", json_string(*r.cut_off), r.cut_off_expected)
                 : std::string("null"),
       array(r.failures, [](const std::string& f) { return json_string(f); }),
