@@ -323,8 +323,8 @@ TEST(Runner, TransportsSeeTheRunEnvironment) {
 TEST(Runner, RealTimeSmokeRun) {
   // ~60 ms of real time on the Asio scheduler: same cycle code, real-time statistics filled in.
   const Scenario s = load(one_axis +
-                          "duration: 60ms\nprogram:\n  - enable: x\n  - move_relative: {axis: x, distance: 0.5}\n"
-                          "    blocking: false\n");
+                          "duration: 60ms\ncut_off: expected\nprogram:\n  - enable: x\n"
+                          "  - move_relative: {axis: x, distance: 0.5}\n    blocking: false\n");
   RunOptions o;
   o.virtual_time = false;
   auto r = run_scenario(s, hil::testing::sim_registry(), o);
@@ -364,4 +364,58 @@ TEST(Runner, AnExpectationThatHoldsFromTheStartAndNeverChangesIsAWarning) {
                           "expect:\n  - {axis: x, position: 5, by: 2s}\n  - {axis: x, state: standstill}\n"));
   EXPECT_TRUE(earned.ok);
   EXPECT_TRUE(earned.warnings.empty()) << fmt::format("{}", fmt::join(earned.warnings, "\n"));
+}
+
+// A fixed `duration:` that ends the run while program steps are left or an axis still moves fails
+// with what was cut, unless the scenario says `cut_off: expected` (docs/scenarios.md).
+TEST(Runner, ADurationThatCutsTheProgramOffFailsWithWhatWasCut) {
+  const std::string program =
+      "program:\n"
+      "  - enable: x\n"
+      "  - move_absolute: {axis: x, position: 50}\n"
+      "  - move_absolute: {axis: x, position: 0}\n";
+  const RunResult cut = run(load(one_axis + "duration: 200ms\n" + program));
+  EXPECT_FALSE(cut.ok);
+  ASSERT_TRUE(cut.cut_off.has_value());
+  EXPECT_FALSE(cut.cut_off_expected);
+  EXPECT_EQ(*cut.cut_off,
+            "cut off by duration at t=0.200 s: step 2 of 3 (move_absolute x, t.yaml:11 program[1]) not completed; "
+            "axis x still moving");
+  ASSERT_EQ(cut.failures.size(), 1u) << fmt::format("{}", fmt::join(cut.failures, "\n"));
+  EXPECT_TRUE(cut.failures[0].starts_with(*cut.cut_off)) << cut.failures[0];
+  EXPECT_NE(cut.failures[0].find("cut_off: expected"), std::string::npos) << "says what to do: " << cut.failures[0];
+
+  const RunResult intended = run(load(one_axis + "duration: 200ms\ncut_off: expected\n" + program));
+  EXPECT_TRUE(intended.ok) << fmt::format("{}", fmt::join(intended.failures, "\n"));
+  ASSERT_TRUE(intended.cut_off.has_value());
+  EXPECT_TRUE(intended.cut_off_expected);
+  EXPECT_EQ(*intended.cut_off,
+            "cut off by duration at t=0.200 s: step 2 of 3 (move_absolute x, t.yaml:12 program[1]) not completed; "
+            "axis x still moving");
+
+  // Long enough: the program ends and the axis rests before the duration does.
+  const RunResult whole = run(load(one_axis + "duration: 5s\n" + program));
+  EXPECT_TRUE(whole.ok) << fmt::format("{}", fmt::join(whole.failures, "\n"));
+  EXPECT_FALSE(whole.cut_off.has_value()) << *whole.cut_off;
+}
+
+TEST(Runner, CutOffNamesStepsLeftAndMovingAxesSeparately) {
+  // Steps left, every axis at rest: a wait longer than the duration.
+  const RunResult waiting = run(load(one_axis + "duration: 100ms\nprogram:\n  - enable: x\n  - wait: 1s\n"));
+  EXPECT_FALSE(waiting.ok);
+  ASSERT_TRUE(waiting.cut_off.has_value());
+  EXPECT_EQ(*waiting.cut_off,
+            "cut off by duration at t=0.100 s: step 2 of 2 (wait, t.yaml:11 program[1]) not completed");
+
+  // Program done, axis still running: a velocity move completes when it is commanded.
+  const RunResult running = run(load(one_axis + "duration: 300ms\nprogram:\n  - enable: x\n"
+                                                "  - move_velocity: {axis: x, velocity: 10}\n"));
+  EXPECT_FALSE(running.ok);
+  ASSERT_TRUE(running.cut_off.has_value());
+  EXPECT_EQ(*running.cut_off, "cut off by duration at t=0.300 s: axis x still moving");
+
+  // Nothing to cut: no program and nothing moving.
+  const RunResult idle = run(load(one_axis + "duration: 50ms\n"));
+  EXPECT_TRUE(idle.ok);
+  EXPECT_FALSE(idle.cut_off.has_value());
 }

@@ -37,6 +37,7 @@ TEST(ScenarioLoader, FullFileEveryKey) {
   EXPECT_EQ(s.description, "every key once");
   EXPECT_EQ(s.period, 500us);
   EXPECT_EQ(s.duration, 3s);
+  EXPECT_TRUE(s.cut_off_expected);
   EXPECT_EQ(s.timeout, 10s);
   ASSERT_EQ(s.axes.size(), 2u);
   const AxisSpec& x = s.axes[0];
@@ -192,6 +193,8 @@ TEST(ScenarioLoader, RejectsStructuralMistakes) {
       {axes_header() + "program:\n  - {enable: x, disable: x}\n", "program[0].disable", "exactly one action"},
       {axes_header() + "program:\n  - {at: 1}\n", "program[0]", "a step needs one action"},
       {axes_header() + "program:\n  - wait: -1\n", "program[0].wait", "expected a duration"},
+      {axes_header() + "cut_off: expected\n", "cut_off", "add 'duration:'"},
+      {axes_header() + "duration: 1s\ncut_off: maybe\n", "cut_off", "expected one of: fail, expected"},
       {axes_header() + "program:\n  - wait: 3 parsecs\n", "program[0].wait", "expected a duration"},
       {axes_header() + "program:\n  - move_absolute: {axis: x, position: 1, direction: shortest}\n",
        "program[0].move_absolute.direction", "rotary axes only"},

@@ -13,6 +13,7 @@
 #include "hil/can/candump.hpp"
 #include "hil/can/io/make_channel.hpp"
 #include "hil/can/pcap.hpp"
+#include "hil/cli/json_output.hpp"
 
 namespace hil::cli::can_cmd {
 
@@ -25,7 +26,24 @@ struct DumpOptions {
   std::uint64_t count = 0;
   double duration_s = 0;
   bool quiet = false;
+  bool jsonl = false;  ///< stdout: one JSON object per frame (docs/json.md) instead of candump lines
 };
+
+/// One frame as a JSON Lines record (docs/json.md): wall-clock time, bus, identifier, flags,
+/// DLC and the payload as hex.
+nlohmann::json frame_json(const can::Frame& f, std::int64_t time_us, const std::string& bus) {
+  const auto payload = f.payload();
+  return {{"time", static_cast<double>(time_us) / 1e6},
+          {"time_us", time_us},
+          {"bus", bus},
+          {"id", f.id},
+          {"id_hex", f.extended ? fmt::format("{:08X}", f.id) : fmt::format("{:03X}", f.id)},
+          {"extended", f.extended},
+          {"rtr", f.rtr},
+          {"error", f.error},
+          {"dlc", f.dlc},
+          {"data", hex_bytes(payload.data(), payload.size())}};
+}
 
 struct FileCloser {
   void operator()(std::FILE* f) const noexcept {
@@ -37,32 +55,22 @@ using File = std::unique_ptr<std::FILE, FileCloser>;
 int run_dump(const DumpOptions& o) {
   asio::io_context io;
   SteadyClock clock;
+  const auto failed = [&](const std::string& what) { return report_error(o.jsonl, "hilbridge can dump: ", what, 2); };
   auto url = can::parse_bus_url(o.bus);
-  if (!url) {
-    fmt::print(stderr, "hilbridge can dump: --bus: {}\n", url.error());
-    return 2;
-  }
+  if (!url) return failed(fmt::format("--bus: {}", url.error()));
   File log;
   File pcap;
-  if (!o.log.empty() && !(log = File(std::fopen(o.log.c_str(), "w")))) {
-    fmt::print(stderr, "hilbridge can dump: cannot create log file '{}': {}\n", o.log, std::strerror(errno));
-    return 2;
-  }
+  if (!o.log.empty() && !(log = File(std::fopen(o.log.c_str(), "w"))))
+    return failed(fmt::format("cannot create log file '{}': {}", o.log, std::strerror(errno)));
   if (!o.pcap.empty()) {
     pcap = File(std::fopen(o.pcap.c_str(), "wb"));
-    if (!pcap) {
-      fmt::print(stderr, "hilbridge can dump: cannot create pcap file '{}': {}\n", o.pcap, std::strerror(errno));
-      return 2;
-    }
+    if (!pcap) return failed(fmt::format("cannot create pcap file '{}': {}", o.pcap, std::strerror(errno)));
     const auto header = can::pcap::make_global_header();
     std::fwrite(header.data(), 1, header.size(), pcap.get());
     std::fflush(pcap.get());
   }
   auto channel = can::make_channel(*url, {io.get_executor(), clock});
-  if (!channel) {
-    fmt::print(stderr, "hilbridge can dump: {}\n", channel.error().message);
-    return 2;
-  }
+  if (!channel) return failed(channel.error().message);
   const auto wall_offset = std::chrono::duration_cast<Duration>(std::chrono::system_clock::now().time_since_epoch()) -
                            clock.now().time_since_epoch();
   std::uint64_t frames = 0;
@@ -74,7 +82,9 @@ int run_dump(const DumpOptions& o) {
     line.clear();
     can::candump::format_log_line(line, {ts, iface, f});
     line.push_back('\n');
-    if (!o.quiet) {
+    if (!o.quiet && o.jsonl) {
+      print_json(frame_json(f, ns / 1000, iface));
+    } else if (!o.quiet) {
       std::fwrite(line.data(), 1, line.size(), stdout);
       std::fflush(stdout);
     }
@@ -123,6 +133,9 @@ void add_dump(CLI::App& can, Context& ctx) {
   cmd->add_option("--count,-n", o->count, "Stop after N frames");
   cmd->add_option("--duration", o->duration_s, "Stop after SECONDS")->check(CLI::PositiveNumber);
   cmd->add_flag("--quiet,-q", o->quiet, "Do not print frames on stdout (files only)");
+  cmd->add_flag("--jsonl", o->jsonl,
+                "Print JSON Lines on stdout instead of candump lines: one object per frame with time, id, "
+                "extended/rtr/error flags, dlc and data as hex (docs/json.md); --log still writes candump lines");
   cmd->callback([o, &ctx] { ctx.exit_code = run_dump(*o); });
 }
 

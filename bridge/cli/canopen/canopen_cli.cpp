@@ -13,6 +13,7 @@
 #include "hil/canopen/nmt.hpp"
 #include "hil/canopen/sdo_client.hpp"
 #include "hil/cli/context.hpp"
+#include "hil/cli/json_output.hpp"
 #include "hil/cli/progress.hpp"
 #include "session.hpp"
 #include "values.hpp"
@@ -42,15 +43,35 @@ struct SdoArgs {
   int timeout_ms = 500;
   int retries = 0;
   bool block = false;
+  bool json = false;  ///< read --json (docs/json.md)
 };
+
+/// The value of an SDO upload for --json: a number for the integer, boolean and real types, the
+/// formatted text otherwise (x: "0x00000A11", vs: the string, os/d: hex bytes); without --type the
+/// unsigned little-endian value of 1..8 bytes, else null.
+nlohmann::json value_json(const std::string& type, const std::vector<std::uint8_t>& bytes) {
+  if (type.empty()) {
+    if (bytes.empty() || bytes.size() > 8) return nullptr;
+    std::uint64_t u = 0;
+    for (std::size_t i = 0; i < bytes.size(); ++i) u |= std::uint64_t{bytes[i]} << (8 * i);
+    return u;
+  }
+  const std::string text = format_value(type, bytes);
+  if (type == "b" || type.starts_with('i') || type.starts_with('u') || type.starts_with('r')) {
+    auto j = nlohmann::json::parse(text, nullptr, false);
+    if (!j.is_discarded() && j.is_number()) return j;
+  }
+  return text;
+}
 
 int run_sdo(const SdoArgs& a, bool upload) {
   const char* cmd = upload ? "sdo read" : "sdo write";
+  const std::string prefix = fmt::format("hilbridge {}: ", cmd);
+  const auto failed = [&](const std::string& what, int code, nlohmann::json extra = nlohmann::json::object()) {
+    return report_error(a.json, prefix, what, code, std::move(extra));
+  };
   auto obj = parse_object(a.object);
-  if (!obj) {
-    std::fprintf(stderr, "hilbridge %s: %s\n", cmd, obj.error().c_str());
-    return 2;
-  }
+  if (!obj) return failed(obj.error(), 2);
   std::vector<std::uint8_t> data;
   if (!upload) {
     if (a.type.empty()) {
@@ -65,15 +86,10 @@ int run_sdo(const SdoArgs& a, bool upload) {
     }
     data = std::move(*enc);
   } else if (!a.type.empty() && !is_value_type(a.type)) {
-    std::fprintf(stderr, "hilbridge %s: unknown --type '%s'; use one of: %s\n", cmd, a.type.c_str(),
-                 value_types_help().c_str());
-    return 2;
+    return failed(fmt::format("unknown --type '{}'; use one of: {}", a.type, value_types_help()), 2);
   }
   BusSession s(a.bus, "hilbridge-sdo");
-  if (!s.ok()) {
-    std::fprintf(stderr, "hilbridge %s: --bus %s: %s\n", cmd, a.bus.c_str(), s.error().c_str());
-    return 1;
-  }
+  if (!s.ok()) return failed(fmt::format("--bus {}: {}", a.bus, s.error()), 1);
   co::SdoClientOptions o;
   o.timeout = std::chrono::milliseconds(a.timeout_ms);
   o.retries = a.retries;
@@ -107,16 +123,27 @@ int run_sdo(const SdoArgs& a, bool upload) {
   const auto limit = o.timeout * (a.retries + 1) * 4 + std::chrono::seconds(2) + std::chrono::milliseconds(data.size());
   s.run([&] { return finished; }, [&](TimePoint t) { client.step(t); }, limit);
   if (bar) bar->finish(finished && !result ? "done" : "failed");
-  if (!finished) {
-    std::fprintf(stderr, "hilbridge %s: node %d did not complete the transfer\n", cmd, a.node);
-    return 1;
-  }
+  if (!finished) return failed(fmt::format("node {} did not complete the transfer", a.node), 1);
   if (result) {
-    std::fprintf(stderr, "hilbridge %s: node %d %s: SDO abort %s\n", cmd, a.node, a.object.c_str(),
-                 result.message().c_str());
-    return 1;
+    nlohmann::json extra{{"node", a.node},
+                         {"index", fmt::format("0x{:04X}", obj->first)},
+                         {"subindex", obj->second},
+                         {"abort_code", fmt::format("0x{:08X}", static_cast<std::uint32_t>(result.value()))}};
+    return failed(fmt::format("node {} {}: SDO abort {}", a.node, a.object, result.message()), 1, std::move(extra));
   }
-  if (upload) std::printf("%s\n", format_value(a.type, value).c_str());
+  if (upload && a.json) {
+    print_json({{"bus", a.bus},
+                {"node", a.node},
+                {"index", fmt::format("0x{:04X}", obj->first)},
+                {"subindex", obj->second},
+                {"type", a.type.empty() ? nlohmann::json(nullptr) : nlohmann::json(a.type)},
+                {"size", value.size()},
+                {"data", hex_bytes(value.data(), value.size())},
+                {"value", value_json(a.type, value)},
+                {"text", format_value(a.type, value)}});
+  } else if (upload) {
+    std::printf("%s\n", format_value(a.type, value).c_str());
+  }
   return 0;
 }
 
@@ -139,6 +166,10 @@ void register_sdo(Context& ctx) {
         ->check(CLI::Range(1, 600000));
     c->add_option("--retries", a->retries, "Retries after a timeout (default 0)")->check(CLI::Range(0, 10));
     c->add_flag("--block", a->block, "Use SDO block transfer (CRC-16) for values over 28 bytes");
+    if (upload)
+      c->add_flag("--json", a->json,
+                  "Print one JSON object on stdout (value, raw bytes, text; docs/json.md); errors as "
+                  "{\"error\": ...} with the abort code");
     c->footer(upload ? "Examples:\n  hilbridge sdo read --bus vcan0 5 0x1018:1 --type x32\n"
                        "  hilbridge sdo read --bus socketcand://127.0.0.1:29536/can0 5 0x1008:0 --type vs\n"
                        "Exit status: 0 ok, 1 abort/timeout (the CiA 301 abort code is printed), 2 usage."
@@ -206,6 +237,7 @@ void register_scan(Context& ctx) {
   struct ScanArgs {
     std::string bus;
     int timeout_ms = 300;
+    bool json = false;
   };
   auto a = std::make_shared<ScanArgs>();
   auto* c = ctx.app.add_subcommand(
@@ -213,14 +245,16 @@ void register_scan(Context& ctx) {
   c->add_option("--bus", a->bus, k_bus_help)->required();
   c->add_option("--timeout", a->timeout_ms, "How long to wait for answers, ms (default 300)")
       ->check(CLI::Range(10, 60000));
+  c->add_flag("--json", a->json,
+              "Print one JSON object on stdout: {\"nodes\": [{\"node\", \"device_type\", \"vendor_id\", ...}]} "
+              "(docs/json.md)");
   c->footer(
       "Prints one line per node: node-ID, device type, vendor-ID, product code, revision, serial, name.\n"
       "Example:\n  hilbridge scan --bus vcan0");
   c->callback([&ctx, a] {
     BusSession s(a->bus, "hilbridge-scan");
     if (!s.ok()) {
-      std::fprintf(stderr, "hilbridge scan: --bus %s: %s\n", a->bus.c_str(), s.error().c_str());
-      ctx.exit_code = 1;
+      ctx.exit_code = report_error(a->json, "hilbridge scan: ", fmt::format("--bus {}: {}", a->bus, s.error()), 1);
       return;
     }
     struct Found {
@@ -273,6 +307,25 @@ void register_scan(Context& ctx) {
           },
           o.timeout * 8 + std::chrono::seconds(1));
     int count = 0;
+    if (a->json) {
+      // An abort to 0x1000 still counts as an answer; the identity members are then 0.
+      nlohmann::json nodes = nlohmann::json::array();
+      for (const auto& [n, f] : found) {
+        if (!f.alive) continue;
+        ++count;
+        nodes.push_back({{"node", n},
+                         {"device_type", f.values[0]},
+                         {"vendor_id", f.values[1]},
+                         {"product_code", f.values[2]},
+                         {"revision", f.values[3]},
+                         {"serial", f.values[4]},
+                         {"name", f.name}});
+      }
+      print_json({{"bus", a->bus}, {"timeout_ms", a->timeout_ms}, {"count", count}, {"nodes", std::move(nodes)}});
+      std::fprintf(stderr, "%d node(s) answered on %s\n", count, a->bus.c_str());
+      ctx.exit_code = 0;
+      return;
+    }
     std::printf("node  device-type  vendor-id   product     revision    serial      name\n");
     for (const auto& [n, f] : found) {
       if (!f.alive) continue;

@@ -13,6 +13,7 @@
 #include <fmt/format.h>
 
 #include "hil/cli/context.hpp"
+#include "hil/cli/json_output.hpp"
 #include "hil/cli/progress.hpp"
 #include "hil/drives/modbus_transport.hpp"
 #include "hil/modbus/adu.hpp"
@@ -66,6 +67,7 @@ struct Common {
   std::string type = "u16";
   std::string word_order = "high_first";
   double timeout_s = 1.0;
+  bool json = false;  ///< read --json: one object on stdout (docs/json.md)
 };
 
 std::optional<modbus::ValueFormat> parse_format(const Common& c, std::string& why) {
@@ -114,22 +116,22 @@ std::string describe_failure(int err) {
          fmt::format(" [libmodbus: {}]", modbus_strerror(err));
 }
 
-int fail(const std::string& what) {
-  std::fprintf(stderr, "hilbridge modbus: %s\n", what.c_str());
-  return 1;
+int fail(const std::string& what, bool json = false) {
+  return report_error(json, "hilbridge modbus: ", what, 1);
 }
 
 int run_read(const Common& c, int count, bool input) {
+  const auto failed = [&](const std::string& what) { return fail(what, c.json); };
   std::string why;
   auto ep = parse_endpoint(c.endpoint, why);
-  if (!ep) return fail(fmt::format("HOST[:PORT] '{}': {}", c.endpoint, why));
+  if (!ep) return failed(fmt::format("HOST[:PORT] '{}': {}", c.endpoint, why));
   auto fmt_ = parse_format(c, why);
-  if (!fmt_) return fail(why);
+  if (!fmt_) return failed(why);
   const int regs_needed = count * fmt_->words;
   if (c.address + regs_needed > 65536)
-    return fail(fmt::format("ADDR {} + {} registers runs past 65535", c.address, regs_needed));
+    return failed(fmt::format("ADDR {} + {} registers runs past 65535", c.address, regs_needed));
   auto ctx = connect(c, *ep, why);
-  if (!ctx) return fail(why);
+  if (!ctx) return failed(why);
   std::vector<std::uint16_t> regs(static_cast<std::size_t>(regs_needed));
   const int chunks = (regs_needed + modbus::kMaxReadRegisters - 1) / modbus::kMaxReadRegisters;
   SteadyClock clock;
@@ -143,13 +145,34 @@ int run_read(const Common& c, int count, bool input) {
     if (rc != n) {
       const int err = errno;
       if (bar) bar->finish("failed");
-      return fail(fmt::format("FC {} read of {} register(s) at {} from {}:{} unit {} failed: {}", input ? 4 : 3, n,
-                              addr, ep->host, ep->port, c.unit, describe_failure(err)));
+      return failed(fmt::format("FC {} read of {} register(s) at {} from {}:{} unit {} failed: {}", input ? 4 : 3, n,
+                                addr, ep->host, ep->port, c.unit, describe_failure(err)));
     }
     done += n;
     if (bar) bar->update(static_cast<std::uint64_t>(done));
   }
   if (bar) bar->finish("done");
+  if (c.json) {
+    nlohmann::json values = nlohmann::json::array();
+    for (int i = 0; i < count; ++i) {
+      const auto words = std::span<const std::uint16_t>(regs.data() + i * fmt_->words, fmt_->words);
+      nlohmann::json v{{"address", c.address + i * fmt_->words},
+                       {"value", modbus::unpack_value(words, *fmt_)},
+                       {"registers", std::vector<std::uint16_t>(words.begin(), words.end())}};
+      if (c.type == "hex") v["hex"] = fmt::format("0x{:04X}", modbus::unpack_value(words, *fmt_));
+      values.push_back(std::move(v));
+    }
+    print_json({{"host", ep->host},
+                {"port", ep->port},
+                {"unit", c.unit},
+                {"function_code", input ? 4 : 3},
+                {"address", c.address},
+                {"count", count},
+                {"type", c.type},
+                {"word_order", c.word_order},
+                {"values", std::move(values)}});
+    return 0;
+  }
   for (int i = 0; i < count; ++i) {
     const auto v =
         modbus::unpack_value(std::span<const std::uint16_t>(regs.data() + i * fmt_->words, fmt_->words), *fmt_);
@@ -236,6 +259,9 @@ void register_modbus(Context& ctx) {
   rd->add_option("count", *count, "Number of values (default 1); more than 125 registers are read in several requests")
       ->check(CLI::Range(1, 65536));
   rd->add_flag("--input", *input, "Read input registers (FC 4) instead of holding registers (FC 3)");
+  rd->add_flag("--json", common_r->json,
+               "Print one JSON object on stdout (values with address and raw registers; docs/json.md); errors as "
+               "{\"error\": ...} too");
   rd->callback([&ctx, common_r, count, input] { ctx.exit_code = run_read(*common_r, *count, *input); });
 
   auto common_w = std::make_shared<Common>();

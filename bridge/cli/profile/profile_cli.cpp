@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "hil/cli/context.hpp"
+#include "hil/cli/json_output.hpp"
 #include "hil/core/text_file.hpp"
 #include "hil/profiles/loader.hpp"
 #include "hil/profiles/parameter_set.hpp"
@@ -27,8 +28,34 @@ struct Options {
   std::string errors;
   bool show_errors = false;
   bool partial = false;
+  bool json = false;  ///< one JSON object on stdout (docs/json.md)
   std::vector<std::string> sets;
 };
+
+/// "error: ..." on stderr, and {"error": ...} on stdout under --json; sets `exit_code`.
+void failed(const Options& o, int& exit_code, const std::string& what, int code,
+            nlohmann::json extra = nlohmann::json::object()) {
+  exit_code = report_error(o.json, "error: ", what, code, std::move(extra));
+}
+
+/// A Problem as JSON (validate, and the field checks of encode/decode).
+nlohmann::json problem_json(const hp::Problem& pr, std::string_view file) {
+  return {{"line", pr.line == 0 ? nlohmann::json(nullptr) : nlohmann::json(pr.line)},
+          {"param", pr.param},
+          {"field", pr.field},
+          {"value", pr.value},
+          {"rule", pr.rule},
+          {"message", pr.message},
+          {"text", pr.describe(file)}};
+}
+
+/// The fields of a value with their names and units (encode/decode --json).
+nlohmann::json value_json(const hp::ParamVariant& v, const hp::ParamValue& value) {
+  nlohmann::json fields = nlohmann::json::array();
+  for (std::size_t i = 0; i < v.fields.size() && i < value.size(); ++i)
+    fields.push_back({{"name", v.fields[i].name}, {"value", hp::to_string(value[i])}, {"unit", v.fields[i].unit}});
+  return fields;
+}
 
 std::expected<hp::Settings, std::string> parse_settings(const hp::Profile& p, const std::vector<std::string>& sets) {
   hp::Settings s;
@@ -50,26 +77,25 @@ std::expected<hp::Settings, std::string> parse_settings(const hp::Profile& p, co
   return s;
 }
 
-std::shared_ptr<const hp::Profile> load(const std::string& device, int& exit_code) {
-  auto p = hp::find_profile(device);
+std::shared_ptr<const hp::Profile> load(const Options& o, int& exit_code) {
+  auto p = hp::find_profile(o.device);
   if (!p) {
-    fmt::print(stderr, "error: {}\n", p.error().describe());
     std::string names;
     for (const auto& n : hp::list_profiles()) names += (names.empty() ? "" : ", ") + n;
     fmt::print(stderr, "known devices: {}\n", names.empty() ? "none (set HILBRIDGE_PROFILES)" : names);
-    exit_code = 2;
+    failed(o, exit_code, p.error().describe(), 2, {{"known_devices", hp::list_profiles()}});
     return nullptr;
   }
   return *p;
 }
 
 /// Resolves PARAM and its variant for the given settings; prints the reason on failure.
-const hp::ParamVariant* variant_for(const hp::Profile& p, const std::string& param, const hp::Settings& s,
-                                    hp::ParamRef& ref, int& exit_code) {
-  auto r = p.resolve(param);
+const hp::ParamVariant* variant_for(const Options& o, const hp::Profile& p, const hp::Settings& s, hp::ParamRef& ref,
+                                    int& exit_code) {
+  auto r = p.resolve(o.param);
   if (!r) {
-    fmt::print(stderr, "error: {} has no parameter '{}' (see: hilbridge profile show {})\n", p.device, param, p.device);
-    exit_code = 2;
+    failed(o, exit_code,
+           fmt::format("{} has no parameter '{}' (see: hilbridge profile show {})", p.device, o.param, p.device), 2);
     return nullptr;
   }
   ref = *r;
@@ -79,23 +105,28 @@ const hp::ParamVariant* variant_for(const hp::Profile& p, const std::string& par
   if (!v) {
     std::string conds;
     for (const auto& x : ref.spec->variants) conds += (conds.empty() ? "" : " | ") + x.when.text();
-    fmt::print(stderr, "error: {} does not exist for this configuration; it applies when {} (choose with --set)\n",
-               ref.id(), conds);
-    exit_code = 2;
+    failed(o, exit_code,
+           fmt::format("{} does not exist for this configuration; it applies when {} (choose with --set)", ref.id(),
+                       conds),
+           2);
     return nullptr;
   }
   return v;
 }
 
-void print_field_problems(const hp::ParamRef& ref, const hp::ParamVariant& v, const hp::ParamValue& value,
-                          const hp::Profile& p, const hp::Settings& s, int& exit_code) {
+/// The value's field problems (range, step, rules of one field); printed unless `json`.
+std::vector<hp::Problem> field_problems(const hp::ParamRef& ref, const hp::ParamVariant& v, const hp::ParamValue& value,
+                                        const hp::Profile& p, const hp::Settings& s, bool json, int& exit_code) {
   hp::ParameterSet empty;
   const hp::Scope scope(p, &empty, s);
+  std::vector<hp::Problem> out;
   for (std::size_t i = 0; i < v.fields.size() && i < value.size(); ++i)
-    for (const auto& pr : hp::check_field(ref, v.fields[i], value[i], scope)) {
-      fmt::print("error: {}\n", pr.describe());
+    for (auto& pr : hp::check_field(ref, v.fields[i], value[i], scope)) {
+      if (!json) fmt::print("error: {}\n", pr.describe());
       exit_code = 1;
+      out.push_back(std::move(pr));
     }
+  return out;
 }
 
 std::string units(const hp::ParamVariant& v) {
@@ -129,22 +160,32 @@ void run_list(Context& ctx) {
 }
 
 void run_show(Context& ctx, const Options& o) {
-  auto p = load(o.device, ctx.exit_code);
+  auto p = load(o, ctx.exit_code);
   if (!p) return;
   if (o.show_errors) {
-    if (!o.errors.empty() && !p->catalogue(o.errors)) {
-      fmt::print(stderr, "error: {} has no error catalogue '{}'\n", p->device, o.errors);
-      ctx.exit_code = 2;
-      return;
-    }
-    profile::print_catalogues(*p, o.errors);
+    if (!o.errors.empty() && !p->catalogue(o.errors))
+      return failed(o, ctx.exit_code, fmt::format("{} has no error catalogue '{}'", p->device, o.errors), 2);
+    if (o.json)
+      print_json(profile::catalogues_json(*p, o.errors));
+    else
+      profile::print_catalogues(*p, o.errors);
     return;
   }
   if (o.param.empty()) {
-    profile::print_overview(*p);
+    if (o.json)
+      print_json(profile::overview_json(*p));
+    else
+      profile::print_overview(*p);
     return;
   }
   auto ref = p->resolve(o.param);
+  if (!ref && o.json) {
+    auto codes = profile::error_codes_json(*p, o.param);
+    if (codes.empty())
+      return failed(o, ctx.exit_code, fmt::format("{} has no parameter or error code '{}'", p->device, o.param), 2);
+    print_json({{"device", p->device}, {"error_codes", std::move(codes)}});
+    return;
+  }
   if (!ref) {
     // an error code of one or more catalogues?
     bool found = false;
@@ -161,30 +202,23 @@ void run_show(Context& ctx, const Options& o) {
     ctx.exit_code = 2;
     return;
   }
-  profile::print_parameter(*p, *ref);
+  if (o.json)
+    print_json(profile::parameter_json(*p, *ref));
+  else
+    profile::print_parameter(*p, *ref);
 }
 
 void run_validate(Context& ctx, const Options& o) {
-  auto p = load(o.device, ctx.exit_code);
+  auto p = load(o, ctx.exit_code);
   if (!p) return;
   auto settings = parse_settings(*p, o.sets);
-  if (!settings) {
-    fmt::print(stderr, "error: {}\n", settings.error());
-    ctx.exit_code = 2;
-    return;
-  }
+  if (!settings) return failed(o, ctx.exit_code, settings.error(), 2);
   auto buf = read_text_file(o.file);
-  if (!buf) {
-    fmt::print(stderr, "error: cannot read the parameter set: {}\n", buf.error());
-    ctx.exit_code = 2;
-    return;
-  }
+  if (!buf) return failed(o, ctx.exit_code, fmt::format("cannot read the parameter set: {}", buf.error()), 2);
   auto parser = hp::make_parameter_set_parser(p);
-  if (!parser) {
-    fmt::print(stderr, "error: {} declares the unknown parameter-set format '{}'\n", p->device, p->text_format);
-    ctx.exit_code = 2;
-    return;
-  }
+  if (!parser)
+    return failed(o, ctx.exit_code,
+                  fmt::format("{} declares the unknown parameter-set format '{}'", p->device, p->text_format), 2);
   const auto parsed = parser->parse(*buf, *settings);
   auto problems = parsed.problems;
   for (auto& pr : hp::validate(*p, parsed.set, *settings)) {
@@ -195,6 +229,17 @@ void run_validate(Context& ctx, const Options& o) {
     if ((a.line == 0) != (b.line == 0)) return a.line != 0;
     return a.line < b.line;
   });
+  if (o.json) {
+    nlohmann::json list = nlohmann::json::array();
+    for (const auto& pr : problems) list.push_back(problem_json(pr, o.file));
+    print_json({{"device", p->device},
+                {"file", o.file},
+                {"valid", problems.empty()},
+                {"parameters", parsed.set.entries.size()},
+                {"problems", std::move(list)}});
+    if (!problems.empty()) ctx.exit_code = 1;
+    return;
+  }
   for (const auto& pr : problems) fmt::print("{}\n", pr.describe(o.file));
   if (problems.empty()) {
     fmt::print("{}: valid {} parameter set ({} parameters)\n", o.file, p->device, parsed.set.entries.size());
@@ -216,16 +261,15 @@ struct ParamTarget {
 
 std::optional<ParamTarget> resolve_param(const Options& o, int& exit_code) {
   ParamTarget t;
-  t.profile = load(o.device, exit_code);
+  t.profile = load(o, exit_code);
   if (!t.profile) return std::nullopt;
   auto settings = parse_settings(*t.profile, o.sets);
   if (!settings) {
-    fmt::print(stderr, "error: {}\n", settings.error());
-    exit_code = 2;
+    failed(o, exit_code, settings.error(), 2);
     return std::nullopt;
   }
   t.settings = std::move(*settings);
-  t.variant = variant_for(*t.profile, o.param, t.settings, t.ref, exit_code);
+  t.variant = variant_for(o, *t.profile, t.settings, t.ref, exit_code);
   if (!t.variant) return std::nullopt;
   return t;
 }
@@ -238,15 +282,32 @@ void run_encode(Context& ctx, const Options& o) {
   const auto& ref = t->ref;
   const auto* v = t->variant;
   auto value = hp::parse_value_input(*v, o.value);
-  if (!value) {
-    fmt::print(stderr, "error: {} = '{}': {}\n", ref.id(), o.value, value.error());
-    ctx.exit_code = 1;
-    return;
-  }
+  if (!value) return failed(o, ctx.exit_code, fmt::format("{} = '{}': {}", ref.id(), o.value, value.error()), 1);
   auto img = hp::encode_value(*p, *v, *value);
-  if (!img) {
-    fmt::print(stderr, "error: {} = {}: {}\n", ref.id(), o.value, img.error());
-    ctx.exit_code = 1;
+  if (!img) return failed(o, ctx.exit_code, fmt::format("{} = {}: {}", ref.id(), o.value, img.error()), 1);
+  if (o.json) {
+    nlohmann::json j{{"device", p->device},
+                     {"param", ref.id()},
+                     {"name", v->name},
+                     {"value", hp::value_text(*v, *value)},
+                     {"fields", value_json(*v, *value)},
+                     {"wire",
+                      {{"text", img->text},
+                       {"words", img->words},
+                       {"bcd", img->bcd ? nlohmann::json(fmt::format("{:08X}", *img->bcd)) : nullptr},
+                       {"binary", img->binary ? nlohmann::json(fmt::format("{:08X}", *img->binary)) : nullptr}}},
+                     {"device_text", nullptr}};
+    if (auto parser = hp::make_parameter_set_parser(p)) {
+      hp::ParameterSet one;
+      one.device = p->device;
+      one.set({ref, *value, 0, hp::value_text(*v, *value)});
+      j["device_text"] = parser->write(one, settings);
+    }
+    nlohmann::json problems = nlohmann::json::array();
+    for (const auto& pr : field_problems(ref, *v, *value, *p, settings, true, ctx.exit_code))
+      problems.push_back(problem_json(pr, {}));
+    j["problems"] = std::move(problems);
+    print_json(j);
     return;
   }
   fmt::print("{} {} = {}{}\n", ref.id(), v->name, hp::value_text(*v, *value), units(*v));
@@ -258,7 +319,7 @@ void run_encode(Context& ctx, const Options& o) {
     one.set({ref, *value, 0, hp::value_text(*v, *value)});
     fmt::print("device text:\n{}", parser->write(one, settings));
   }
-  print_field_problems(ref, *v, *value, *p, settings, ctx.exit_code);
+  (void)field_problems(ref, *v, *value, *p, settings, false, ctx.exit_code);
 }
 
 void run_decode(Context& ctx, const Options& o) {
@@ -269,9 +330,29 @@ void run_decode(Context& ctx, const Options& o) {
   const auto& ref = t->ref;
   const auto* v = t->variant;
   auto value = hp::decode_wire(*p, *v, o.value);
-  if (!value) {
-    fmt::print(stderr, "error: {} wire '{}': {}\n", ref.id(), o.value, value.error());
-    ctx.exit_code = 1;
+  if (!value) return failed(o, ctx.exit_code, fmt::format("{} wire '{}': {}", ref.id(), o.value, value.error()), 1);
+  if (o.json) {
+    nlohmann::json fields = value_json(*v, *value);
+    for (std::size_t i = 0; i < v->fields.size() && i < fields.size(); ++i) {
+      const auto& f = v->fields[i];
+      const auto* d = std::get_if<hp::Decimal>(&(*value)[i]);
+      if (d && f.type == hp::FieldType::bits)
+        if (auto b = hp::parse_bit_field(static_cast<std::uint64_t>(d->units), f.bits))
+          fields[i]["meaning"] = hp::bit_field_text(*b, f.bits);
+      if (d && f.type == hp::FieldType::choice)
+        for (const auto& c : f.choices)
+          if (hp::Decimal{c.value, 0} == *d) fields[i]["meaning"] = c.meaning;
+    }
+    nlohmann::json problems = nlohmann::json::array();
+    for (const auto& pr : field_problems(ref, *v, *value, *p, settings, true, ctx.exit_code))
+      problems.push_back(problem_json(pr, {}));
+    print_json({{"device", p->device},
+                {"param", ref.id()},
+                {"name", v->name},
+                {"wire", o.value},
+                {"value", hp::value_text(*v, *value)},
+                {"fields", std::move(fields)},
+                {"problems", std::move(problems)}});
     return;
   }
   fmt::print("{} {} = {}{}\n", ref.id(), v->name, hp::value_text(*v, *value), units(*v));
@@ -286,7 +367,7 @@ void run_decode(Context& ctx, const Options& o) {
         for (const auto& c : f.choices)
           if (hp::Decimal{c.value, 0} == *d) fmt::print("  {}: {}\n", f.name, c.meaning);
   }
-  print_field_problems(ref, *v, *value, *p, settings, ctx.exit_code);
+  (void)field_problems(ref, *v, *value, *p, settings, false, ctx.exit_code);
 }
 
 }  // namespace
@@ -312,6 +393,7 @@ void register_profile(Context& ctx) {
   show->add_flag("--errors", opts->show_errors, "List the error catalogues (all, or the one named by --catalogue)");
   show->add_option("--catalogue", opts->errors,
                    "Error catalogue to list with --errors (e.g. diagnostic, serial, traversing)");
+  show->add_flag("--json", opts->json, "One JSON object on stdout (docs/json.md); errors as {\"error\": ...} too");
   show->callback([&ctx, opts] { run_show(ctx, *opts); });
 
   auto* validate = cmd->add_subcommand(
@@ -327,6 +409,7 @@ void register_profile(Context& ctx) {
   validate->add_option("--set", opts->sets,
                        "Setting name=value (e.g. module=WF726C, hardware_axes=2, id2_ms=2); repeatable");
   validate->add_flag("--partial", opts->partial, "Do not report parameters missing from the set");
+  validate->add_flag("--json", opts->json, "One JSON object on stdout (docs/json.md); errors as {\"error\": ...} too");
   validate->callback([&ctx, opts] { run_validate(ctx, *opts); });
 
   auto* encode = cmd->add_subcommand(
@@ -341,6 +424,7 @@ void register_profile(Context& ctx) {
   encode->add_option(
       "--set", opts->sets,
       "Setting name=value selecting the variant (e.g. control=AK, resolution=10, sf_type=6); repeatable");
+  encode->add_flag("--json", opts->json, "One JSON object on stdout (docs/json.md); errors as {\"error\": ...} too");
   encode->callback([&ctx, opts] { run_encode(ctx, *opts); });
 
   auto* decode = cmd->add_subcommand(
@@ -350,6 +434,7 @@ void register_profile(Context& ctx) {
   decode->add_option("param", opts->param, "Parameter id")->required();
   decode->add_option("wire", opts->value, "Wire form as printed by encode")->required();
   decode->add_option("--set", opts->sets, "Setting name=value selecting the variant; repeatable");
+  decode->add_flag("--json", opts->json, "One JSON object on stdout (docs/json.md); errors as {\"error\": ...} too");
   decode->callback([&ctx, opts] { run_decode(ctx, *opts); });
 }
 

@@ -136,19 +136,28 @@ void print_parameter(const hp::Profile& p, const hp::ParamRef& ref) {
     }
   }
   bool header = false;
+  for (const auto* c : rules_of(p, ref)) {
+    if (!header) fmt::print("\nrules:\n");
+    header = true;
+    fmt::print("  {}: {} — {}\n", c->id, c->rule.text(), c->message);
+  }
+}
+
+std::vector<const hp::Constraint*> rules_of(const hp::Profile& p, const hp::ParamRef& ref) {
+  const auto& spec = *ref.spec;
+  std::string bare = spec.pattern;
+  if (const auto at = bare.find('{'); at != std::string::npos) bare.erase(at, bare.find('}', at) - at + 1);
+  std::vector<const hp::Constraint*> out;
   for (const auto& c : p.constraints)
     for (const auto& n : c.rule.names()) {
       const auto base = n.substr(0, n.find('.'));
-      std::string bare = spec.pattern;
-      if (const auto at = bare.find('{'); at != std::string::npos) bare.erase(at, bare.find('}', at) - at + 1);
       if (hp::normalise_id(base) == hp::normalise_id(spec.id) || hp::normalise_id(base) == hp::normalise_id(ref.id()) ||
           (!bare.empty() && hp::normalise_id(base) == hp::normalise_id(bare))) {
-        if (!header) fmt::print("\nrules:\n");
-        header = true;
-        fmt::print("  {}: {} — {}\n", c.id, c.rule.text(), c.message);
+        out.push_back(&c);
         break;
       }
     }
+  return out;
 }
 
 void print_catalogues(const hp::Profile& p, const std::string& which) {

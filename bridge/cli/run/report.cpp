@@ -55,6 +55,7 @@ void print_summary(std::FILE* out, const runtime::RunResult& r) {
                  e.passed ? "" : ": " + e.detail);
   }
   for (const auto& w : r.warnings) fmt::print(out, "warning: {}\n", w);
+  if (r.cut_off && r.cut_off_expected) fmt::print(out, "note: {} (expected)\n", *r.cut_off);
   fmt::print(out, "scheduler: {}\n", describe_scheduler(r.scheduler));
   if (r.realtime) fmt::print(out, "real time: {}\n", r.realtime->describe());
   if (!r.scheduler.virtual_time && r.scheduler.wake_latency.count() > 0)

@@ -6,6 +6,7 @@
 
 #include "examples.hpp"
 #include "hil/cli/context.hpp"
+#include "hil/cli/json_output.hpp"
 #include "hil/runtime/runner.hpp"
 #include "hil/runtime/scenario_loader.hpp"
 #include "live_status.hpp"
@@ -49,46 +50,38 @@ runtime::RealtimeOptions realtime_options(const runtime::Scenario& s, const RunA
 }
 
 int run_command(Context& ctx, const RunArgs& args) {
+  const auto failed = [&](const std::string& what) { return report_error(args.json, "error: ", what, 2); };
   std::filesystem::path file = args.scenario;
   if (file.empty()) {
     auto demo = find_example("demo.yaml");
     if (!demo) {
       std::string where;
       for (const auto& d : example_dirs()) where += "\n  " + d.string();
-      fmt::print(stderr,
-                 "error: no scenario given and the bundled demo examples/demo.yaml was not found; looked in:{}\n"
-                 "Give a scenario file (hilbridge run FILE.yaml) or set HILBRIDGE_EXAMPLES to the examples folder.\n",
-                 where);
-      return 2;
+      return failed(fmt::format(
+          "no scenario given and the bundled demo examples/demo.yaml was not found; looked in:{}\n"
+          "Give a scenario file (hilbridge run FILE.yaml) or set HILBRIDGE_EXAMPLES to the examples folder.",
+          where));
     }
     file = *demo;
   }
   auto scenario = runtime::load_scenario(file);
-  if (!scenario) {
-    fmt::print(stderr, "error: {}\n", scenario.error().describe());
-    return 2;
-  }
+  if (!scenario) return failed(scenario.error().describe());
   if (!args.duration.empty()) {
     const auto d = runtime::parse_duration(args.duration);
-    if (!d || *d <= Duration::zero()) {
-      fmt::print(stderr, "error: --duration: expected a duration > 0 (seconds, or '250ms', '60s'), got '{}'\n",
-                 args.duration);
-      return 2;
-    }
+    if (!d || *d <= Duration::zero())
+      return failed(
+          fmt::format("--duration: expected a duration > 0 (seconds, or '250ms', '60s'), got '{}'", args.duration));
     scenario->duration = *d;
     scenario->timeout = std::max(scenario->timeout, *d);
+    // "Run this long, whatever the program does": a cut by --duration is what was asked for.
+    scenario->cut_off_expected = true;
   }
   const runtime::RealtimeOptions realtime = realtime_options(*scenario, args);
-  if (realtime.enabled && args.virtual_time && args.realtime_priority > 0) {
-    fmt::print(stderr, "error: --realtime and --virtual exclude each other (virtual time never waits)\n");
-    return 2;
-  }
+  if (realtime.enabled && args.virtual_time && args.realtime_priority > 0)
+    return failed("--realtime and --virtual exclude each other (virtual time never waits)");
   LiveStatus live(args.json ? stderr : stdout);
   RunOutputs outputs;
-  if (auto e = outputs.open(args.trace, args.plot)) {
-    fmt::print(stderr, "error: {}\n", *e);
-    return 2;
-  }
+  if (auto e = outputs.open(args.trace, args.plot)) return failed(*e);
   runtime::RunOptions options;
   options.virtual_time = args.virtual_time;
   options.verify_steps = args.verify_steps;
@@ -99,10 +92,10 @@ int run_command(Context& ctx, const RunArgs& args) {
   for (auto* o : outputs.observers()) options.observers.push_back(o);
   auto result = runtime::run_scenario(*scenario, ctx.transports, options);
   if (!result) {
-    fmt::print(stderr, "error: {}\n", result.error().describe());
     if (result.error().key == "realtime")
-      fmt::print(stderr, "Run without --realtime, or add --realtime-fallback to run on normal scheduling.\n");
-    return 2;
+      return failed(result.error().describe() +
+                    "\nRun without --realtime, or add --realtime-fallback to run on normal scheduling.");
+    return failed(result.error().describe());
   }
   if (args.json)
     fmt::print(stdout, "{}", run_json(*result));

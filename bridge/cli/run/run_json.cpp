@@ -127,10 +127,12 @@ std::string run_json(const runtime::RunResult& r) {
                               optional_s(io.first_rising), optional_s(io.first_falling));
                         }));
   return fmt::format(
-      "{{\"scenario\":{},\"file\":{},\"ok\":{},\"interrupted\":{},\"simulated_s\":{},\"failures\":{},"
-      "\"warnings\":{},\"axes\":{},\"faults\":{},\"expectations\":{},\"controller\":{},\"scheduler\":{},"
-      "\"realtime\":{},\"transports\":{}}}\n",
+      "{{\"scenario\":{},\"file\":{},\"ok\":{},\"interrupted\":{},\"simulated_s\":{},\"cut_off\":{},"
+      "\"failures\":{},\"warnings\":{},\"axes\":{},\"faults\":{},\"expectations\":{},\"controller\":{},"
+      "\"scheduler\":{},\"realtime\":{},\"transports\":{}}}\n",
       json_string(r.scenario), json_string(r.file), r.ok, r.interrupted, number(to_seconds(r.simulated)),
+      r.cut_off ? fmt::format("{{\"reason\":{},\"expected\":{}}}", json_string(*r.cut_off), r.cut_off_expected)
+                : std::string("null"),
       array(r.failures, [](const std::string& f) { return json_string(f); }),
       array(r.warnings, [](const std::string& w) { return json_string(w); }), axes, array(r.faults, fault_json),
       expectations, controller, scheduler, r.realtime ? realtime_json(*r.realtime) : std::string("null"), reports);

@@ -3,7 +3,10 @@
 #include <fmt/format.h>
 #include <CLI/CLI.hpp>
 
+#include <string_view>
+
 #include "hil/cli/context.hpp"
+#include "hil/cli/json_output.hpp"
 
 namespace hil::cli {
 void register_all_modules(Context& ctx);  // generated: cli_registry.cpp
@@ -30,7 +33,14 @@ int main(int argc, char** argv) {
   } catch (const CLI::ParseError& e) {
     // --help/--version exit 0; every usage error exits 2, as the commands' help texts say
     // (CLI11's own codes, 105..115, are documented nowhere).
-    return app.exit(e) == 0 ? 0 : 2;
+    if (app.exit(e) == 0) return 0;
+    // A machine reading --json output gets the usage error as JSON too (docs/json.md).
+    for (int i = 1; i < argc; ++i)
+      if (std::string_view(argv[i]) == "--json" || std::string_view(argv[i]) == "--jsonl") {
+        hil::cli::print_json({{"error", e.what()}, {"exit_code", 2}});
+        break;
+      }
+    return 2;
   }
   if (app.get_subcommands().empty()) {
     // `hilbridge` alone runs the bundled demo when the run module is present.

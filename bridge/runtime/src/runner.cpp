@@ -61,7 +61,11 @@ class Session {
       timed_out_ = true;
       return CycleControl::stop;
     }
-    if (scenario_.duration) return t + c.period >= *scenario_.duration ? CycleControl::stop : CycleControl::proceed;
+    if (scenario_.duration) {
+      if (t + c.period < *scenario_.duration) return CycleControl::proceed;
+      cut_ = describe_cut(status);
+      return CycleControl::stop;
+    }
     if (status != Program::Status::done || !at_rest(machine_)) {
       rest_since_.reset();
       return CycleControl::proceed;
@@ -79,6 +83,31 @@ class Session {
   }
 
   void interrupt() noexcept { interrupt_requested_ = true; }
+
+  /// At the last cycle of a fixed `duration:`: what the duration cut off (steps not completed,
+  /// axes still in motion), or nothing when the program had ended and every axis was at rest.
+  std::optional<std::string> describe_cut(Program::Status status) const {
+    std::vector<std::string> what;
+    if (status != Program::Status::done && program_.current_step() < scenario_.program.size()) {
+      const std::size_t n = program_.current_step();
+      const Step& st = scenario_.program[n];
+      what.push_back(fmt::format("step {} of {} ({}, {}:{} {}) not completed", n + 1, scenario_.program.size(), st.name,
+                                 scenario_.file, st.source.line, st.source.path));
+    }
+    for (const auto& a : machine_.axes()) {
+      const auto& st = a.axis->status();
+      if (st.busy || st.state == motion::AxisState::moving || st.state == motion::AxisState::stopping ||
+          st.state == motion::AxisState::homing || st.state == motion::AxisState::enabling)
+        what.push_back(fmt::format("axis {} still {}", a.spec->name,
+                                   st.state == motion::AxisState::moving || st.state == motion::AxisState::standstill
+                                       ? std::string("moving")
+                                       : std::string(motion::to_string(st.state))));
+    }
+    if (what.empty()) return std::nullopt;
+    std::string out = fmt::format("cut off by duration at t={:.3f} s: ", to_seconds(*scenario_.duration));
+    for (std::size_t i = 0; i < what.size(); ++i) out += (i ? "; " : "") + what[i];
+    return out;
+  }
 
   static bool all_in_position(const Machine& m) {
     for (const auto& a : m.axes()) {
@@ -111,6 +140,14 @@ class Session {
           "of {}",
           to_seconds(t_), to_seconds(scenario_.timeout), program_.current_step() + 1, scenario_.program.size()));
     }
+    if (cut_) {
+      r.cut_off = *cut_;
+      r.cut_off_expected = scenario_.cut_off_expected;
+      if (!scenario_.cut_off_expected) {
+        r.ok = false;
+        r.failures.push_back(*cut_ + " (say `cut_off: expected` in the scenario when the cut is intended)");
+      }
+    }
     if (interrupted_) {
       r.ok = false;
       r.failures.push_back(fmt::format("interrupted at t={:.3f} s", to_seconds(interrupted_at_)));
@@ -142,6 +179,7 @@ class Session {
   bool interrupted_ = false;
   Duration interrupted_at_{};
   std::optional<Duration> rest_since_;
+  std::optional<std::string> cut_;  ///< set at the cycle the fixed duration ended the run
 };
 
 }  // namespace

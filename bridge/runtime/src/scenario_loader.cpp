@@ -37,8 +37,8 @@ class Loader {
     const Field top(file_, root, "", YAML::Mark{});
     if (!root.IsMap())
       top.fail(fmt::format("a scenario is a map with 'machine:' and 'program:', got {}", top.describe()));
-    top.expect_map({"name", "description", "period", "duration", "timeout", "realtime", "controller", "machine", "io",
-                    "program", "expect"});
+    top.expect_map({"name", "description", "period", "duration", "cut_off", "timeout", "realtime", "controller",
+                    "machine", "io", "program", "expect"});
     if (auto f = top.child("name"); f.present()) s.name = f.as_string("a scenario name");
     if (auto f = top.child("description"); f.present()) s.description = f.as_string("a text");
     if (auto f = top.child("period"); f.present()) {
@@ -55,6 +55,10 @@ class Loader {
       s.timeout = *d;
     }
     if (s.duration && *s.duration > s.timeout) s.timeout = *s.duration;
+    if (auto f = top.child("cut_off"); f.present()) {
+      if (!s.duration) f.fail("'cut_off:' says whether a fixed 'duration:' may cut the program off: add 'duration:'");
+      s.cut_off_expected = f.as_enum({"fail", "expected"}) == 1;
+    }
     if (auto f = top.child("realtime"); f.present()) s.realtime = load_realtime(f);
 
     if (auto c = top.child("controller"); c.present()) s.controller = load_controller(c);

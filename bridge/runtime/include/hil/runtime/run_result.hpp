@@ -83,6 +83,11 @@ struct RunResult {
   std::optional<RealtimeReport> realtime;  ///< set when the run asked for real-time operation
   Duration simulated{};                    ///< scenario time at the last cycle
   bool interrupted = false;
+  /// What a fixed `duration:` cut off ("cut off by duration at t=2.000 s: step 3 of 5 (...) not
+  /// completed; axis x still moving"); unset when the program had ended and every axis was at rest.
+  /// A failure unless `cut_off_expected` (the scenario's `cut_off: expected`).
+  std::optional<std::string> cut_off;
+  bool cut_off_expected = false;
 };
 
 }  // namespace hil::runtime

@@ -231,6 +231,9 @@ struct Scenario {
   Duration period{std::chrono::milliseconds(1)};
   std::optional<Duration> duration;             ///< fixed run length; default: until the program is done and axes rest
   Duration timeout{std::chrono::seconds(600)};  ///< the run fails when it lasts longer
+  /// `cut_off: expected`: a `duration:` that ends the run while program steps are left or an axis
+  /// still moves is intended (reported, not a failure). Default `cut_off: fail`.
+  bool cut_off_expected = false;
   /// `realtime:` (true/false or a map); applies to runs on real time only (`hilbridge run`
   /// options override it). Unset: normal scheduling.
   std::optional<RealtimeOptions> realtime;
