@@ -89,6 +89,8 @@ for t in "${targets[@]}"; do
   corpus="${corpus_of[$t]}"
   mkdir -p "$corpus"
   fresh=$(mktemp -d)
+  stamp="$fresh.started"  # findings of earlier runs stay in $findings; count only this run's
+  : >"$stamp"
   findings="$bd/findings/$t"
   mkdir -p "$findings"
   log="$bd/logs/$t.log"
@@ -115,7 +117,8 @@ for t in "${targets[@]}"; do
   fi
   rm -rf "$fresh" "$bd"/fuzz-*.log
   n_corpus=$(find "$corpus" -type f | wc -l)
-  found=$(find "$findings" -type f | wc -l)
+  found=$(find "$findings" -type f -newer "$stamp" | wc -l)
+  rm -f "$stamp"
   what="none"
   if [[ $rc -ne 0 || $found -ne 0 ]]; then
     status=1

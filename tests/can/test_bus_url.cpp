@@ -50,6 +50,7 @@ TEST(BusUrl, RejectsWithSentencesThatSayWhatIsAccepted) {
       {"socketcand://::1:29536/can0", "brackets"},
       // Found by fuzzing: a '[' inside the brackets made a URL that to_string() could not write back.
       {"socketcand://[[0]/1", "characters no host"},
+      {"socketcand://[%0]/vn2", "characters no host"},
       {"socketcand://ho st:1/can0", "characters no host"},
       {"socketcand://h/abcdefghijklmnopq", "bus name"},
       {"virtual:", "virtual bus name"},

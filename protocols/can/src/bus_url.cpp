@@ -24,6 +24,7 @@ bool valid_name(std::string_view s, std::size_t max) {
 // (hex digits, ':', '.', and a '%zone' of name characters): what to_string() can write back.
 bool valid_host(std::string_view s, bool v6) {
   if (s.empty() || s.size() > 253) return false;
+  if (v6 && s.find(':') == std::string_view::npos) return false;  // "[%0]" is no IPv6 address
   for (char c : s) {
     const bool name =
         (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '_' || c == '-' || c == '.';
@@ -93,8 +94,8 @@ std::expected<BusUrl, std::string> parse_bus_url(std::string_view text) {
     if (url.host.empty()) return bad(text, "missing host");
     if (!valid_host(url.host, authority.starts_with("[")))
       return bad(text,
-                 "the host has characters no host name or address has (letters, digits, '-', '.', and ':' "
-                 "inside [IPv6] brackets)");
+                 "the host has characters no host name or address has (letters, digits, '-', '.'; inside "
+                 "[IPv6] brackets an address with ':')");
     if (authority.find(':') != std::string_view::npos && port_text.empty() && !authority.starts_with("["))
       return bad(text, "empty port after ':'");
     if (!port_text.empty()) {
