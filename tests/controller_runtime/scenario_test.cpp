@@ -87,6 +87,44 @@ program:
   EXPECT_NE(all.find("wf725-726.traversing:96"), std::string::npos) << all;
 }
 
+TEST(ControllerScenario, AcknowledgeClearsTheDeviceErrorAndTheAxisMovesBack) {
+  // WF 96 (pre-limit positive, reaction stop, acknowledged with data code 800C): the axis stays in
+  // error until the operator acknowledges; then it is reset and may move away from the limit.
+  const auto r = run_text(wf_head + R"(
+program:
+  - enable: A
+  - move_velocity: {axis: A, velocity: 80}
+    blocking: false
+  - wait_until: {axis: A, state: error}
+    timeout: 5s
+  - acknowledge: acknowledge
+    timeout: 1s
+  - enable: A
+  - move_absolute: {axis: A, position: 10}
+expect:
+  - {axis: A, fault: "wf725-726.traversing:96"}
+  - {axis: A, position: 10, tolerance: 0.011}
+  - {io: device_error, state: false}
+  - {io: error_A, edges: 1, edge: falling}
+)");
+  ASSERT_TRUE(r) << r.error().describe();
+  EXPECT_TRUE(r->ok) << (r->failures.empty() ? "" : r->failures.front());
+  ASSERT_EQ(r->device_errors.size(), 1U);
+  EXPECT_EQ(r->device_errors[0].code, "96");
+
+  // Without a controller the step is a configuration error naming the fix.
+  const auto bad = parse_scenario(R"(
+machine:
+  axes:
+    - {name: x, inc_per_unit: 1000, limits: {velocity: 100, acceleration: 1000}, drive: {transport: sim}}
+program:
+  - acknowledge: reset
+)",
+                                  "ack.yaml");
+  ASSERT_FALSE(bad);
+  EXPECT_NE(bad.error().describe().find("add a 'controller:' block"), std::string::npos) << bad.error().describe();
+}
+
 TEST(ControllerScenario, StimuliAndIoExpectations) {
   const auto r = run_text(wf_head + R"(
 io:

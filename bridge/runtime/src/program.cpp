@@ -158,7 +158,8 @@ bool Program::launch(Running& r, Duration t) {
             if (!e.empty()) fail(s, t, e);
             return e.empty();
           },
-          [](const auto&) { return true; },  // waits start nothing
+          [](const AcknowledgeStep&) { return true; },  // given at the controller's next cycle (poll)
+          [](const auto&) { return true; },             // waits start nothing
       },
       s.action);
 }
@@ -277,6 +278,25 @@ Program::Check Program::poll(Running& r, Duration t) {
             return met ? Check::done : Check::pending;
           },
           [&](const InjectFaultStep&) { return Check::done; },
+          [&](const AcknowledgeStep& a) {
+            // The device takes the operator's acknowledgement at its next cycle, after that
+            // cycle's supervision (a fault of the last cycles has become its error by then).
+            // The loader allows the step only with a controller.
+            auto* ctl = machine_.controller();
+            if (!r.stop_sent) {
+              if (!machine_.controller_cycle_complete()) return Check::pending;
+              (void)ctl->acknowledge(static_cast<controllers::Acknowledgement>(static_cast<std::uint8_t>(a.how)));
+              r.stop_sent = true;
+            }
+            // Done when every controller axis whose device errors are gone has left error (the
+            // controller reset it; its drive acknowledges within a few cycles).
+            for (std::size_t i = 0; i < ctl->axis_count(); ++i) {
+              const auto& spec = ctl->axis_specs()[i];
+              if (ctl->errors().blocks_motion(static_cast<int>(i))) continue;
+              if (axis(spec.name).status().state == motion::AxisState::error) return Check::pending;
+            }
+            return Check::done;
+          },
           [&](const CoupleStep& cs) {
             if (cs.action != CoupleStep::Action::master_velocity && faulted(cs.slave)) return Check::failed;
             return machine_.couplings().done(cs, machine_.axes()) ? Check::done : Check::pending;

@@ -2,6 +2,7 @@
 #include "hil/runtime/scenario_loader.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cctype>
 #include <charconv>
 #include <cmath>
@@ -416,15 +417,16 @@ class Loader {
   static constexpr std::string_view step_keys[] = {
       "enable",        "disable",      "reset",    "home",       "move_absolute", "move_relative",
       "move_velocity", "jog",          "stop",     "quick_stop", "wait",          "wait_in_position",
-      "wait_until",    "inject_fault", "parallel", "couple"};
+      "wait_until",    "inject_fault", "parallel", "couple",     "acknowledge"};
 
   Step load_step(const Field& f, int depth) {
     if (!f.node().IsMap())
       f.fail(fmt::format("expected a step: a map with one action ({}), got {}", "enable, move_absolute, wait, ...",
                          f.describe()));
-    const auto keys = f.expect_map({"enable", "disable", "reset", "home", "move_absolute", "move_relative",
-                                    "move_velocity", "jog", "stop", "quick_stop", "wait", "wait_in_position",
-                                    "wait_until", "inject_fault", "parallel", "couple", "at", "timeout", "blocking"});
+    const auto keys = f.expect_map({"enable",        "disable",          "reset",      "home",         "move_absolute",
+                                    "move_relative", "move_velocity",    "jog",        "stop",         "quick_stop",
+                                    "wait",          "wait_in_position", "wait_until", "inject_fault", "parallel",
+                                    "couple",        "acknowledge",      "at",         "timeout",      "blocking"});
     std::string action;
     for (const auto& k : keys) {
       if (k == "at" || k == "timeout" || k == "blocking") continue;
@@ -511,6 +513,12 @@ class Loader {
       if (auto a = v.child("active"); a.present()) i.active = a.as_bool();
       st.name += " " + i.axis + " " + i.fault;
       st.action = i;
+    } else if (action == "acknowledge") {
+      if (!has_controller_) v.fail("'acknowledge' clears a controller's device errors: add a 'controller:' block");
+      AcknowledgeStep a;
+      a.how = static_cast<AcknowledgeStep::How>(v.as_enum({"acknowledge", "reset", "power_cycle"}));
+      st.name += std::string(" ") + std::array{"acknowledge", "reset", "power_cycle"}[static_cast<std::size_t>(a.how)];
+      st.action = a;
     } else if (action == "couple") {
       CoupleStep c = detail::load_couple_step(v, *scenario_);
       st.name += " " + c.slave;

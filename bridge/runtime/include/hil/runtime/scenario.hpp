@@ -138,6 +138,12 @@ struct InjectFaultStep {
   std::string fault;
   bool active = true;
 };
+/// `acknowledge: acknowledge | reset | power_cycle`: the operator's acknowledgement of the
+/// controller's device errors (Controller::acknowledge); axes whose device errors are all cleared
+/// are reset. Needs a `controller:` block.
+struct AcknowledgeStep {
+  enum class How : std::uint8_t { acknowledge, reset, power_cycle } how = How::acknowledge;
+};
 struct Step;
 struct ParallelStep {
   std::vector<Step> steps;
@@ -145,7 +151,7 @@ struct ParallelStep {
 
 using StepAction = std::variant<EnableStep, DisableStep, ResetStep, HomeStep, MoveAbsoluteStep, MoveRelativeStep,
                                 MoveVelocityStep, JogStep, StopStep, QuickStopStep, WaitStep, WaitInPositionStep,
-                                WaitUntilStep, InjectFaultStep, ParallelStep, CoupleStep>;
+                                WaitUntilStep, InjectFaultStep, ParallelStep, CoupleStep, AcknowledgeStep>;
 
 struct Step {
   StepAction action;
