@@ -230,6 +230,31 @@ TEST_F(AxisTest, AbsoluteTargetBeyondSoftLimitIsRejected) {
   EXPECT_FALSE(axis->move_absolute(50.0));
 }
 
+TEST_F(AxisTest, CoarseIncrementsStopInsideTheSoftLimits) {
+  // 7 mm per increment: the limits 54 and -54 lie past the middle of their increments (56, -56),
+  // so the nearest increment of a target at the limit is beyond it. Moves stop on 49 / -49.
+  AxisConfig c = base_config();
+  c.inc_per_unit = {1, 7};
+  c.soft_limit_max = 54.0;
+  c.soft_limit_min = -54.0;
+  make(c);
+  enable();
+  ASSERT_FALSE(axis->move_absolute(53.0));
+  settle();
+  EXPECT_EQ(drive->written(), 7);
+  EXPECT_LE(axis->status().command_position, 54.0);
+  ASSERT_FALSE(axis->move_absolute(-54.0));
+  settle();
+  EXPECT_EQ(drive->written(), -7);
+  EXPECT_GE(axis->status().command_position, -54.0);
+  // A velocity move onto the limit stops on the inner increment too (the fault says which limit).
+  ASSERT_FALSE(axis->move_velocity(80.0));
+  while (axis->status().state == AxisState::moving) cycle();
+  EXPECT_EQ(drive->written(), 7);
+  EXPECT_LE(axis->status().command_position, 54.0);
+  EXPECT_EQ(axis->status().fault.code, make_error_code(MotionFault::software_limit));
+}
+
 TEST_F(AxisTest, JogTowardsSoftLimitStopsExactlyOnIt) {
   AxisConfig c = base_config();
   c.soft_limit_max = 10.0;

@@ -13,10 +13,10 @@
 namespace hil::motion {
 namespace {
 
-// A move's own limits may only lower the configured (machine) limits.
-// A move's limits lie between the axis' own and a billionth of them: smaller ones (found by
-// fuzzing: 1e-270 units/s, denormal accelerations) make the planner's squares and quotients
-// underflow, and a move would then jump to its target in one cycle.
+// A move's own limits may only lower the configured (machine) limits, and to no less than a
+// billionth of them: smaller ones (found by fuzzing: 1e-270 units/s, denormal accelerations) make
+// the planner's squares and quotients underflow, and a move would then jump to its target in one
+// cycle.
 constexpr double min_limit_ratio = 1e-9;
 
 bool valid_limits(const Limits& l, const Limits& machine) {
@@ -26,6 +26,15 @@ bool valid_limits(const Limits& l, const Limits& machine) {
          std::isfinite(l.acceleration) && l.acceleration >= machine.acceleration * min_limit_ratio &&
          l.jerk >= min_jerk && l.velocity <= machine.velocity && l.acceleration <= machine.acceleration &&
          l.jerk <= machine.jerk && (l.jerk_limited() || !machine.jerk_limited());
+}
+
+// The increment nearest `units` (a position within the soft limits) that does not lie beyond
+// them: a coarse increment rounded outward would put the axis past a limit (found by fuzzing).
+std::int64_t inc_within_soft_limits(double units, const Scaling& scaling, const AxisConfig& c) {
+  std::int64_t inc = scaling.to_inc(units);
+  if (c.soft_limit_max && scaling.to_units(inc) > *c.soft_limit_max) --inc;
+  if (c.soft_limit_min && scaling.to_units(inc) < *c.soft_limit_min) ++inc;
+  return inc;
 }
 
 bool drive_faulted(const hil::DriveFeedback& fb) {
@@ -222,7 +231,7 @@ std::error_code Axis::move_absolute(double position, Direction direction, std::o
     if ((config_.soft_limit_max && position > *config_.soft_limit_max) ||
         (config_.soft_limit_min && position < *config_.soft_limit_min))
       return make_error_code(MotionFault::software_limit);
-    target = scaling_.to_inc(position);
+    target = inc_within_soft_limits(position, scaling_, config_);
   }
   if (auto ec = start_position(target, lim)) return ec;
   relative_carry_inc_ = 0.0;
@@ -265,11 +274,7 @@ std::error_code Axis::move_velocity(double velocity, std::optional<Limits> limit
     const bool cannot_stop = velocity > 0 ? sp > *limit : sp < *limit;
     if (beyond || cannot_stop) return make_error_code(MotionFault::software_limit);
     lim.velocity = std::fabs(velocity);
-    // The stop lands on the increment nearest the limit on its inner side (a coarse increment
-    // rounded outward would stop beyond the limit; found by fuzzing).
-    std::int64_t stop_inc = scaling_.to_inc(*limit);
-    if (velocity > 0 && scaling_.to_units(stop_inc) > *limit) --stop_inc;
-    if (velocity < 0 && scaling_.to_units(stop_inc) < *limit) ++stop_inc;
+    const std::int64_t stop_inc = inc_within_soft_limits(*limit, scaling_, config_);
     plan_position(from, scaling_.to_units(stop_inc), lim, entry, profile_);
     mode_ = Mode::velocity_to_limit;
     limit_target_ = *limit;
