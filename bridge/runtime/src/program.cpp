@@ -6,17 +6,12 @@
 #include <fmt/format.h>
 
 #include "hil/runtime/scenario_loader.hpp"
+#include "overloaded.hpp"
 
 namespace hil::runtime {
 namespace {
 
-template <class... F>
-struct Overloaded : F... {
-  using F::operator()...;
-};
-// Deduction guide: clang 16 (the fuzzing build) has no CTAD for aggregates yet.
-template <class... F>
-Overloaded(F...) -> Overloaded<F...>;
+using detail::Overloaded;
 
 motion::Direction to_motion(MoveDirection d) {
   switch (d) {
@@ -230,10 +225,10 @@ Program::Check Program::poll(Running& r, Duration t) {
             });
           },
           [&](const JogStep& j) {
-            if (!r.stop_sent) {
+            if (!r.issued) {
               if (faulted(j.axis)) return Check::failed;
               if (t - r.started < j.duration) return Check::pending;
-              r.stop_sent = true;
+              r.issued = true;
               if (auto ec = axis(j.axis).stop()) {
                 fail(s, t, fmt::format("axis {} rejected the stop ending the jog: {}", j.axis, ec.message()));
                 return Check::failed;
@@ -283,10 +278,10 @@ Program::Check Program::poll(Running& r, Duration t) {
             // cycle's supervision (a fault of the last cycles has become its error by then).
             // The loader allows the step only with a controller.
             auto* ctl = machine_.controller();
-            if (!r.stop_sent) {
+            if (!r.issued) {
               if (!machine_.controller_cycle_complete()) return Check::pending;
               (void)ctl->acknowledge(static_cast<controllers::Acknowledgement>(static_cast<std::uint8_t>(a.how)));
-              r.stop_sent = true;
+              r.issued = true;
             }
             // Done when every controller axis whose device errors are gone has left error (the
             // controller reset it; its drive acknowledges within a few cycles).

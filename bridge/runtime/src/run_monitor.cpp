@@ -8,17 +8,12 @@
 #include <fmt/format.h>
 
 #include "hil/runtime/scenario_loader.hpp"
+#include "overloaded.hpp"
 
 namespace hil::runtime {
 namespace {
 
-template <class... F>
-struct Overloaded : F... {
-  using F::operator()...;
-};
-// Deduction guide: clang 16 (the fuzzing build) has no CTAD for aggregates yet.
-template <class... F>
-Overloaded(F...) -> Overloaded<F...>;
+using detail::Overloaded;
 
 int decimals(double tolerance) {
   if (tolerance <= 0.0) return 3;

@@ -51,8 +51,9 @@ void TraceCsvWriter::on_start(const Scenario&, const Machine& machine) {
   }
   if (const auto* c = machine.controller()) {
     // Its analog values (ctl_NAME), then its newest active device error.
-    signals_ = c->trace_signals().size();
-    for (const auto& name : c->trace_signals()) {
+    const auto names = c->trace_signals();
+    signals_ = names.size();
+    for (const auto& name : names) {
       h += ',';
       h += csv_field("ctl_" + name);
     }

@@ -10,26 +10,24 @@ namespace {
 constexpr std::string_view forms =
     "expected an interface name (vcan0), socketcan:NAME, socketcand://HOST[:PORT]/BUS or virtual:NAME";
 
+bool name_char(char c) {
+  return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '_' || c == '-' || c == '.';
+}
+
 bool valid_name(std::string_view s, std::size_t max) {
   if (s.empty() || s.size() > max) return false;
-  for (char c : s) {
-    const bool ok =
-        (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '_' || c == '-' || c == '.';
-    if (!ok) return false;
-  }
+  for (char c : s)
+    if (!name_char(c)) return false;
   return true;
 }
 
 // A host name or IPv4 address (letters, digits, '-', '.', '_'), or inside brackets an IPv6 address
 // (hex digits, ':', '.', and a '%zone' of name characters): what to_string() can write back.
 bool valid_host(std::string_view s, bool v6) {
-  if (s.empty() || s.size() > 253) return false;
-  if (v6 && s.find(':') == std::string_view::npos) return false;  // "[%0]" is no IPv6 address
-  for (char c : s) {
-    const bool name =
-        (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '_' || c == '-' || c == '.';
-    if (!name && !(v6 && (c == ':' || c == '%'))) return false;
-  }
+  if (!v6) return valid_name(s, 253);
+  if (s.empty() || s.size() > 253 || s.find(':') == std::string_view::npos) return false;  // "[%0]": no IPv6
+  for (char c : s)
+    if (!name_char(c) && c != ':' && c != '%') return false;
   return true;
 }
 

@@ -40,7 +40,8 @@ class Program {
     const Step* step = nullptr;
     Duration started{};
     bool launched = false;
-    bool stop_sent = false;  ///< jog: stop issued after its duration; acknowledge: given to the controller
+    bool issued =
+        false;  ///< its follow-up is done: jog: the stop after its duration; acknowledge: given to the controller
     std::vector<Running> children;
   };
   enum class Check : std::uint8_t { pending, done, failed };
