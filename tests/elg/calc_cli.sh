@@ -37,4 +37,21 @@ check pitch 0 'one pitch in C counts .* +72000' --z0 1 --z2 10 --n00 18000
 check alarm_2203 1 'alarm 2203' --z0 1 --z2 0
 check bad_decimal 2 '--ud-z' --z0 1 --z2 10 --ud-z 1.1234567
 check nothing 2 'give --pulses-per-rev'
+# --json: one object on stdout (docs/json.md), the same exit codes; errors as {"error": ...}.
+json_check() {  # json_check NAME WANT_RC PYTHON_ASSERTION ARGS...
+  local name=$1 want=$2 expr=$3 out rc
+  shift 3
+  out=$("$hil" profile calc "$@" --json 2>/dev/null)
+  rc=$?
+  if [[ $rc -ne $want ]] || ! /usr/bin/python3 -c "import json,sys; j=json.loads(sys.argv[1]); assert $expr, j" "$out"; then
+    echo "FAIL $name: exit $rc (want $want), output: $out"; fail=1
+  else
+    echo "ok   $name"
+  fi
+}
+json_check json_units 0 "j['ok'] and j['lines'][0]['value'] == 0.005 and j['lines'][0]['unit'] == 'deg'" \
+  sinumerik-elg --pulses-per-rev 18000
+json_check json_problem 1 "not j['ok'] and 'Hz per track' in j['problems'][0]" sinumerik-elg --lines 2500 --gear-ku 18 --rpm 2000
+json_check json_error 2 "j['exit_code'] == 2 and 'give' in j['error']" sinumerik-elg
+json_check json_ip247 1 "j['device'] == 'ip247' and 'MD error 5' in j['problems'][0]" ip247 --pulses-per-rev 5
 exit $fail

@@ -8,6 +8,7 @@
 
 #include "hil/cli/calc_command.hpp"
 #include "hil/cli/context.hpp"
+#include "hil/cli/json_output.hpp"
 #include "hil/controllers/s5/ip247_calc.hpp"
 
 namespace hil::cli {
@@ -18,6 +19,7 @@ struct CalcOptions {
   bool half_step = false;
   int ppr = 0;
   double gear = 0.0, speed = 0.0, fmax = 0.0, fss = 0.0, accel = 0.0, range = 0.0;
+  bool json = false;
 };
 
 void run_calc(Context& ctx, const CalcOptions& o) {
@@ -35,14 +37,21 @@ void run_calc(Context& ctx, const CalcOptions& o) {
   in.range_bu = opt(o.range);
   const auto r = s5::ip247_calculate(in);
   if (r.lines.empty()) {
-    fmt::print(stderr, "profile calc ip247: give at least --step-angle or --pulses-per-rev (see --help)\n");
-    ctx.exit_code = 2;
+    ctx.exit_code =
+        report_error(o.json, "profile calc ip247: ", "give at least --step-angle or --pulses-per-rev (see --help)", 2);
     return;
   }
-  for (const auto& l : r.lines) {
-    fmt::print("{:<24} {:>14.6g} {:<10}{}\n", l.quantity, l.value, l.unit, l.md.empty() ? "" : "enter in MD " + l.md);
+  if (o.json) {
+    nlohmann::json lines = nlohmann::json::array();
+    for (const auto& l : r.lines)
+      lines.push_back({{"quantity", l.quantity}, {"value", l.value}, {"unit", l.unit}, {"md", l.md}});
+    print_json({{"device", "ip247"}, {"ok", r.problems.empty()}, {"lines", lines}, {"problems", r.problems}});
+  } else {
+    for (const auto& l : r.lines) {
+      fmt::print("{:<24} {:>14.6g} {:<10}{}\n", l.quantity, l.value, l.unit, l.md.empty() ? "" : "enter in MD " + l.md);
+    }
+    for (const auto& p : r.problems) fmt::print("problem: {}\n", p);
   }
-  for (const auto& p : r.problems) fmt::print("problem: {}\n", p);
   ctx.exit_code = r.problems.empty() ? 0 : 1;
 }
 }  // namespace
@@ -64,6 +73,7 @@ void register_s5(Context& ctx) {
   calc->add_option("--fss", o->fss, "Start-stop frequency in Hz");
   calc->add_option("--accel", o->accel, "Frequency increase a in Hz/ms");
   calc->add_option("--range", o->range, "Rotary range (end - start) in base units");
+  calc->add_flag("--json", o->json, "Print the figures as one JSON object (docs/json.md)");
   calc->callback([&ctx, o] { run_calc(ctx, *o); });
 }
 

@@ -14,6 +14,7 @@
 
 #include "hil/cli/calc_command.hpp"
 #include "hil/cli/context.hpp"
+#include "hil/cli/json_output.hpp"
 #include "hil/controllers/elg/calculator.hpp"
 #include "hil/controllers/elg/gear.hpp"
 
@@ -30,15 +31,31 @@ struct ElgCalcOptions {
   std::optional<int> z0, z2;
   std::string ud_z = "0", ud_y = "0";
   long long n00 = 180000, n02 = 180000, ms_z_nm = 500, ms_y_nm = 500;
+  bool json = false;
 };
 
+// The figures as a table, or with --json collected into {"lines": [...]} (docs/json.md).
 struct Printer {
+  bool json = false;
   std::vector<std::string> problems;
-  void line(std::string_view quantity, double value, std::string_view unit, std::string_view where = {}) const {
+  nlohmann::json lines = nlohmann::json::array();
+  void line(std::string_view quantity, double value, std::string_view unit, std::string_view where = {}) {
+    if (json) {
+      lines.push_back({{"quantity", quantity}, {"value", value}, {"unit", unit}, {"enter", where}});
+      return;
+    }
     fmt::print("{:<34} {:>16.8g} {:<9}{}\n", quantity, value, unit, where.empty() ? "" : std::string(where));
   }
-  void text(std::string_view quantity, std::string_view value) const { fmt::print("{:<34} {:>16}\n", quantity, value); }
+  void text(std::string_view quantity, std::string_view value) {
+    if (json) {
+      lines.push_back({{"quantity", quantity}, {"value", value}});
+      return;
+    }
+    fmt::print("{:<34} {:>16}\n", quantity, value);
+  }
 };
+
+constexpr std::string_view prefix = "profile calc sinumerik-elg: ";
 
 std::string rational(const elg::Rational& r) {
   return r.den == 1 ? std::to_string(r.num) : fmt::format("{}/{}", r.num, r.den);
@@ -46,6 +63,7 @@ std::string rational(const elg::Rational& r) {
 
 void run_elg_calc(Context& ctx, const ElgCalcOptions& o) {
   Printer p;
+  p.json = o.json;
   bool any = false;
   const double fmax = o.fmax.value_or(500'000.0);
   // The axis' own encoder: units, counting limit, frequency at a speed, INC step.
@@ -93,8 +111,7 @@ void run_elg_calc(Context& ctx, const ElgCalcOptions& o) {
   if (o.helix || o.lead) {
     any = true;
     if (!o.module || !(*o.module > 0.0)) {
-      fmt::print(stderr, "profile calc sinumerik-elg: --helix-angle/--lead-angle need --module (normal module, mm)\n");
-      ctx.exit_code = 2;
+      ctx.exit_code = report_error(o.json, prefix, "--helix-angle/--lead-angle need --module (normal module, mm)", 2);
       return;
     }
     if (o.helix) {
@@ -115,8 +132,7 @@ void run_elg_calc(Context& ctx, const ElgCalcOptions& o) {
     const auto uz = elg::Decimal5::parse(o.ud_z);
     const auto uy = elg::Decimal5::parse(o.ud_y);
     if (!uz || !uy) {
-      fmt::print(stderr, "profile calc sinumerik-elg: {}\n", !uz ? "--ud-z: " + uz.error() : "--ud-y: " + uy.error());
-      ctx.exit_code = 2;
+      ctx.exit_code = report_error(o.json, prefix, !uz ? "--ud-z: " + uz.error() : "--ud-y: " + uy.error(), 2);
       return;
     }
     in.ud_z = *uz;
@@ -138,13 +154,17 @@ void run_elg_calc(Context& ctx, const ElgCalcOptions& o) {
     }
   }
   if (!any) {
-    fmt::print(stderr,
-               "profile calc sinumerik-elg: give --pulses-per-rev, --resolution, --lines, --helix-angle/--lead-angle "
-               "with --module, or --z0/--z2 (see --help)\n");
-    ctx.exit_code = 2;
+    ctx.exit_code = report_error(o.json, prefix,
+                                 "give --pulses-per-rev, --resolution, --lines, --helix-angle/--lead-angle with "
+                                 "--module, or --z0/--z2 (see --help)",
+                                 2);
     return;
   }
-  for (const auto& problem : p.problems) fmt::print("problem: {}\n", problem);
+  if (o.json) {
+    print_json({{"device", "sinumerik-elg"}, {"ok", p.problems.empty()}, {"lines", p.lines}, {"problems", p.problems}});
+  } else {
+    for (const auto& problem : p.problems) fmt::print("problem: {}\n", problem);
+  }
   ctx.exit_code = p.problems.empty() ? 0 : 1;
 }
 
@@ -177,6 +197,7 @@ void register_sinumerik(Context& ctx) {
   calc->add_option("--n02", o->n02, "MD 396* of the drive axis C (default 180000)");
   calc->add_option("--ms-z-nm", o->ms_z_nm, "Measuring-system unit of Z in nm (MD 5002; default 500)");
   calc->add_option("--ms-y-nm", o->ms_y_nm, "Measuring-system unit of Y in nm (default 500)");
+  calc->add_flag("--json", o->json, "Print the figures as one JSON object (docs/json.md)");
   calc->callback([&ctx, o] { run_elg_calc(ctx, *o); });
 }
 
