@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include "hil/controllers/gpio_io.hpp"
+#include "hil/controllers/gpio_link.hpp"
 #include "hil/mocks/gpio/mock_lines.hpp"
 
 namespace hil::controllers {
@@ -65,6 +66,48 @@ TEST(GpioIo, InputsAndOutputsThroughTheImage) {
   io.read_inputs(clock.now());
   EXPECT_TRUE(io.get(start)) << "a failed read leaves the bit as the earlier source set it";
   EXPECT_EQ(bad.errors(), 1U);
+}
+
+TEST(GpioLink, MockChipScriptsInputsOnScenarioTimeAndDrivesOutputs) {
+  VirtualClock clock;
+  clock.advance(milliseconds(1000));  // the run starts at a clock time other than 0
+  IoImage io(IoLayout{{1, 1, 0, 0}});
+  const BitAddress start{IoArea::input, 0, 0}, lamp{IoArea::output, 0, 5};
+  GpioLinkConfig c;
+  c.chip = "mock";
+  c.inputs.push_back({"start", 3, "", start, false, gpio::Bias::as_is, {{milliseconds(10), true}}});
+  c.outputs.push_back({"lamp", 6, "", lamp, true, gpio::Bias::as_is, {}});
+  auto link = GpioLink::open(c, clock);
+  ASSERT_TRUE(link) << link.error();
+  ASSERT_NE((*link)->mock_lines(), nullptr);
+  io.attach(*(*link)->source());
+  io.attach(*(*link)->sink());
+  auto& lines = *(*link)->mock_lines();
+
+  io.read_inputs(clock.now());  // scenario time 0
+  EXPECT_FALSE(io.get(start));
+  io.write_outputs(clock.now());
+  EXPECT_TRUE(lines.output_level(1)) << "active-low output: bit 0 drives the line high";
+  clock.advance(milliseconds(10));
+  io.read_inputs(clock.now());
+  EXPECT_TRUE(io.rising(start)) << "the script's level at 10 ms of scenario time";
+  io.set(lamp, true);
+  io.write_outputs(clock.now());
+  EXPECT_FALSE(lines.output_level(1));
+  EXPECT_EQ((*link)->errors(), 0U);
+
+  // A line given twice and a chip that does not exist are errors naming them.
+  GpioLinkConfig twice = c;
+  twice.outputs[0].offset = 3;
+  const auto dup = GpioLink::open(twice, clock);
+  ASSERT_FALSE(dup);
+  EXPECT_EQ(dup.error(), "mock: line 3 is wired twice ('start' and 'lamp')");
+  GpioLinkConfig missing = c;
+  missing.chip = "hil-no-such-chip";
+  missing.inputs[0].mock.clear();
+  const auto none = GpioLink::open(missing, clock);
+  ASSERT_FALSE(none);
+  EXPECT_NE(none.error().find("hil-no-such-chip"), std::string::npos) << none.error();
 }
 
 }  // namespace

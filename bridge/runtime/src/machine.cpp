@@ -103,7 +103,7 @@ std::expected<Machine, ConfigError> Machine::build(const Scenario& scenario, con
   if (auto e = m.couplings_.build(scenario, m.axes_)) return std::unexpected(*e);
   if (m.controller_) {
     if (auto e = m.bind_controller(scenario)) return std::unexpected(*e);
-    if (auto e = m.attach_io(scenario)) return std::unexpected(*e);
+    if (auto e = m.attach_io(scenario, env.clock)) return std::unexpected(*e);
   }
   return m;
 }

@@ -140,7 +140,7 @@ std::optional<ConfigError> Machine::bind_controller(const Scenario& scenario) {
   return std::nullopt;
 }
 
-std::optional<ConfigError> Machine::attach_io(const Scenario& scenario) {
+std::optional<ConfigError> Machine::attach_io(const Scenario& scenario, const Clock& clock) {
   auto& io = controller_->io();
   const auto add_signal = [&](const std::string& name, controllers::BitAddress a) {
     for (const auto& [n, addr] : io_signals_)
@@ -160,6 +160,9 @@ std::optional<ConfigError> Machine::attach_io(const Scenario& scenario) {
     }
     return *a;
   };
+  // Real I/O first: a scenario stimulus on the same bit overrides it (later sources win).
+  for (const IoLink& link : scenario.io_links)
+    if (auto e = attach_io_link(scenario, link, clock)) return e;
   const Duration cycle = controller_->cycle_period();
   for (const IoStimulus& st : scenario.io) {
     auto bit = resolve(st.signal, st.source);
@@ -203,6 +206,65 @@ std::optional<ConfigError> Machine::attach_io(const Scenario& scenario) {
     auto bit = resolve(e.signal, e.source);
     if (!bit) return bit.error();
     add_signal(e.signal, *bit);
+  }
+  return std::nullopt;
+}
+
+std::optional<ConfigError> Machine::attach_io_link(const Scenario& scenario, const IoLink& link, const Clock& clock) {
+  auto& io = controller_->io();
+  // Each signal resolves to a bit of the allowed areas; it is then reported like io: signals.
+  const auto resolve = [&](const IoLinkBit& b, bool input) -> std::expected<controllers::BitAddress, ConfigError> {
+    const auto fail = [&](std::string message) {
+      return std::unexpected(ConfigError{scenario.file, b.source.line, 0, b.source.path, std::move(message)});
+    };
+    auto a = controller_->resolve_bit(b.signal);
+    if (!a) return fail(a.error());
+    if (!io.contains(*a))
+      return fail(fmt::format("'{}' is outside the {} controller's I/O image", b.signal, controller_->device()));
+    using controllers::IoArea;
+    const bool ok = input ? a->area == IoArea::input || a->area == IoArea::data
+                          : a->area == IoArea::output || a->area == IoArea::marker;
+    if (!ok) {
+      return fail(fmt::format("'{}' is a {} bit ({}): a link's {} are {} bits", b.signal,
+                              controllers::to_string(a->area), controllers::format_address(*a),
+                              input ? "inputs" : "outputs", input ? "input (or device data)" : "output (or marker)"));
+    }
+    if (std::ranges::none_of(io_signals_, [&](const auto& s) { return s.first == b.signal; }))
+      io_signals_.emplace_back(b.signal, *a);
+    return *a;
+  };
+  const auto lines = [&](const std::vector<IoLinkBit>& bits, bool input,
+                         std::vector<controllers::GpioLinkLine>& out) -> std::optional<ConfigError> {
+    for (const IoLinkBit& b : bits) {
+      auto a = resolve(b, input);
+      if (!a) return a.error();
+      const auto& g = std::get<GpioLinkBit>(b.where);
+      controllers::GpioLinkLine l;
+      l.signal = b.signal;
+      l.offset = g.offset;
+      l.name = g.name;
+      l.bit = *a;
+      l.active_low = g.active_low;
+      l.bias = g.bias.empty() ? gpio::Bias::as_is : gpio::parse_bias(g.bias).value_or(gpio::Bias::as_is);
+      l.mock = g.mock;
+      out.push_back(std::move(l));
+    }
+    return std::nullopt;
+  };
+  if (const auto* g = std::get_if<GpioLinkDevice>(&link.device)) {
+    controllers::GpioLinkConfig config;
+    config.chip = g->chip;
+    config.consumer = g->consumer;
+    if (auto e = lines(link.inputs, true, config.inputs)) return e;
+    if (auto e = lines(link.outputs, false, config.outputs)) return e;
+    auto opened = controllers::GpioLink::open(std::move(config), clock);
+    if (!opened) {
+      return ConfigError{scenario.file, link.source.line, 0, link.source.path + ".gpio",
+                         fmt::format("cannot open the GPIO lines: {}", opened.error())};
+    }
+    if (auto* src = (*opened)->source()) io.attach(*src);
+    if (auto* sink = (*opened)->sink()) io.attach(*sink);
+    gpio_links_.push_back(std::move(*opened));
   }
   return std::nullopt;
 }

@@ -39,7 +39,7 @@ class Loader {
     if (!root.IsMap())
       top.fail(fmt::format("a scenario is a map with 'machine:' and 'program:', got {}", top.describe()));
     top.expect_map({"name", "description", "period", "duration", "cut_off", "timeout", "realtime", "controller",
-                    "machine", "io", "program", "expect"});
+                    "machine", "io", "io_links", "program", "expect"});
     if (auto f = top.child("name"); f.present()) s.name = f.as_string("a scenario name");
     if (auto f = top.child("description"); f.present()) s.description = f.as_string("a text");
     if (auto f = top.child("period"); f.present()) {
@@ -76,6 +76,10 @@ class Loader {
     if (auto io = top.child("io"); io.present()) {
       if (!s.controller) io.fail("'io:' drives a controller's inputs: add a 'controller:' block");
       for (const Field& f : io.items()) s.io.push_back(load_stimulus(f));
+    }
+    if (auto links = top.child("io_links"); links.present()) {
+      if (!s.controller) links.fail("'io_links:' wire real I/O to a controller's image: add a 'controller:' block");
+      for (const Field& f : links.items()) s.io_links.push_back(load_io_link(f));
     }
     if (auto p = top.child("program"); p.present())
       for (const Field& f : p.items()) s.program.push_back(load_step(f, 0));
@@ -274,6 +278,98 @@ class Loader {
     const std::string s = f.as_string("an I/O name or the device's address, e.g. I0.00.3 or 'E 4.1'");
     if (s.empty()) f.fail("expected an I/O name or address");
     return s;
+  }
+
+  // `io_links:` entry: one device kind (gpio | modbus | drive) with `inputs:` / `outputs:` maps
+  // from signal to the device's address of the bit.
+  IoLink load_io_link(const Field& f) {
+    const auto keys = f.expect_map({"gpio", "inputs", "outputs"});
+    IoLink link;
+    link.source = {f.line(), f.path()};
+    std::string kind;
+    for (const auto& k : keys) {
+      if (k == "inputs" || k == "outputs") continue;
+      if (!kind.empty()) f.child(k).fail(fmt::format("one device per io_links entry; got '{}' and '{}'", kind, k));
+      kind = k;
+    }
+    if (kind.empty()) f.fail("an io_links entry needs one of: gpio");
+    if (!f.child("inputs").present() && !f.child("outputs").present())
+      f.fail(fmt::format("the {} link wires nothing: give 'inputs:' and/or 'outputs:'", kind));
+    const auto bits = [&](const std::string& key, bool input, auto load_bit) {
+      std::vector<IoLinkBit> out;
+      const Field m = f.child(key);
+      if (!m.present()) return out;
+      if (!m.node().IsMap()) m.fail(fmt::format("expected a map of signal: {} address, got {}", kind, m.describe()));
+      for (const auto& kv : m.node()) {
+        if (!kv.first.IsScalar()) m.fail("a signal name must be a plain name or device address");
+        const Field bit = m.child(kv.first.Scalar());
+        IoLinkBit b;
+        b.signal = kv.first.Scalar();
+        if (b.signal.empty()) bit.fail("expected an I/O name or address");
+        b.source = {bit.line(), bit.path()};
+        b.where = load_bit(bit, input);
+        out.push_back(std::move(b));
+      }
+      return out;
+    };
+    if (kind == "gpio") {
+      const Field g = f.child("gpio");
+      g.expect_map({"chip", "consumer"});
+      GpioLinkDevice d;
+      d.chip = g.required("chip", "a GPIO chip (gpiochip1, /dev/gpiochip1, a label) or 'mock'").as_string("a chip");
+      if (d.chip.empty()) g.child("chip").fail("expected a GPIO chip name, path, label or 'mock'");
+      if (auto c = g.child("consumer"); c.present()) d.consumer = c.as_string("a consumer label");
+      const bool mock = d.chip == "mock";
+      link.device = std::move(d);
+      const auto load = [&](const Field& bit, bool input) { return load_gpio_bit(bit, input, mock); };
+      link.inputs = bits("inputs", true, load);
+      link.outputs = bits("outputs", false, load);
+    }
+    return link;
+  }
+
+  // A GPIO line: `3` (offset), `LIMIT_X` (name) or {line, active_low, bias, mock}.
+  GpioLinkBit load_gpio_bit(const Field& f, bool input, bool mock_chip) {
+    GpioLinkBit b;
+    const auto line = [&](const Field& l) {
+      const YAML::Node& n = l.node();
+      if (!n.IsScalar()) l.fail(fmt::format("expected a line offset or name, got {}", l.describe()));
+      const std::string& text = n.Scalar();
+      if (!text.empty() && std::all_of(text.begin(), text.end(), [](char c) { return c >= '0' && c <= '9'; })) {
+        const double v = l.as_number("a line offset");
+        if (v > 1023) l.fail(fmt::format("expected a line offset 0..1023, got {}", l.describe()));
+        b.offset = static_cast<unsigned>(v);
+      } else {
+        if (mock_chip) l.fail(fmt::format("mock lines have offsets, not names: got {}", l.describe()));
+        b.name = l.as_string("a line name");
+        if (b.name.empty()) l.fail("expected a line offset or name");
+      }
+    };
+    if (!f.node().IsMap()) {
+      line(f);
+      return b;
+    }
+    f.expect_map({"line", "active_low", "bias", "mock"});
+    line(f.required("line", "the line offset or name"));
+    if (auto a = f.child("active_low"); a.present()) b.active_low = a.as_bool();
+    if (auto bias = f.child("bias"); bias.present()) {
+      if (!input) bias.fail("'bias' applies to input lines");
+      static constexpr std::array<std::string_view, 4> names{"as-is", "disabled", "pull-up", "pull-down"};
+      const std::size_t i = bias.as_enum({"as-is", "disabled", "pull-up", "pull-down"});
+      b.bias = i == 0 ? std::string{} : std::string(names[i]);
+    }
+    if (auto m = f.child("mock"); m.present()) {
+      if (!input || !mock_chip) m.fail("'mock' scripts an input line of 'chip: mock'");
+      Duration last{-1};
+      for (const Field& e : m.items()) {
+        e.expect_map({"at", "level"});
+        const Duration at = e.required("at", "when the level changes").as_duration();
+        if (at <= last) e.child("at").fail("mock levels must be given in increasing time");
+        last = at;
+        b.mock.emplace_back(at, e.required("level", "the line level, true or false").as_bool());
+      }
+    }
+    return b;
   }
 
   IoStimulus load_stimulus(const Field& f) {

@@ -22,6 +22,7 @@
 
 #include "hil/controllers/controller.hpp"
 #include "hil/controllers/controller_registry.hpp"
+#include "hil/controllers/gpio_link.hpp"
 #include "hil/controllers/io_image.hpp"
 #include "hil/core/config_error.hpp"
 #include "hil/core/fault_injection.hpp"
@@ -95,7 +96,11 @@ class Machine {
   };
   [[nodiscard]] std::optional<ConfigError> build_controller(const Scenario& scenario,
                                                             const controllers::ControllerRegistry* registry);
-  [[nodiscard]] std::optional<ConfigError> attach_io(const Scenario& scenario);
+  [[nodiscard]] std::optional<ConfigError> attach_io(const Scenario& scenario, const Clock& clock);
+  /// One `io_links:` entry: resolves its signals (inputs: input/data bits; outputs: output/marker
+  /// bits), opens the device and attaches its source and sink to the controller's image.
+  [[nodiscard]] std::optional<ConfigError> attach_io_link(const Scenario& scenario, const IoLink& link,
+                                                          const Clock& clock);
   [[nodiscard]] std::optional<ConfigError> bind_controller(const Scenario& scenario);
   /// The controller's copy of a controller axis' spec (units, rotary, windows filled in), else `spec`.
   [[nodiscard]] const AxisSpec& controller_spec(const AxisSpec& spec) const noexcept;
@@ -107,7 +112,8 @@ class Machine {
   std::vector<MachineAxis> axes_;
   MachineCouplings couplings_;
   std::vector<std::unique_ptr<controllers::IoSource>> stimuli_;
-  std::unique_ptr<controllers::Controller> controller_;  ///< declared after the axes: destroyed first
+  std::vector<std::unique_ptr<controllers::GpioLink>> gpio_links_;  ///< io_links: gpio
+  std::unique_ptr<controllers::Controller> controller_;             ///< declared after the axes: destroyed first
   std::vector<std::pair<std::string, controllers::BitAddress>> io_signals_;
   std::uint64_t controller_every_ = 1;  ///< run cycles per controller cycle
   std::uint64_t cycle_count_ = 0;

@@ -230,6 +230,35 @@ struct IoExpectation {
   SourceRef source;
 };
 
+/// `io_links:` (docs/scenarios.md): real I/O wired to the controller's image. One entry = one
+/// device (a GPIO chip, a Modbus I/O terminal, an axis' drive); its `inputs:` feed image input (or
+/// data) bits, its `outputs:` are fed by image output (or marker) bits.
+struct GpioLinkDevice {
+  std::string chip;  ///< libgpiod chip (name, path, label or number); "mock": in-process mock lines
+  std::string consumer = "hilbridge";
+};
+struct GpioLinkBit {
+  std::optional<unsigned> offset;  ///< chip offset, or
+  std::string name;                ///< a line name (gpioinfo)
+  bool active_low = false;         ///< image bit = !line level (inputs), line = !bit (outputs)
+  std::string bias;                ///< inputs: as-is (empty), disabled, pull-up, pull-down
+  /// `chip: mock` inputs: the line level over scenario time (level before the first entry: 0).
+  std::vector<std::pair<Duration, bool>> mock;
+};
+
+struct IoLinkBit {
+  std::string signal;  ///< an I/O name or the device's address
+  std::variant<GpioLinkBit> where;
+  SourceRef source;
+};
+
+struct IoLink {
+  std::variant<GpioLinkDevice> device;
+  std::vector<IoLinkBit> inputs;   ///< device -> image (input or data bits)
+  std::vector<IoLinkBit> outputs;  ///< image (output or marker bits) -> device
+  SourceRef source;
+};
+
 struct Scenario {
   std::string file;  ///< as given (for messages, and relative paths of transports)
   std::string name;
@@ -251,6 +280,7 @@ struct Scenario {
   std::vector<Expectation> expectations;
   std::optional<ControllerBlock> controller;
   std::vector<IoStimulus> io;
+  std::vector<IoLink> io_links;
   std::vector<IoExpectation> io_expectations;
   YAML::Node document;  ///< keeps the drive nodes' document alive
 
