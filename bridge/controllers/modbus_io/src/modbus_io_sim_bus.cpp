@@ -3,6 +3,8 @@
 
 #include <algorithm>
 
+#include <fmt/format.h>
+
 namespace hil::controllers {
 
 using modbus::BitSpace;
@@ -15,6 +17,26 @@ SimModbusIoBus::SimModbusIoBus(std::unique_ptr<mocks::ModbusDriveServer> server,
       config_(config),
       describe_("simulated terminal"),
       written_(writes.bits, 0) {}
+
+std::expected<std::unique_ptr<SimModbusIoBus>, std::string> SimModbusIoBus::create(const SimTerminalOptions& options,
+                                                                                   const modbus::BitPlan& reads,
+                                                                                   const modbus::BitPlan& writes,
+                                                                                   SimModbusIoBusConfig config) {
+  mocks::ModbusServerConfig sc;
+  sc.handler.unit_id = options.unit;
+  sc.listen_host = options.listen_host;
+  sc.port = options.listen_port;
+  auto server = std::make_unique<mocks::ModbusDriveServer>(
+      mocks::IoTerminal{mocks::IoTerminalConfig{options.coils, options.discrete_inputs}}, sc);
+  if (options.listen) {
+    if (const auto ec = server->start())
+      return std::unexpected(
+          fmt::format("the simulated terminal cannot listen on {}:{}: {} (is the port in use? "
+                      "port 0 picks a free one)",
+                      options.listen_host, options.listen_port, ec.message()));
+  }
+  return std::make_unique<SimModbusIoBus>(std::move(server), reads, writes, config);
+}
 
 void SimModbusIoBus::poll(TimePoint now, std::span<std::uint8_t> inputs) noexcept {
   const modbus::ModbusError err = server_->with_terminal([&](mocks::IoTerminal& t) noexcept {

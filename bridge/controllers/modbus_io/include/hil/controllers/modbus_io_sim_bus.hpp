@@ -14,6 +14,7 @@
 //    when it answers again every output block is written anew.
 // Thread: fetch/put/set_answering on the cycle thread; the server's I/O thread serves peers.
 
+#include <expected>
 #include <memory>
 #include <optional>
 #include <string>
@@ -29,8 +30,22 @@ struct SimModbusIoBusConfig {
   Duration response_timeout{std::chrono::milliseconds(100)};
 };
 
+/// The simulated terminal itself: its size, unit and whether peers may reach it on TCP.
+struct SimTerminalOptions {
+  std::uint16_t coils = 64;
+  std::uint16_t discrete_inputs = 64;
+  std::uint8_t unit = 1;
+  bool listen = false;
+  std::string listen_host = "127.0.0.1";
+  std::uint16_t listen_port = 0;  ///< 0: any free port (see SimModbusIoBus::server().port())
+};
+
 class SimModbusIoBus final : public ModbusIoBus {
  public:
+  /// Build the terminal and, with `options.listen`, start serving it. Error: why it cannot listen.
+  [[nodiscard]] static std::expected<std::unique_ptr<SimModbusIoBus>, std::string> create(
+      const SimTerminalOptions& options, const modbus::BitPlan& reads, const modbus::BitPlan& writes,
+      SimModbusIoBusConfig config);
   /// `server` serves an IoTerminal (started or not: started only when peers are to connect).
   SimModbusIoBus(std::unique_ptr<mocks::ModbusDriveServer> server, const modbus::BitPlan& reads,
                  const modbus::BitPlan& writes, SimModbusIoBusConfig config);
