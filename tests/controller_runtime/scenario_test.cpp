@@ -4,12 +4,16 @@
 // errors reach the result, the trace gets the I/O columns, and the loader's errors name the key.
 #include <gtest/gtest.h>
 
+#include <fmt/format.h>
+
+#include <algorithm>
 #include <cstdio>
 #include <fstream>
 #include <sstream>
 
 #include "hil/runtime/runner.hpp"
 #include "hil/runtime/scenario_loader.hpp"
+#include "hil/runtime/svg_plot.hpp"
 #include "hil/runtime/trace_csv.hpp"
 #include "sim_registry.hpp"
 
@@ -217,6 +221,94 @@ program:
   // trace shows its image: the pulse from 20 to 30 ms is read at 20, 24 and 28 ms and is gone at
   // the read at 32 ms, so the image holds it 12 ms.
   EXPECT_EQ(ones, 12) << "a 10 ms pulse read at the WF's 4 ms cycle";
+}
+
+TEST(ControllerScenario, PlotDrawsTheIoBitsAsDigitalStripsWithEveryEdge) {
+  // 16 points per curve only: the curves are decimated many times over the 2 s run, the strips
+  // keep the 2 ms pulses at 0.5 s and 1.5 s exactly (as the WF's 4 ms cycle read them).
+  PlotRecorder plot(16);
+  const auto r = run_text(wf_head + R"(
+io:
+  - {pulse: reference_cam_A, at: 500ms, width: 2ms}
+  - {pulse: reference_cam_A, at: 1500ms, width: 2ms}
+program:
+  - enable: A
+  - move_absolute: {axis: A, position: 20}
+  - wait: 1.5s
+)",
+                          {&plot});
+  ASSERT_TRUE(r) << r.error().describe();
+  const auto& d = plot.data().digital;
+  const auto cam = std::ranges::find_if(d, [](const PlotDigital& b) { return b.name == "reference_cam_A"; });
+  ASSERT_NE(cam, d.end());
+  EXPECT_EQ(cam->area, 'I');
+  EXPECT_FALSE(cam->initial);
+  EXPECT_FALSE(cam->truncated);
+  ASSERT_EQ(cam->edges.size(), 4U);
+  EXPECT_NEAR(cam->edges[0], 0.500, 1e-9);
+  EXPECT_NEAR(cam->edges[1], 0.504, 1e-9) << "held for one WF cycle (4 ms)";
+  EXPECT_NEAR(cam->edges[2], 1.500, 1e-9);
+  const auto moving = std::ranges::find_if(d, [](const PlotDigital& b) { return b.name == "moving_A"; });
+  ASSERT_NE(moving, d.end());
+  EXPECT_EQ(moving->area, 'Q');
+  EXPECT_EQ(moving->edges.size(), 2U) << "one move: up, then down";
+  const auto error = std::ranges::find_if(d, [](const PlotDigital& b) { return b.name == "device_error"; });
+  ASSERT_NE(error, d.end());
+  EXPECT_EQ(error->area, 'M');
+  EXPECT_TRUE(error->edges.empty());
+  const std::string svg = render_svg(plot.data());
+  EXPECT_NE(svg.find("<g class=\"digital\">"), std::string::npos);
+  EXPECT_NE(svg.find(">reference_cam_A</text>"), std::string::npos);
+  EXPECT_EQ(svg.find("more edges than the plot keeps"), std::string::npos);
+
+  // More edges than kept: the strip says so instead of drawing a wrong level.
+  PlotRecorder few(16);
+  std::string pulses;
+  for (int i = 0; i < 20; ++i)
+    pulses += fmt::format("  - {{pulse: reference_cam_A, at: {}ms, width: 8ms}}\n", 20 * i + 20);
+  const auto many = run_text(wf_head + "io:\n" + pulses + "program:\n  - wait: 500ms\n", {&few});
+  ASSERT_TRUE(many) << many.error().describe();
+  const auto c2 =
+      std::ranges::find_if(few.data().digital, [](const PlotDigital& b) { return b.name == "reference_cam_A"; });
+  ASSERT_NE(c2, few.data().digital.end());
+  EXPECT_TRUE(c2->truncated);
+  EXPECT_EQ(c2->edges.size(), 16U);
+  EXPECT_NE(render_svg(few.data()).find("more edges than the plot keeps"), std::string::npos);
+}
+
+TEST(ControllerScenario, ElgAxisFaultsAreTheElgsAxisAlarmsNumberedByMeasuringCircuit) {
+  // The annex tape: Z is the axial axis on measuring circuit 3 (MD 5021), so the motion core's
+  // following-error fault on Z is ELG alarm 116* + 2 = 1162 "CONTOUR MONITORING"; X is the NC's
+  // axis, not measured by the ELG: its fault stays the motion core's.
+  const auto r = run_text(R"(
+period: 1ms
+duration: 3s
+cut_off: expected
+controller:
+  device: sinumerik-elg
+  parameters: elg-hobbing.tape.txt
+  programs: [elg-annex.nc]
+machine:
+  axes:
+    - {name: B, drive: {transport: sim, kv: 200, feedforward: 1.0}}
+    - {name: C, drive: {transport: sim, kv: 200, feedforward: 1.0}}
+    - {name: Z, drive: {transport: sim, kv: 200, feedforward: 1.0}}
+    - {name: X, drive: {transport: sim, kv: 200, feedforward: 1.0}}
+program:
+  - wait: 1s
+  - inject_fault: {axis: Z, fault: following_blowup}
+  - inject_fault: {axis: X, fault: following_blowup}
+  - wait: 2s
+expect:
+  - {axis: Z, fault: "sinumerik-elg.alarms:1162"}
+  - {axis: X, fault: "motion:1"}
+)");
+  ASSERT_TRUE(r) << r.error().describe();
+  EXPECT_TRUE(r->ok) << (r->failures.empty() ? "" : r->failures.front());
+  ASSERT_EQ(r->device_errors.size(), 1U);
+  EXPECT_EQ(r->device_errors[0].code, "1162");
+  EXPECT_EQ(r->device_errors[0].reaction, "drive_off");
+  EXPECT_NE(r->device_errors[0].describe().find("CONTOUR MONITORING"), std::string::npos);
 }
 
 TEST(ControllerScenario, ConfigurationErrorsNameTheKey) {

@@ -37,12 +37,41 @@ void PlotRecorder::on_start(const Scenario& scenario, const Machine& machine) {
     data_.couplings.push_back(std::move(p));
   }
   data_.signals.clear();
+  data_.digital.clear();
   if (const auto* c = machine.controller()) {
     for (auto& name : c->trace_signals()) data_.signals.push_back(PlotSignal{std::move(name), {}, {}});
+    for (const auto& [name, bit] : machine.io_signals()) {
+      PlotDigital d;
+      d.name = name;
+      d.area = "IQMD"[static_cast<std::size_t>(bit.area) & 3];
+      d.edges.reserve(std::min<std::size_t>(max_points_, 64));
+      data_.digital.push_back(std::move(d));
+    }
   }
 }
 
 void PlotRecorder::on_cycle(Duration t, const Machine& machine) noexcept {
+  data_.t_end = to_seconds(t);
+  try {
+    // Every cycle, not decimated: a bit's edges are few and a pulse must not vanish.
+    if (const auto* c = machine.controller()) {
+      const auto& io = machine.io_signals();
+      for (std::size_t i = 0; i < io.size() && i < data_.digital.size(); ++i) {
+        auto& d = data_.digital[i];
+        const bool v = c->io().get(io[i].second);
+        if (cycle_ == 0) {
+          d.initial = v;
+        } else if (v != ((d.edges.size() % 2 == 1) != d.initial) && !d.truncated) {
+          if (d.edges.size() >= max_points_)
+            d.truncated = true;
+          else
+            d.edges.push_back(to_seconds(t));
+        }
+      }
+    }
+  } catch (...) {  // out of memory: stop recording edges rather than disturb the cycle
+    for (auto& d : data_.digital) d.truncated = true;
+  }
   if (cycle_++ % stride_ != 0) return;
   try {
     const auto& axes = machine.axes();
@@ -239,6 +268,73 @@ void chart(std::string& svg, double x0, double y0, const std::string& title, con
   svg += "</g>\n";
 }
 
+constexpr double strip_h = 18, strip_gap = 4, strips_head = 30, strips_foot = 40;
+
+double digital_height(std::size_t n) {
+  return strips_head + static_cast<double>(n) * (strip_h + strip_gap) + strips_foot;
+}
+
+void digital_strips(std::string& svg, double y0, const std::vector<PlotDigital>& bits, double t_end) {
+  // Room for the longest name (11px sans-serif: at most about 7px a character).
+  std::size_t longest = 0;
+  for (const auto& d : bits) longest = std::max(longest, d.name.size());
+  const double label_w = std::clamp(7.0 * static_cast<double>(longest) + 12.0, ml, chart_w);
+  const double px = 10 + label_w, pw = 3 * chart_w - label_w - mr;
+  const double te = std::max(t_end, 1e-3);
+  auto X = [&](double t) { return px + std::clamp(t / te, 0.0, 1.0) * pw; };
+  svg += fmt::format(
+      "<g class=\"digital\">\n<text x=\"{:.1f}\" y=\"{:.1f}\" class=\"ctitle\">controller I/O (inputs blue, outputs "
+      "green, markers orange, device data grey)</text>\n",
+      px, y0 + 16);
+  double y = y0 + strips_head;
+  for (const auto& d : bits) {
+    const char* color = d.area == 'I' ? "#1f77b4" : d.area == 'Q' ? "#2ca02c" : d.area == 'M' ? "#ff7f0e" : "#7f7f7f";
+    svg += fmt::format("<text x=\"{:.1f}\" y=\"{:.1f}\" class=\"ylabel\">{}</text>\n", px - 6, y + strip_h - 5,
+                       xml_escape(d.name));
+    svg += fmt::format("<rect x=\"{:.1f}\" y=\"{:.1f}\" width=\"{:.1f}\" height=\"{:.1f}\" class=\"frame\"/>\n", px, y,
+                       pw, strip_h);
+    // The waveform: high segments filled, the level line drawn over the whole run.
+    bool level = d.initial;
+    double from = 0.0;
+    std::string pts = fmt::format("{:.1f},{:.1f} ", X(0), level ? y + 2 : y + strip_h - 2);
+    auto segment = [&](double to) {
+      if (level && X(to) > X(from)) {
+        svg += fmt::format(
+            "<rect x=\"{:.1f}\" y=\"{:.1f}\" width=\"{:.1f}\" height=\"{:.1f}\" fill=\"{}\" "
+            "fill-opacity=\"0.35\"/>\n",
+            X(from), y + 2, std::max(X(to) - X(from), 0.6), strip_h - 4, color);
+      }
+    };
+    for (double e : d.edges) {
+      segment(e);
+      fmt::format_to(std::back_inserter(pts), "{:.1f},{:.1f} ", X(e), level ? y + 2 : y + strip_h - 2);
+      level = !level;
+      fmt::format_to(std::back_inserter(pts), "{:.1f},{:.1f} ", X(e), level ? y + 2 : y + strip_h - 2);
+      from = e;
+    }
+    const double end = d.truncated ? (d.edges.empty() ? 0.0 : d.edges.back()) : te;
+    segment(end);
+    fmt::format_to(std::back_inserter(pts), "{:.1f},{:.1f}", X(end), level ? y + 2 : y + strip_h - 2);
+    svg += fmt::format("<polyline fill=\"none\" stroke=\"{}\" stroke-width=\"1.5\" points=\"{}\"/>\n", color, pts);
+    if (d.truncated) {
+      svg += fmt::format(
+          "<rect x=\"{:.1f}\" y=\"{:.1f}\" width=\"{:.1f}\" height=\"{:.1f}\" fill=\"#ccc\"/>\n"
+          "<text x=\"{:.1f}\" y=\"{:.1f}\" class=\"ltext\">more edges than the plot keeps: see the trace</text>\n",
+          X(end), y, px + pw - X(end), strip_h, X(end) + 4, y + strip_h - 5);
+    }
+    y += strip_h + strip_gap;
+  }
+  const auto xt = nice_ticks(0.0, te, 8);
+  const double xstep = xt.size() > 1 ? xt[1] - xt[0] : 1.0;
+  for (double v : xt) {
+    svg += fmt::format("<line x1=\"{0:.1f}\" y1=\"{1:.1f}\" x2=\"{0:.1f}\" y2=\"{2:.1f}\" class=\"tick\"/>\n", X(v), y,
+                       y + 4);
+    svg +=
+        fmt::format("<text x=\"{:.1f}\" y=\"{:.1f}\" class=\"xlabel\">{}</text>\n", X(v), y + 16, tick_label(v, xstep));
+  }
+  svg += fmt::format("<text x=\"{:.1f}\" y=\"{:.1f}\" class=\"xlabel\">t [s]</text>\n</g>\n", px + pw / 2, y + 32);
+}
+
 }  // namespace
 
 std::string render_svg(const PlotData& data) {
@@ -247,10 +343,11 @@ std::string render_svg(const PlotData& data) {
   const double height =
       title_h +
       chart_h * static_cast<double>(std::max<std::size_t>(1, data.axes.size() + data.couplings.size() + signal_rows)) +
-      10;
+      (data.digital.empty() ? 0.0 : digital_height(data.digital.size())) + 10;
   double t_end = 0.0;
   for (const auto& s : data.axes)
     if (!s.t.empty()) t_end = std::max(t_end, s.t.back());
+  if (!data.digital.empty()) t_end = std::max(t_end, data.t_end);
   std::string svg = fmt::format(
       "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n"
       "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{0:.0f}\" height=\"{1:.0f}\" viewBox=\"0 0 {0:.0f} {1:.0f}\" "
@@ -285,6 +382,12 @@ std::string render_svg(const PlotData& data) {
     chart(svg, 10 + 2 * chart_w, y, fmt::format("{}: cam table position [{}]", c.slave_name, c.master_units), c.t,
           {{&c.cam, "x in table", "#17becf", false, true}}, t_end);
     y += chart_h;
+  }
+  // The controller's I/O bits: one strip each (filled while 1), inputs blue, outputs green,
+  // markers orange, device data grey; the time axis is the charts'.
+  if (!data.digital.empty()) {
+    digital_strips(svg, y, data.digital, t_end);
+    y += digital_height(data.digital.size());
   }
   // The controller's analog values ("C_linkage_error_deg" -> "controller: C linkage error [deg]").
   for (std::size_t i = 0; i < data.signals.size(); ++i) {

@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: MIT
 #pragma once
 // `hilbridge run --plot FILE.svg`: position (actual and command), velocity and following error
-// over time, one row of three charts per axis, and per coupling a row with the slave over the
+// over time, one row of three charts per axis, the controller's I/O bits as digital strips under
+// the axis rows, and per coupling a row with the slave over the
 // master, the master over time and the cam table position over time, drawn as a self-contained SVG (axes, ticks,
 // labels, legend; no external plotting dependency).
 //
@@ -43,11 +44,22 @@ struct PlotSignal {
   std::vector<double> t;      ///< s
   std::vector<double> value;  ///< in the unit its name ends with
 };
+/// One bit of the controller's I/O image (Machine::io_signals), kept as its edges: exact at any
+/// run length (decimation would lose short pulses), at most `max_points` edges (then `truncated`).
+struct PlotDigital {
+  std::string name;
+  char area = 'I';  ///< I input, Q output, M marker, D device data
+  bool initial = false;
+  std::vector<double> edges;  ///< s, the level toggles at each
+  bool truncated = false;     ///< more edges than kept: the strip is hatched after the last one
+};
 struct PlotData {
   std::string title;
   std::vector<PlotSeries> axes;
   std::vector<PlotCoupling> couplings;  ///< one extra row each: slave vs master, master, cam position
   std::vector<PlotSignal> signals;      ///< the controller's values, three charts per row
+  std::vector<PlotDigital> digital;     ///< one strip each under the axis rows
+  double t_end = 0.0;                   ///< s, the last cycle recorded
 };
 
 class PlotRecorder final : public RunObserver {
