@@ -37,7 +37,7 @@ class CanCli : public ::testing::Test {
     dir_ = std::filesystem::temp_directory_path() / ("hil-can-cli-" + std::to_string(::getpid()));
     std::filesystem::create_directories(dir_);
     hub_ = std::make_unique<Subprocess>(
-        std::vector<std::string>{hilbridge, "can", "hub", "--listen", "127.0.0.1:0", "--join-hold-ms", "0"});
+        std::vector<std::string>{hilbridge, "can", "hub", "--listen", "127.0.0.1:0", "--join-hold", "0ms"});
     auto line = hub_->wait_for_line("connect with");
     ASSERT_TRUE(line) << hub_->output();
     const auto at = line->find("socketcand://");

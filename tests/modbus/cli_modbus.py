@@ -44,7 +44,7 @@ def main():
         rc, _, err = run(hb, "modbus", "read", ep, "1", "0", "--type", "f32")
         c.check(rc == 1 and "--type" in err, f"bad type: {err}")
         emu.stop()
-        rc, _, err = run(hb, "modbus", "read", ep, "1", "10", "--timeout", "0.5")
+        rc, _, err = run(hb, "modbus", "read", ep, "1", "10", "--timeout", "500ms")
         c.check(rc == 1 and "cannot connect" in err, f"server gone: {err}")
     rc, _, err = run(hb, "emulate", "modbus-drive", "--listen", "127.0.0.1:0", "--profile", "no_such_profile")
     c.check(rc == 2 and "cannot open" in err, f"bad profile: {rc} {err}")

@@ -45,7 +45,7 @@ with tempfile.TemporaryDirectory() as d:
         check("nothing of the invalid file reached the device", "0000" not in open(os.path.join(d, "x.prg")).read().split("\n", 2)[2], r.stdout)
 
         check("drop command", emu.command("drop 20 100000").startswith("ok"))
-        r = run("upload", "clm14", "--port", emu.path, "--timeout-ms", "100", "--retries", "0", prog)
+        r = run("upload", "clm14", "--port", emu.path, "--timeout", "100ms", "--retries", "0", prog)
         check("interrupted upload: exit 1", r.returncode == 1, r.stderr)
         check("interrupted upload: exact report",
               "confirmed 0000..0019 (20 items); 0020 was sent but not confirmed" in r.stderr and "39 item(s) not sent" in r.stderr,
@@ -88,7 +88,7 @@ with tempfile.TemporaryDirectory() as d:
               r.stderr)
     finally:
         first.close()
-    tcp = subprocess.Popen([HIL, "emulate", "clm14", "--tcp", "0", "--idle-timeout", "0.5", "--state", "none",
+    tcp = subprocess.Popen([HIL, "emulate", "clm14", "--tcp", "0", "--idle-timeout", "500ms", "--state", "none",
                             "--mode", "parameter"], stdin=subprocess.PIPE, stdout=subprocess.PIPE,
                            stderr=subprocess.PIPE, text=True)
     try:

@@ -13,6 +13,7 @@
 #include <fmt/format.h>
 
 #include "hil/cli/context.hpp"
+#include "hil/cli/duration_option.hpp"
 #include "hil/cli/json_output.hpp"
 #include "hil/cli/progress.hpp"
 #include "hil/drives/modbus_transport.hpp"
@@ -66,7 +67,7 @@ struct Common {
   int address = 0;
   std::string type = "u16";
   std::string word_order = "high_first";
-  double timeout_s = 1.0;
+  Duration timeout = std::chrono::seconds(1);
   bool json = false;  ///< read --json: one object on stdout (docs/json.md)
 };
 
@@ -100,7 +101,7 @@ CtxPtr connect(const Common& c, const Endpoint& ep, std::string& why) {
     why = fmt::format("cannot create a Modbus/TCP context for {}:{}: {}", ep.host, ep.port, modbus_strerror(errno));
     return ctx;
   }
-  const auto us = static_cast<std::uint32_t>(c.timeout_s * 1e6);
+  const auto us = static_cast<std::uint32_t>(std::chrono::duration_cast<std::chrono::microseconds>(c.timeout).count());
   modbus_set_response_timeout(ctx.get(), us / 1000000, us % 1000000);
   modbus_set_slave(ctx.get(), c.unit);
   if (modbus_connect(ctx.get()) != 0) {
@@ -233,7 +234,8 @@ void add_common(CLI::App* cmd, Common& c) {
       ->check(CLI::Range(0, 65535));
   cmd->add_option("--type", c.type, "Value type: u16 (default), s16, u32, s32, hex (u16 shown in hex)");
   cmd->add_option("--word-order", c.word_order, "32-bit word order: high_first (default) or low_first");
-  cmd->add_option("--timeout", c.timeout_s, "Response timeout in seconds (default 1)")->check(CLI::Range(0.001, 60.0));
+  add_duration_option(*cmd, "--timeout", c.timeout, "Response timeout, e.g. 500ms (default 1s; 1ms .. 60s)", "s",
+                      {std::chrono::milliseconds(1), std::chrono::seconds(60)});
 }
 
 }  // namespace

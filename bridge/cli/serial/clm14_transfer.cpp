@@ -40,7 +40,7 @@ std::expected<clm::FileKind, std::string> kind_of(const TransferOptions& o, std:
 clm::ClientOptions client_options(const LinkOptions& l) {
   clm::ClientOptions c;
   c.station = l.station;
-  c.response_timeout = std::chrono::milliseconds(l.timeout_ms);
+  c.response_timeout = l.timeout;
   c.retries = l.retries;
   return c;
 }

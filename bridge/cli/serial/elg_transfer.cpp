@@ -63,11 +63,11 @@ std::expected<std::vector<tp::ElgSection>, std::string> read_device(hil::serial:
   const bool want_sd = o.what.empty() || o.what == "both" || o.what == "sd";
   ProgressBar bar("download elg tape", 0, "bytes", clock);
   // The ELG outputs MD on the first Data Start and SD on the second.
-  auto md = read_section(s, clock, std::chrono::milliseconds(o.link.timeout_ms), bar);
+  auto md = read_section(s, clock, o.link.timeout, bar);
   if (!md) return std::unexpected(md.error());
   if (o.what.empty() || o.what == "both" || o.what == "md") all.insert(all.end(), md->begin(), md->end());
   if (want_sd) {
-    auto sd = read_section(s, clock, std::chrono::milliseconds(o.link.timeout_ms), bar);
+    auto sd = read_section(s, clock, o.link.timeout, bar);
     if (!sd) return std::unexpected(sd.error());
     all.insert(all.end(), sd->begin(), sd->end());
   }

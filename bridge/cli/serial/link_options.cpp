@@ -7,6 +7,7 @@
 
 #include <charconv>
 
+#include "hil/cli/duration_option.hpp"
 #include "hil/serial/linux/ports.hpp"
 #include "hil/serial/serial_stream.hpp"
 
@@ -30,9 +31,10 @@ void add_link_options(CLI::App& cmd, LinkOptions& o, bool with_station) {
     cmd.add_option("--station,-s", o.station, "RS-485 station 1..32 (0 = RS-232 point to point)")
         ->check(CLI::Range(0, 32))
         ->capture_default_str();
-  cmd.add_option("--timeout-ms", o.timeout_ms, "Response timeout per telegram in ms")
-      ->check(CLI::Range(10, 600000))
-      ->capture_default_str();
+  const DurationRange timeout_range{std::chrono::milliseconds(10), std::chrono::minutes(10)};
+  add_duration_option(cmd, "--timeout", o.timeout, "Response timeout per telegram, e.g. 2s (default 1s; 10ms .. 10min)",
+                      "ms", timeout_range);
+  add_duration_alias(cmd, "--timeout-ms", "--timeout", o.timeout, "ms", timeout_range);
   cmd.add_option("--retries", o.retries, "Repeats of a telegram after a checksum error or timeout")
       ->check(CLI::Range(0, 20))
       ->capture_default_str();

@@ -24,7 +24,7 @@ s5::Rk512ClientOptions client_options(const LinkOptions& l) {
   s5::Rk512ClientOptions c;
   c.procedure.transmit_attempts = l.retries + 1;
   c.procedure.connect_attempts = l.retries + 1;
-  c.reaction_timeout = std::max<Duration>(std::chrono::milliseconds(l.timeout_ms), std::chrono::seconds(1));
+  c.reaction_timeout = std::max<Duration>(l.timeout, std::chrono::seconds(1));
   return c;
 }
 
