@@ -137,7 +137,7 @@ def check_durations(hb):
                    "modbus-drive --step-period-ms (old name)")
 
     # Serial links: --timeout (was --timeout-ms), emulators --idle-timeout and --cycle
-    expect_usage(hb, ["upload", "clm14", "--port", "/dev/null", "--timeout", "5ms", "README.md"],
+    expect_usage(hb, ["download", "clm14", "--port", "/dev/null", "--timeout", "5ms", "README.md", "--yes"],
                  ["--timeout", "5ms is out of range", "10ms .. 10min"], "serial --timeout too short")
     expect_usage(hb, ["emulate", "clm14", "--tcp", "0", "--idle-timeout", "10ms"],
                  ["--idle-timeout", "out of range", "100ms .. 1440min"], "emulate --idle-timeout too short")
