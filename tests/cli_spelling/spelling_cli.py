@@ -3,8 +3,10 @@
 hardware. `durations`: every time option takes a unit (250ms, 2s, 30us, 1min); a bare number keeps the
 option's old unit with a one-line deprecation warning naming the spelling to use; renamed options
 keep their old name as a hidden alias that warns; a bad value exits 2 naming the option and what is
-expected.
-Usage: /usr/bin/python3 spelling_cli.py HILBRIDGE durations (run from the source tree's root)."""
+expected. `exit_codes`: every command, found from the --help tree, exits 2 on an unknown option
+(CLI11's parse errors included) and on a wrong value, 1 when the checked thing failed (a bus, a
+server or a device that cannot be reached), 0 on success (docs/cli.md, "Exit codes").
+Usage: /usr/bin/python3 spelling_cli.py HILBRIDGE durations|exit_codes (run from the source tree's root)."""
 import re
 import subprocess
 import sys
@@ -155,9 +157,99 @@ def check_durations(hb):
     check("--duration" in out and "--seconds" not in out, f"latency --help: {out}")
 
 
+def subcommands(hb, path):
+    """The subcommands listed by `hilbridge PATH --help`."""
+    rc, out, _ = run(hb, *path, "--help")
+    check(rc == 0, f"{' '.join(path)} --help: exit {rc}")
+    if "Subcommands:" not in out:
+        return []
+    return re.findall(r"^  ([a-z0-9][a-z0-9-]*)\s{2,}", out.split("Subcommands:", 1)[1], re.M)
+
+
+def leaf_commands(hb, path=()):
+    subs = subcommands(hb, list(path))
+    if not subs:
+        return [list(path)]
+    leaves = []
+    for s in subs:
+        leaves += leaf_commands(hb, path + (s,))
+    return leaves
+
+
+def check_exit_codes(hb):
+    leaves = leaf_commands(hb)
+    names = {" ".join(p) for p in leaves}
+    # The tree is found, not listed: a new command is covered without touching this test.
+    for must in ("sdo read", "modbus write", "can dump", "emulate clm14", "profile calc ip247", "upload", "download",
+                 "run", "test", "latency", "stepdir plan", "eds check", "nmt", "scan"):
+        check(must in names, f"{must!r} found in the --help tree: {sorted(names)}")
+    for path in leaves:
+        rc, out, err = run(hb, *path, "--no-such-option")
+        check(rc == 2, f"{' '.join(path)} --no-such-option: exit {rc}, expected 2: {err.strip()[:200]}")
+        check("Run with --help" in err, f"{' '.join(path)}: a usage message on stderr: {err.strip()[:200]}")
+    # A group without its subcommand is a usage error too.
+    for group in ("emulate", "can", "sdo", "modbus", "profile", "stepdir", "eds"):
+        rc, _, err = run(hb, group)
+        check(rc == 2, f"{group} without a subcommand: exit {rc}, expected 2: {err.strip()[:200]}")
+
+    # Wrong values, found by the command itself (after CLI11): 2, and nothing is sent.
+    usage = [
+        ["modbus", "read", "127.0.0.1:1502", "1", "0", "--type", "f32"],
+        ["modbus", "write", "127.0.0.1:1502", "1", "0", "70000"],
+        ["modbus", "write", "127.0.0.1:1502", "1", "0", "1", "2", "--fc", "6"],
+        ["modbus", "read", "127.0.0.1:99999", "1", "0"],
+        ["can", "send", "--bus", "nota://bus", "701#05"],
+        ["can", "send", "--bus", "vcan0", "701#XYZ"],
+        ["can", "dump", "--bus", "nota://bus"],
+        ["can", "hub", "--listen", "nonsense"],
+        ["sdo", "read", "--bus", "vcan0", "5", "not-an-object"],
+        ["sdo", "write", "--bus", "vcan0", "5", "0x6060:0", "1", "--type", "no-such-type"],
+        ["nmt", "start", "999", "--bus", "vcan0"],
+        ["run", "no/such/scenario.yaml"],
+        ["profile", "show", "no-such-device"],
+        ["profile", "calc", "ip247"],
+        ["eds", "check", "no/such/file.eds"],
+        ["emulate", "cia402", "--bus", "vcan0", "--node", "5", "--node", "5"],
+        ["emulate", "modbus-drive", "--listen", "nonsense"],
+        ["emulate", "modbus-drive", "--profile", "no_such_profile"],
+        ["emulate", "clm14", "--tcp", "70000"],
+        ["download", "clm14", "--port", "/dev/null", "no/such/file.prg", "--yes"],
+        ["upload", "clm14", "--port", "/dev/null"],
+        ["latency", "--period", "10us"],
+        ["stepdir", "verify", "no/such/edges.log"],
+    ]
+    for args in usage:
+        rc, _, err = run(hb, *args)
+        check(rc == 2, f"{' '.join(args)}: exit {rc}, expected 2: {err.strip()[:300]}")
+
+    # The checked thing failed: 1.
+    failed = [
+        ["modbus", "read", "127.0.0.1:1", "1", "0", "--timeout", "200ms"],
+        ["can", "send", "--bus", "socketcand://127.0.0.1:1/can0", "701#05"],
+        ["can", "dump", "--bus", "socketcand://127.0.0.1:1/can0", "--duration", "1s"],
+        ["scan", "--bus", "socketcand://127.0.0.1:1/can0"],
+        ["sdo", "read", "--bus", "socketcand://127.0.0.1:1/can0", "5", "0x1000:0"],
+        ["nmt", "start", "5", "--bus", "socketcand://127.0.0.1:1/can0"],
+        ["test", "tests/runtime/data/wrong_expectation.yaml"],
+    ]
+    for args in failed:
+        rc, _, err = run(hb, *args)
+        check(rc == 1, f"{' '.join(args)}: exit {rc}, expected 1: {err.strip()[:300]}")
+    with hub(hb) as h:
+        bus = f"socketcand://127.0.0.1:{h.m.group(1)}/can0"
+        rc, _, err = run(hb, "sdo", "read", "--bus", bus, "5", "0x1000:0", "--timeout", "100ms")
+        check(rc == 1, f"sdo read of a node that does not answer: exit {rc}, expected 1: {err}")
+        rc, _, err = run(hb, "can", "send", "--bus", bus, "701#05")
+        check(rc == 0, f"can send to a hub: exit {rc}, expected 0: {err}")
+        rc, _, err = run(hb, "scan", "--bus", bus, "--timeout", "100ms")
+        check(rc == 0, f"scan of an empty bus: exit {rc}, expected 0: {err}")
+    rc, _, err = run(hb, "test", "examples/tests/point_to_point.yaml")
+    check(rc == 0, f"test of a passing scenario: exit {rc}: {err}")
+
+
 def main():
     hb, part = sys.argv[1], sys.argv[2]
-    {"durations": check_durations}[part](hb)
+    {"durations": check_durations, "exit_codes": check_exit_codes}[part](hb)
     print(f"{c_passed} passed, {c_failed} failed")
     sys.exit(1 if c_failed or not c_passed else 0)
 

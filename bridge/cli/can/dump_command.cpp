@@ -71,7 +71,8 @@ int run_dump(const DumpOptions& o) {
     std::fflush(pcap.get());
   }
   auto channel = can::make_channel(*url, {io.get_executor(), clock});
-  if (!channel) return failed(channel.error().message);
+  if (!channel)  // the bus cannot be reached: 1, as sdo, scan, nmt (docs/cli.md)
+    return report_error(o.jsonl, "hilbridge can dump: ", channel.error().message, 1);
   const auto wall_offset = std::chrono::duration_cast<Duration>(std::chrono::system_clock::now().time_since_epoch()) -
                            clock.now().time_since_epoch();
   std::uint64_t frames = 0;

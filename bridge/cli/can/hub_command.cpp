@@ -89,7 +89,7 @@ int run_hub(const HubOptions& o) {
     std::string diag;
     if (auto probe = can::socketcan::SocketCanChannel::open(io.get_executor(), clock, o.bridge, {}, &diag); !probe) {
       fmt::print(stderr, "hilbridge can hub: --bridge {}: {}\n", o.bridge, diag);
-      return 2;
+      return 1;  // the interface cannot be opened (docs/cli.md)
     }
     opener = [&io, &clock, bus_name, iface = o.bridge, error_frames = o.error_frames](
                  std::string_view name,
@@ -109,7 +109,7 @@ int run_hub(const HubOptions& o) {
   if (auto ec = server.listen(*endpoint)) {
     fmt::print(stderr, "hilbridge can hub: cannot listen on {}: {} (another hub or socketcand on that port?)\n",
                o.listen, ec.message());
-    return 2;
+    return 1;  // as every server that cannot listen (emulate modbus-drive, emulate clm14 --tcp)
   }
   const auto local = server.local_endpoint();
   const std::string host =

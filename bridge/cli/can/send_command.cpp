@@ -46,10 +46,15 @@ struct Timed {
 int send_all(const std::string& bus, const std::vector<Timed>& frames, const char* verb, bool progress) {
   asio::io_context io;
   SteadyClock clock;
-  auto channel = can::make_channel(bus, {io.get_executor(), clock});
+  auto url = can::parse_bus_url(bus);
+  if (!url) {
+    fmt::print(stderr, "hilbridge can {}: --bus: {}\n", verb, url.error());
+    return 2;  // the command line is wrong
+  }
+  auto channel = can::make_channel(*url, {io.get_executor(), clock});
   if (!channel) {
     fmt::print(stderr, "hilbridge can {}: {}\n", verb, channel.error().message);
-    return 2;
+    return 1;  // the bus cannot be reached (as sdo, scan, nmt)
   }
   std::unique_ptr<ProgressBar> bar;
   if (progress) bar = std::make_unique<ProgressBar>(std::string("replay ") + bus, frames.size(), "frames", clock);

@@ -117,20 +117,27 @@ std::string describe_failure(int err) {
          fmt::format(" [libmodbus: {}]", modbus_strerror(err));
 }
 
+/// The device or the link failed: exit 1.
 int fail(const std::string& what, bool json = false) {
   return report_error(json, "hilbridge modbus: ", what, 1);
 }
 
+/// The command line is wrong (nothing was sent): exit 2, as every command (docs/cli.md).
+int usage(const std::string& what, bool json = false) {
+  return report_error(json, "hilbridge modbus: ", what, 2);
+}
+
 int run_read(const Common& c, int count, bool input) {
   const auto failed = [&](const std::string& what) { return fail(what, c.json); };
+  const auto bad_usage = [&](const std::string& what) { return usage(what, c.json); };
   std::string why;
   auto ep = parse_endpoint(c.endpoint, why);
-  if (!ep) return failed(fmt::format("HOST[:PORT] '{}': {}", c.endpoint, why));
+  if (!ep) return bad_usage(fmt::format("HOST[:PORT] '{}': {}", c.endpoint, why));
   auto fmt_ = parse_format(c, why);
-  if (!fmt_) return failed(why);
+  if (!fmt_) return bad_usage(why);
   const int regs_needed = count * fmt_->words;
   if (c.address + regs_needed > 65536)
-    return failed(fmt::format("ADDR {} + {} registers runs past 65535", c.address, regs_needed));
+    return bad_usage(fmt::format("ADDR {} + {} registers runs past 65535", c.address, regs_needed));
   auto ctx = connect(c, *ep, why);
   if (!ctx) return failed(why);
   std::vector<std::uint16_t> regs(static_cast<std::size_t>(regs_needed));
@@ -189,9 +196,9 @@ int run_read(const Common& c, int count, bool input) {
 int run_write(const Common& c, const std::vector<std::string>& values, int fc) {
   std::string why;
   auto ep = parse_endpoint(c.endpoint, why);
-  if (!ep) return fail(fmt::format("HOST[:PORT] '{}': {}", c.endpoint, why));
+  if (!ep) return usage(fmt::format("HOST[:PORT] '{}': {}", c.endpoint, why));
   auto f = parse_format(c, why);
-  if (!f) return fail(why);
+  if (!f) return usage(why);
   std::vector<std::uint16_t> regs;
   for (const auto& text : values) {
     std::int64_t v = 0;
@@ -199,17 +206,18 @@ int run_write(const Common& c, const std::vector<std::string>& values, int fc) {
     const char* b = text.data() + (hex ? 2 : 0);
     auto [p, ec] = std::from_chars(b, text.data() + text.size(), v, hex ? 16 : 10);
     if (ec != std::errc{} || p != text.data() + text.size())
-      return fail(fmt::format("value '{}' is not an integer", text));
-    if (modbus::saturate(v, *f) != v) return fail(fmt::format("value {} does not fit --type {}", v, c.type));
+      return usage(fmt::format("value '{}' is not an integer", text));
+    if (modbus::saturate(v, *f) != v) return usage(fmt::format("value {} does not fit --type {}", v, c.type));
     std::uint16_t r[2] = {};
     modbus::pack_value(v, *f, std::span<std::uint16_t>(r, f->words));
     regs.insert(regs.end(), r, r + f->words);
   }
   if (fc == 0) fc = regs.size() == 1 ? 6 : 16;
-  if (fc == 6 && regs.size() != 1) return fail("--fc 6 writes exactly one register; use --fc 16 for several");
+  if (fc == 6 && regs.size() != 1) return usage("--fc 6 writes exactly one register; use --fc 16 for several");
   if (regs.size() > modbus::kMaxWriteRegisters)
-    return fail(fmt::format("at most {} registers per FC 16 request, got {}", modbus::kMaxWriteRegisters, regs.size()));
-  if (c.address + static_cast<int>(regs.size()) > 65536) return fail("the values run past address 65535");
+    return usage(
+        fmt::format("at most {} registers per FC 16 request, got {}", modbus::kMaxWriteRegisters, regs.size()));
+  if (c.address + static_cast<int>(regs.size()) > 65536) return usage("the values run past address 65535");
   auto ctx = connect(c, *ep, why);
   if (!ctx) return fail(why);
   const int rc = fc == 6 ? modbus_write_register(ctx.get(), c.address, regs[0])
@@ -251,7 +259,7 @@ void register_modbus(Context& ctx) {
       "  hilbridge modbus read 10.0.0.5 1 1 --input --type s32 --word-order low_first\n"
       "  hilbridge modbus write 127.0.0.1:1502 1 0 6              # control word: Shutdown\n"
       "  hilbridge modbus write 127.0.0.1:1502 1 2 -5000 --type s32\n"
-      "Exit status 0 on success; 1 with the Modbus exception or link error on stderr.");
+      "Exit status 0 on success; 1 with the Modbus exception or link error on stderr; 2 usage (nothing sent).");
 
   auto common_r = std::make_shared<Common>();
   auto count = std::make_shared<int>(1);
