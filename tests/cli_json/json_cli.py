@@ -143,9 +143,9 @@ def check_sdo_read(hb):
 def check_modbus_read(hb):
     with Emulator(hb, "cia402") as emu:
         ep = f"127.0.0.1:{emu.port}"
-        rc, _, err = run(hb, "modbus", "write", ep, "1", "2", "-123456", "--type", "s32")
+        rc, _, err = run(hb, "modbus", "write", ep, "1", "2", "-123456", "--type", "i32")
         c.check(rc == 0, f"modbus write: {err}")
-        rc, out, err = run(hb, "modbus", "read", ep, "1", "2", "--type", "s32", "--json")
+        rc, out, err = run(hb, "modbus", "read", ep, "1", "2", "--type", "i32", "--json")
         j = json_tool(out, "modbus read --json")
         v = j.get("values", [{}])[0]
         c.check(rc == 0 and j.get("function_code") == 3 and v.get("address") == 2 and v.get("value") == -123456 and

@@ -7,9 +7,11 @@ expected. `exit_codes`: every command, found from the --help tree, exits 2 on an
 (CLI11's parse errors included) and on a wrong value, 1 when the checked thing failed (a bus, a
 server or a device that cannot be reached), 0 on success (docs/cli.md, "Exit codes").
 Usage: /usr/bin/python3 spelling_cli.py HILBRIDGE durations|exit_codes (run from the source tree's root)."""
+import os
 import re
 import subprocess
 import sys
+import tempfile
 
 c_failed = 0
 c_passed = 0
@@ -247,9 +249,64 @@ def check_exit_codes(hb):
     check(rc == 0, f"test of a passing scenario: exit {rc}: {err}")
 
 
+def check_types(hb):
+    # One set of type names: sdo's u8/u16/u32, i8/i16/i32, x16/x32 (hex); modbus the same, s16/s32 warn.
+    sys.path.insert(0, __file__.rsplit("/", 2)[0] + "/modbus")
+    from emulator import Emulator  # noqa: E402  (tests/modbus/emulator.py)
+    with Emulator(hb) as emu:
+        ep = f"127.0.0.1:{emu.port}"
+        expect_ok_quiet(hb, ["modbus", "write", ep, "1", "2", "-123456", "--type", "i32"], "modbus write --type i32")
+        rc, out, _ = expect_ok_quiet(hb, ["modbus", "read", ep, "1", "2", "--type", "i32"], "modbus read --type i32")
+        check(out.strip() == "2: -123456", f"i32 read back: {out}")
+        rc, out, _ = expect_warning(hb, ["modbus", "read", ep, "1", "2", "--type", "s32"],
+                                    "--type s32 is deprecated; write --type i32", "modbus --type s32 (old name)")
+        check(out.strip() == "2: -123456", f"s32 still reads the same: {out}")
+        expect_warning(hb, ["modbus", "read", ep, "1", "2", "--type", "s16"], "write --type i16",
+                       "modbus --type s16 (old name)")
+        rc, out, _ = expect_ok_quiet(hb, ["modbus", "read", ep, "1", "10", "--type", "x16"], "modbus --type x16")
+        check(re.fullmatch(r"10: 0x[0-9A-F]{4}", out.strip()) is not None, f"x16 = hex: {out}")
+    rc, out, _ = run(hb, "modbus", "read", "--help")
+    check("i16" in out and "i32" in out and "s16" not in out, f"modbus --help names i16/i32: {out}")
+    rc, out, _ = run(hb, "sdo", "read", "--help")
+    check(all(t in out for t in ("u8", "u16", "u32", "i8", "i16", "i32", "x16", "x32")), f"sdo --help types: {out}")
+    expect_usage(hb, ["modbus", "read", "127.0.0.1:1502", "1", "0", "--type", "f32"],
+                 ["--type 'f32'", "u16, i16, u32, i32 or hex"], "modbus --type f32")
+
+
+def check_endpoints(hb):
+    # TCP endpoints: HOST:PORT or tcp://HOST:PORT everywhere; serial devices --port; CAN --bus URL.
+    with Proc([hb, "can", "hub", "--listen", "tcp://127.0.0.1:0"], r"socketcand://127\.0\.0\.1:(\d+)/can0") as h:
+        bus = f"socketcand://127.0.0.1:{h.m.group(1)}/can0"
+        expect_ok_quiet(hb, ["can", "send", "--bus", bus, "701#05"], "can send to a hub on tcp://")
+    with Proc([hb, "emulate", "modbus-drive", "--listen", "tcp://127.0.0.1:0"], r"listening on 127\.0\.0\.1:(\d+)") as m:
+        port = m.m.group(1)
+        for ep in (f"127.0.0.1:{port}", f"tcp://127.0.0.1:{port}"):
+            rc, out, err = expect_ok_quiet(hb, ["modbus", "read", ep, "1", "10", "--type", "hex"], f"modbus read {ep}")
+            check(out.startswith("10: 0x"), f"modbus read {ep}: {out}")
+    expect_usage(hb, ["modbus", "read", "tcp://127.0.0.1:99999", "1", "0"], ["99999", "1..65535"],
+                 "modbus tcp:// with a bad port")
+    emu = subprocess.Popen([hb, "emulate", "clm14", "--tcp", "0", "--state", "none", "--mode", "parameter"],
+                           stdin=subprocess.PIPE, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    try:
+        addr = emu.stdout.readline().strip()  # tcp:127.0.0.1:PORT, as before
+        check(addr.startswith("tcp:127.0.0.1:"), f"emulate clm14 --tcp prints its address: {addr}")
+        port = addr.rsplit(":", 1)[1]
+        with tempfile.TemporaryDirectory() as d:
+            for i, spelling in enumerate((f"tcp://127.0.0.1:{port}", addr)):
+                out = os.path.join(d, f"p{i}.prg")
+                rc, _, err = expect_ok_quiet(hb, ["upload", "clm14", "--port", spelling, "--what", "program",
+                                                  "--out", out], f"upload --port {spelling}")
+                check(os.path.exists(out), f"upload --port {spelling} wrote {out}")
+    finally:
+        emu.stdin.write("quit\n")
+        emu.stdin.flush()
+        emu.wait(timeout=10)
+
+
 def main():
     hb, part = sys.argv[1], sys.argv[2]
-    {"durations": check_durations, "exit_codes": check_exit_codes}[part](hb)
+    {"durations": check_durations, "exit_codes": check_exit_codes, "types": check_types,
+     "endpoints": check_endpoints}[part](hb)
     print(f"{c_passed} passed, {c_failed} failed")
     sys.exit(1 if c_failed or not c_passed else 0)
 

@@ -18,13 +18,13 @@ def main():
     c = Checks()
     with Emulator(hb, "cia402") as emu:
         ep = f"127.0.0.1:{emu.port}"
-        rc, out, err = run(hb, "modbus", "write", ep, "1", "2", "-123456", "--type", "s32")
-        c.check(rc == 0 and "wrote 2 registers at 2 (FC 16)" in out, f"write s32: {rc} {out} {err}")
+        rc, out, err = run(hb, "modbus", "write", ep, "1", "2", "-123456", "--type", "i32")
+        c.check(rc == 0 and "wrote 2 registers at 2 (FC 16)" in out, f"write i32: {rc} {out} {err}")
         rc, out, _ = run(hb, "modbus", "read", ep, "1", "2", "2", "--type", "hex")
         c.check(rc == 0 and out.split() == ["2:", "0xFFFE", "3:", "0x1DC0"], f"high word first on the wire: {out}")
-        rc, out, _ = run(hb, "modbus", "read", ep, "1", "2", "--type", "s32")
+        rc, out, _ = run(hb, "modbus", "read", ep, "1", "2", "--type", "i32")
         c.check(rc == 0 and out.strip() == "2: -123456", f"read back s32: {out}")
-        rc, out, _ = run(hb, "modbus", "read", ep, "1", "2", "--type", "s32", "--word-order", "low_first")
+        rc, out, _ = run(hb, "modbus", "read", ep, "1", "2", "--type", "i32", "--word-order", "low_first")
         c.check(rc == 0 and out.strip() == f"2: {0x1DC0FFFE - (1 << 32) if 0x1DC0FFFE >= 1 << 31 else 0x1DC0FFFE}",
                 f"low_first reinterprets: {out}")
         rc, out, _ = run(hb, "modbus", "write", ep, "1", "0", "0x06")

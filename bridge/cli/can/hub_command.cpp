@@ -15,6 +15,7 @@
 #include "hil/can/linux/socketcan_channel.hpp"
 #include "hil/can/virtual_bus.hpp"
 #include "hil/cli/duration_option.hpp"
+#include "hil/cli/endpoint_text.hpp"
 
 namespace hil::cli::can_cmd {
 
@@ -30,8 +31,9 @@ struct HubOptions {
   Duration join_hold = std::chrono::milliseconds(50);
 };
 
-/// "HOST:PORT" or "[V6]:PORT" -> endpoint, or an error sentence.
-std::expected<asio::ip::tcp::endpoint, std::string> parse_listen(const std::string& text) {
+/// "HOST:PORT" or "[V6]:PORT", optionally after "tcp://" -> endpoint, or an error sentence.
+std::expected<asio::ip::tcp::endpoint, std::string> parse_listen(const std::string& given) {
+  const std::string text(strip_tcp_scheme(given));
   std::string host;
   std::string port;
   if (text.starts_with("[")) {
@@ -144,7 +146,8 @@ void add_hub(CLI::App& can, Context& ctx) {
       "in-process virtual bus on real time: every frame a client sends reaches all other clients.\n"
       "With --bridge IFACE each client gets its own SocketCAN socket on IFACE, like socketcand itself.\n"
       "python-can: can.Bus(interface='socketcand', host=HOST, port=PORT, channel=BUS)");
-  cmd->add_option("--listen", o->listen, "HOST:PORT to listen on (port 0: any free port, printed at start)")
+  cmd->add_option("--listen", o->listen,
+                  "HOST:PORT or tcp://HOST:PORT to listen on (port 0: any free port, printed at start)")
       ->capture_default_str();
   cmd->add_option("--bus-name", o->bus_name,
                   "Bus name clients open (`< open NAME >`); default can0, or the --bridge interface");

@@ -12,6 +12,7 @@
 
 #include "hil/cli/context.hpp"
 #include "hil/cli/duration_option.hpp"
+#include "hil/cli/endpoint_text.hpp"
 #include "hil/drives/modbus_transport.hpp"
 #include "hil/mocks/modbus_server.hpp"
 #include "hil/modbus/profile.hpp"
@@ -31,7 +32,9 @@ struct EmulateOptions {
   bool quiet = false;
 };
 
-int run_emulate(const EmulateOptions& o) {
+int run_emulate(const EmulateOptions& opts) {
+  EmulateOptions o = opts;
+  o.listen = std::string(strip_tcp_scheme(o.listen));  // HOST:PORT or tcp://HOST:PORT (docs/cli.md)
   const auto colon = o.listen.rfind(':');
   if (colon == std::string::npos) {
     std::fprintf(
@@ -117,10 +120,11 @@ void register_emulate_modbus_drive(Context& ctx) {
   auto* cmd = ctx.emulate.add_subcommand(
       "modbus-drive",
       "Simulated servo/stepper drive on Modbus/TCP: serves a register profile backed by the plant model");
-  cmd->add_option("--listen", o->listen,
-                  "HOST:PORT to bind, HOST an address or a host name (default 127.0.0.1:1502, loopback only; "
-                  "0.0.0.0:502 serves the network; port 0 "
-                  "picks a free port, printed on stdout)");
+  cmd->add_option(
+      "--listen", o->listen,
+      "HOST:PORT or tcp://HOST:PORT to bind, HOST an address or a host name (default 127.0.0.1:1502, loopback only; "
+      "0.0.0.0:502 serves the network; port 0 "
+      "picks a free port, printed on stdout)");
   cmd->add_option(
       "--profile", o->profile,
       "Register profile: a name in profiles/modbus (cia402, vendor_simple) or a YAML path (default cia402)");

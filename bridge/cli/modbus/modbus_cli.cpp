@@ -14,6 +14,7 @@
 
 #include "hil/cli/context.hpp"
 #include "hil/cli/duration_option.hpp"
+#include "hil/cli/endpoint_text.hpp"
 #include "hil/cli/json_output.hpp"
 #include "hil/cli/progress.hpp"
 #include "hil/drives/modbus_transport.hpp"
@@ -32,8 +33,9 @@ struct Endpoint {
   std::uint16_t port = modbus::kDefaultPort;
 };
 
-/// "host", "host:port", "[v6]:port".
-std::optional<Endpoint> parse_endpoint(const std::string& s, std::string& why) {
+/// "host", "host:port", "[v6]:port", each optionally after "tcp://".
+std::optional<Endpoint> parse_endpoint(const std::string& text, std::string& why) {
+  const std::string s(strip_tcp_scheme(text));
   Endpoint e;
   std::string port_text;
   if (!s.empty() && s.front() == '[') {
@@ -75,14 +77,14 @@ std::optional<modbus::ValueFormat> parse_format(const Common& c, std::string& wh
   modbus::ValueFormat f;
   if (c.type == "u16" || c.type == "hex")
     f = {1, false};
-  else if (c.type == "s16")
+  else if (c.type == "i16")
     f = {1, true};
   else if (c.type == "u32")
     f = {2, false};
-  else if (c.type == "s32")
+  else if (c.type == "i32")
     f = {2, true};
   else
-    return why = fmt::format("--type '{}': expected u16, s16, u32, s32 or hex", c.type), std::nullopt;
+    return why = fmt::format("--type '{}': expected u16, i16, u32, i32 or hex", c.type), std::nullopt;
   if (c.word_order == "low_first")
     f.order = modbus::WordOrder::low_first;
   else if (c.word_order != "high_first")
@@ -232,7 +234,8 @@ int run_write(const Common& c, const std::vector<std::string>& values, int fc) {
 }
 
 void add_common(CLI::App* cmd, Common& c) {
-  cmd->add_option("endpoint", c.endpoint, "Drive address: HOST, HOST:PORT or [IPv6]:PORT (default port 502)")
+  cmd->add_option("endpoint", c.endpoint,
+                  "Drive address: HOST, HOST:PORT, [IPv6]:PORT or tcp://HOST:PORT (default port 502)")
       ->required();
   cmd->add_option("unit", c.unit, "Unit id (slave id) 0..255; most Modbus/TCP drives accept 1 or 255")
       ->required()
@@ -240,7 +243,19 @@ void add_common(CLI::App* cmd, Common& c) {
   cmd->add_option("address", c.address, "First register, PDU address 0..65535 (0-based, as on the wire)")
       ->required()
       ->check(CLI::Range(0, 65535));
-  cmd->add_option("--type", c.type, "Value type: u16 (default), s16, u32, s32, hex (u16 shown in hex)");
+  // The type names of `sdo` (docs/cli.md, "Type names"); s16/s32 are the old spellings.
+  cmd->add_option_function<std::string>(
+         "--type",
+         [&c](const std::string& t) {
+           if (t == "s16" || t == "s32") {
+             c.type = t == "s16" ? "i16" : "i32";
+             fmt::print(stderr, "hilbridge: warning: --type {} is deprecated; write --type {}\n", t, c.type);
+           } else {
+             c.type = t == "x16" ? "hex" : t;
+           }
+         },
+         "Value type: u16 (default), i16, u32, i32, hex or x16 (u16 shown in hex)")
+      ->type_name("TYPE");
   cmd->add_option("--word-order", c.word_order, "32-bit word order: high_first (default) or low_first");
   add_duration_option(*cmd, "--timeout", c.timeout, "Response timeout, e.g. 500ms (default 1s; 1ms .. 60s)", "s",
                       {std::chrono::milliseconds(1), std::chrono::seconds(60)});

@@ -8,6 +8,7 @@
 #include <charconv>
 
 #include "hil/cli/duration_option.hpp"
+#include "hil/cli/endpoint_text.hpp"
 #include "hil/serial/linux/ports.hpp"
 #include "hil/serial/serial_stream.hpp"
 
@@ -15,7 +16,7 @@ namespace hil::cli::serial_cli {
 
 void add_link_options(CLI::App& cmd, LinkOptions& o, bool with_station) {
   cmd.add_option("--port,-p", o.port,
-                 "Serial port (/dev/ttyUSB0, a /dev/pts/N printed by `hilbridge emulate`), or tcp:HOST:PORT for a "
+                 "Serial port (/dev/ttyUSB0, a /dev/pts/N printed by `hilbridge emulate`), or tcp://HOST:PORT for a "
                  "serial-over-IP adapter")
       ->required();
   cmd.add_option("--baud,-b", o.baud, "Baud rate, any value 110..115200")->capture_default_str();
@@ -75,10 +76,12 @@ std::expected<std::unique_ptr<hil::serial::ByteStream>, std::string> open_link(c
                                                                                const Clock& clock) {
   auto f = line_format(o);
   if (!f) return std::unexpected(f.error());
+  // A serial-over-IP adapter: tcp://HOST:PORT (the CLI's TCP spelling, docs/cli.md) or tcp:HOST:PORT
+  // (as before, and as `hilbridge emulate --tcp` prints it).
   if (o.port.starts_with("tcp:")) {
-    const std::string rest = o.port.substr(4);
+    const std::string rest(o.port.starts_with("tcp://") ? strip_tcp_scheme(o.port) : o.port.substr(4));
     const auto colon = rest.rfind(':');
-    if (colon == std::string::npos) return std::unexpected(fmt::format("--port {}: expected tcp:HOST:PORT", o.port));
+    if (colon == std::string::npos) return std::unexpected(fmt::format("--port {}: expected tcp://HOST:PORT", o.port));
     // The whole text, 1..65535: 99999 or 80x is an error, never a cast to another port.
     const std::string digits = rest.substr(colon + 1);
     unsigned port = 0;
