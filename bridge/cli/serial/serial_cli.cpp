@@ -71,9 +71,9 @@ int run_upload(const TransferOptions& o) {
 
 int run_download(const TransferOptions& o) {
   std::error_code ec;
-  if (!std::filesystem::is_regular_file(o.file, ec)) {
+  if (!std::filesystem::exists(o.file, ec)) {  // what is not a regular file is refused when it is read
     fmt::print(stderr,
-               "hilbridge download: {} does not exist (or is not a file); nothing was sent.\n{}\nTo read the {} "
+               "hilbridge download: {} does not exist; nothing was sent.\n{}\nTo read the {} "
                "into {} write: hilbridge upload {} --port ... --out {}\n",
                o.file, k_swap_note, o.device, o.file, o.device, o.file);
     return 2;
