@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
 // Serial transfer benchmarks (CLM1.4 client against the CLM emulator):
-//  - BM_Clm14Paced: a full 3000-line program and a full parameter set, uploaded with
+//  - BM_Clm14Paced: a full 3000-line program and a full parameter set, sent (`hilbridge download`) with
 //    confirmation, over an in-process line paced like a UART on the virtual clock: every byte
 //    costs (start + data + parity + stop bits) / baud in each direction. Counters: the line's
 //    physical limit (all bytes on the wire x bits/char / baud), the modelled transfer time, and
@@ -87,7 +87,7 @@ void run_paced(benchmark::State& state, bool program) {
     clm14::ParameterDevice par(c);
     ItemDevice& dev = program ? static_cast<ItemDevice&>(prog) : par;
     const auto t0 = rig.clock.now();
-    auto rep = upload_items(dev, items, 0, {}, nullptr);
+    auto rep = send_items(dev, items, 0, {}, nullptr);
     if (!rep.ok()) state.SkipWithError(rep.describe().c_str());
     modelled_s = hil::to_seconds(rig.clock.now() - t0);
     limit_s = hil::to_seconds(f.line_time(rig.wire_chars));
@@ -126,7 +126,7 @@ void BM_Clm14PtyProgram(benchmark::State& state) {
   clm14::ProgramDevice prog(c);
   std::uint64_t chars_before = (*client_stream)->written() + (*client_stream)->received();
   for (auto _ : state) {
-    auto rep = upload_items(prog, items, 0, {}, nullptr);
+    auto rep = send_items(prog, items, 0, {}, nullptr);
     if (!rep.ok()) state.SkipWithError(rep.describe().c_str());
   }
   const std::uint64_t chars = (*client_stream)->written() + (*client_stream)->received() - chars_before;

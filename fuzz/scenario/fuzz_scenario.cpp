@@ -5,6 +5,7 @@
 #include <cstdlib>
 #include <string_view>
 
+#include "hil/core/duration_text.hpp"
 #include "hil/runtime/scenario_loader.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
@@ -20,6 +21,9 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
       if (!r->find_axis(e.axis)) std::abort();
   }
   (void)hil::runtime::parse_duration(text.substr(0, 32));
+  // The CLI's reading of the same grammar: a bare number in an option's old unit.
+  if (const auto d = hil::parse_duration_text(text.substr(0, 32), "us"); d && *d < hil::Duration::zero()) std::abort();
+  (void)hil::is_bare_number(text.substr(0, 32));
   (void)hil::runtime::parse_ratio(text.substr(0, 32));
   (void)hil::runtime::parse_fault_code(text.substr(0, 32));
   return 0;

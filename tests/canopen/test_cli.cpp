@@ -68,7 +68,7 @@ TEST_F(CliFixture, SdoReadWriteTypesAndAborts) {
   std::tie(rc, out) = cli({"sdo", "read", "--bus", bus(), "5", "0x1018:9"});
   EXPECT_EQ(rc, 1);
   EXPECT_NE(out.find("0x06090011 Sub-index does not exist"), std::string::npos) << out;
-  std::tie(rc, out) = cli({"sdo", "read", "--bus", bus(), "42", "0x1000:0", "--timeout", "50"});
+  std::tie(rc, out) = cli({"sdo", "read", "--bus", bus(), "42", "0x1000:0", "--timeout", "50ms"});
   EXPECT_EQ(rc, 1);
   EXPECT_NE(out.find("0x05040000"), std::string::npos) << "absent node: SDO timeout\n" << out;
   std::tie(rc, out) = cli({"sdo", "write", "--bus", bus(), "5", "0x6060:0", "300", "--type", "i8"});
@@ -82,11 +82,11 @@ TEST_F(CliFixture, SdoReadWriteTypesAndAborts) {
 TEST_F(CliFixture, NmtAndScan) {
   auto [rc, out] = cli({"nmt", "stop", "--bus", bus(), "5"});
   EXPECT_EQ(rc, 0) << out;
-  std::tie(rc, out) = cli({"sdo", "read", "--bus", bus(), "5", "0x1000:0", "--timeout", "50"});
+  std::tie(rc, out) = cli({"sdo", "read", "--bus", bus(), "5", "0x1000:0", "--timeout", "50ms"});
   EXPECT_EQ(rc, 1) << "a stopped node serves no SDO\n" << out;
   std::tie(rc, out) = cli({"nmt", "preop", "--bus", bus(), "all"});
   EXPECT_EQ(rc, 0) << out;
-  std::tie(rc, out) = cli({"scan", "--bus", bus(), "--timeout", "100"});
+  std::tie(rc, out) = cli({"scan", "--bus", bus(), "--timeout", "100ms"});
   EXPECT_EQ(rc, 0) << out;
   EXPECT_NE(out.find("   5  0x00020192   0x00000A11  0x00000402  0x00010000"), std::string::npos) << out;
   EXPECT_NE(out.find("   9  0x00020192"), std::string::npos) << out;

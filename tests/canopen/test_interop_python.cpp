@@ -47,7 +47,7 @@ TEST(CanopenInterop, PythonCanSdoRightAfterConnectIsAnsweredFiftyTimes) {
     GTEST_SKIP()
         << "/usr/bin/python3 with python3-can's socketcand interface is not installed (apt install python3-can)";
   can::socketcand::ServerOptions options;
-  options.join_hold = std::chrono::milliseconds(50);  // `hilbridge can hub --join-hold-ms` default
+  options.join_hold = std::chrono::milliseconds(50);  // `hilbridge can hub --join-hold` default
   can::test::Hub hub(options);
   std::unique_ptr<can::VirtualChannel> channel;
   std::unique_ptr<can::VirtualChannel> sync_source;
@@ -98,7 +98,7 @@ TEST(CanopenInterop, BaseNode402SequenceAgainstEmulateWithTheUsersEds) {
   can::test::Hub hub(options);
   const std::string bus = "socketcand://127.0.0.1:" + std::to_string(hub.port()) + "/can0";
   can::test::Subprocess emulate({HIL_BIN, "emulate", "cia402", "--bus", bus, "--node", "5", "--eds",
-                                 std::string(HIL_TEST_SOURCE_DIR) + "/corpus/v01_no_603f.eds", "--duration", "100"});
+                                 std::string(HIL_TEST_SOURCE_DIR) + "/corpus/v01_no_603f.eds", "--duration", "100s"});
   ASSERT_TRUE(emulate.started());
   ASSERT_TRUE(emulate.wait_for_line("node 5 up", std::chrono::seconds(30))) << emulate.output();
   EXPECT_NE(emulate.output().find("from " + std::string(HIL_TEST_SOURCE_DIR) + "/corpus/v01_no_603f.eds"),

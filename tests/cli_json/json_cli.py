@@ -109,7 +109,7 @@ def check_scan(hb):
     with hub(hb) as h:
         bus = f"socketcand://127.0.0.1:{h.m.group(1)}/can0"
         with Proc([hb, "emulate", "cia402", "--bus", bus, "--node", "5", "--node", "9"], r"node \d+ up"):
-            rc, out, err = run(hb, "scan", "--bus", bus, "--timeout", "200", "--json")
+            rc, out, err = run(hb, "scan", "--bus", bus, "--timeout", "200ms", "--json")
             c.check(rc == 0, f"scan --json: exit {rc}: {err}")
             j = json_tool(out, "scan --json")
             nodes = {n["node"]: n for n in j.get("nodes", [])}
@@ -143,9 +143,9 @@ def check_sdo_read(hb):
 def check_modbus_read(hb):
     with Emulator(hb, "cia402") as emu:
         ep = f"127.0.0.1:{emu.port}"
-        rc, _, err = run(hb, "modbus", "write", ep, "1", "2", "-123456", "--type", "s32")
+        rc, _, err = run(hb, "modbus", "write", ep, "1", "2", "-123456", "--type", "i32")
         c.check(rc == 0, f"modbus write: {err}")
-        rc, out, err = run(hb, "modbus", "read", ep, "1", "2", "--type", "s32", "--json")
+        rc, out, err = run(hb, "modbus", "read", ep, "1", "2", "--type", "i32", "--json")
         j = json_tool(out, "modbus read --json")
         v = j.get("values", [{}])[0]
         c.check(rc == 0 and j.get("function_code") == 3 and v.get("address") == 2 and v.get("value") == -123456 and
@@ -156,7 +156,7 @@ def check_modbus_read(hb):
                 all(re.fullmatch(r"0x[0-9A-F]{4}", x["hex"]) for x in j["values"]), f"hex: {out}")
         j = expect_error(hb, ["modbus", "read", ep, "1", "0", "1", "--input", "--json"], 1, "modbus exception")
         c.check("exception 02" in j.get("error", ""), f"exception in the error: {j}")
-    expect_error(hb, ["modbus", "read", "127.0.0.1:1", "1", "0", "--timeout", "0.5", "--json"], 1, "no server")
+    expect_error(hb, ["modbus", "read", "127.0.0.1:1", "1", "0", "--timeout", "500ms", "--json"], 1, "no server")
     expect_error(hb, ["modbus", "read", "127.0.0.1:1502", "1", "--json"], 2, "modbus usage error")
 
 
@@ -202,7 +202,7 @@ def check_profile(hb):
 def check_can_dump(hb):
     with hub(hb) as h:
         bus = f"socketcand://127.0.0.1:{h.m.group(1)}/can0"
-        dump = subprocess.Popen([hb, "can", "dump", "--bus", bus, "--jsonl", "--count", "3", "--duration", "20"],
+        dump = subprocess.Popen([hb, "can", "dump", "--bus", bus, "--jsonl", "--count", "3", "--duration", "20s"],
                                 stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
         # the dump says on stderr when it listens; send only then
         line = dump.stderr.readline()

@@ -63,6 +63,17 @@ TEST(ModbusProfile, MinimalDefaults) {
   EXPECT_EQ(plan->writes[0].count, 3);
 }
 
+TEST(ModbusProfile, TypeNamesOfTheCliAndTheOldOnes) {
+  // i16/i32 as the CLI writes them (docs/cli.md); s16/s32 as profiles wrote them before.
+  std::string yaml = kMinimal;
+  yaml.replace(yaml.find("type: s32"), 9, "type: i32");
+  auto p = parse_profile(yaml, "t.yaml");
+  ASSERT_TRUE(p) << p.error().describe();
+  EXPECT_EQ(p->field(FieldRole::target_position).format.words, 2);
+  EXPECT_TRUE(p->field(FieldRole::target_position).format.is_signed);
+  EXPECT_TRUE(p->field(FieldRole::actual_position).format.is_signed);
+}
+
 struct BadCase {
   const char* what;
   std::string yaml;
@@ -82,7 +93,7 @@ TEST(ModbusProfile, ErrorsNameLineKeyAndFix) {
       {"typo key", replace("control_word: {address: 0}", "control_wrd: {address: 0}"), 4, "registers.control_wrd",
        "unknown key"},
       {"bad type", replace("type: s32}\n  status", "type: f32}\n  status"), 5, "registers.target_position.type",
-       "u16, s16"},
+       "u16, i16"},
       {"overlap", replace("address: 11, type: s32", "address: 10, type: s32"), 7, "registers.actual_position",
        "overlaps"},
       {"address range", replace("address: 0}", "address: 70000}"), 4, "registers.control_word.address", "0..65535"},

@@ -10,13 +10,13 @@ tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 fail() { echo "FAIL: $*"; exit 1; }
 
-"$hb" latency --seconds 0.3 --period 1ms >"$tmp/text" 2>&1 || fail "latency exited $?: $(cat "$tmp/text")"
+"$hb" latency --duration 300ms --period 1ms >"$tmp/text" 2>&1 || fail "latency exited $?: $(cat "$tmp/text")"
 for want in "wake-up latency: min" "overruns: " "recommended minimum cycle period:" " us - "; do
   grep -qF -- "$want" "$tmp/text" || fail "text output lacks '$want': $(cat "$tmp/text")"
 done
 echo "ok: text output"; cat "$tmp/text"
 
-"$hb" latency --seconds 0.3 --period 500us --json >"$tmp/j.json" 2>"$tmp/err" || fail "--json exited $?: $(cat "$tmp/err")"
+"$hb" latency --duration 300ms --period 500us --json >"$tmp/j.json" 2>"$tmp/err" || fail "--json exited $?: $(cat "$tmp/err")"
 python3 -m json.tool "$tmp/j.json" >/dev/null || fail "--json does not parse: $(cat "$tmp/j.json")"
 python3 - "$tmp/j.json" <<'PY' || fail "--json content: $(cat "$tmp/j.json")"
 import json, sys
@@ -31,7 +31,7 @@ assert rec is None or rec >= 2 * lat["max_us"], (rec, lat["max_us"])
 PY
 echo "ok: --json"
 
-for bad in "--seconds 0" "--seconds -1" "--period 10us" "--period 2s" "--period fast" "--realtime=0" "--realtime=100"; do
+for bad in "--duration 0s" "--duration -1s" "--seconds 0" "--period 10us" "--period 2s" "--period fast" "--realtime=0" "--realtime=100"; do
   # shellcheck disable=SC2086
   "$hb" latency $bad >"$tmp/bad" 2>&1; rc=$?
   [[ $rc -eq 2 ]] || fail "latency $bad exited $rc, expected 2: $(cat "$tmp/bad")"
@@ -40,7 +40,7 @@ grep -q "realtime" "$tmp/bad" || fail "no option name in: $(cat "$tmp/bad")"
 echo "ok: bad options exit 2"
 
 [[ $(id -u) -eq 0 ]] || { echo "not root: real-time path not measured"; exit 77; }
-"$hb" latency --seconds 0.3 --realtime=30 --load --json >"$tmp/rt.json" 2>"$tmp/err"; rc=$?
+"$hb" latency --duration 300ms --realtime=30 --load --json >"$tmp/rt.json" 2>"$tmp/err"; rc=$?
 if [[ $rc -eq 2 ]] && grep -q "was refused" "$tmp/err"; then echo "refused here: $(cat "$tmp/err")"; exit 77; fi
 [[ $rc -eq 0 ]] || fail "--realtime exited $rc: $(cat "$tmp/err")"
 python3 - "$tmp/rt.json" <<'PY' || fail "--realtime --json content: $(cat "$tmp/rt.json")"

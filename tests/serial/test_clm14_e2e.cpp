@@ -2,7 +2,7 @@
 // End to end: our CLM1.4 client against our emulator. Over a real pty pair (emulator on its own
 // thread) at several line formats, with 32 RS-485 stations; and over an in-process line on the
 // virtual clock with injected faults: checksum damage (retried), parity errors, a stalled XOFF,
-// a missing station (timeout), a device in the wrong mode, and an interrupted upload resumed.
+// a missing station (timeout), a device in the wrong mode, and an interrupted send (`hilbridge download`) resumed.
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 
@@ -82,7 +82,7 @@ TEST_P(PtyFormats, ProgramAndParametersRoundTrip) {
   Client client(*rig.client_stream, rig.clock, ClientOptions{});
   ProgramDevice prog(client);
   const auto items = program(40);
-  auto rep = upload_items(prog, items, 0, {}, nullptr);
+  auto rep = send_items(prog, items, 0, {}, nullptr);
   ASSERT_TRUE(rep.ok()) << rep.describe();
   auto diffs = verify_items(prog, items, {});
   ASSERT_TRUE(diffs);
@@ -242,7 +242,7 @@ TEST(Clm14EndToEnd, WrongModeGivesInvalidModeAndNothingIsWritten) {
   EXPECT_EQ(rig.line.station(0).parameter("A101"), "0010.00000");
 }
 
-TEST(Clm14EndToEnd, InterruptedUploadReportsExactlyAndResumes) {
+TEST(Clm14EndToEnd, InterruptedSendReportsExactlyAndResumes) {
   VirtualRig rig(0);
   Client c(*rig.client_stream, rig.clock, ClientOptions{.response_timeout = 200ms, .retries = 1});
   ProgramDevice prog(c);
@@ -258,7 +258,7 @@ TEST(Clm14EndToEnd, InterruptedUploadReportsExactlyAndResumes) {
     original(bytes);
   };
   std::size_t journal_next = 0;
-  auto rep = upload_items(prog, items, 0, {}, nullptr, [&](std::size_t i) { journal_next = i + 1; });
+  auto rep = send_items(prog, items, 0, {}, nullptr, [&](std::size_t i) { journal_next = i + 1; });
   ASSERT_FALSE(rep.ok());
   EXPECT_EQ(rep.confirmed, 37U);
   EXPECT_EQ(rep.in_doubt, "0037");
@@ -268,7 +268,7 @@ TEST(Clm14EndToEnd, InterruptedUploadReportsExactlyAndResumes) {
   EXPECT_NE(rep.describe().find("62 item(s) not sent"), std::string::npos) << rep.describe();
   // The line is back: resume from the journal.
   *rig.mem.a_to_b = original;
-  auto rest = upload_items(prog, items, journal_next, {}, nullptr);
+  auto rest = send_items(prog, items, journal_next, {}, nullptr);
   ASSERT_TRUE(rest.ok()) << rest.describe();
   EXPECT_EQ(rest.confirmed, 63U);
   auto diffs = verify_items(prog, items, {});
@@ -281,7 +281,7 @@ TEST(Clm14EndToEnd, VerifyListsEveryDifferingLine) {
   Client c(*rig.client_stream, rig.clock, ClientOptions{});
   ProgramDevice prog(c);
   auto items = program(10);
-  ASSERT_TRUE(upload_items(prog, items, 0, {}, nullptr).ok());
+  ASSERT_TRUE(send_items(prog, items, 0, {}, nullptr).ok());
   items[3].text = "JMP 0000";
   items[7].text = "JMP 0001";
   auto diffs = verify_items(prog, items, {});

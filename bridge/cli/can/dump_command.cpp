@@ -13,6 +13,7 @@
 #include "hil/can/candump.hpp"
 #include "hil/can/io/make_channel.hpp"
 #include "hil/can/pcap.hpp"
+#include "hil/cli/duration_option.hpp"
 #include "hil/cli/json_output.hpp"
 
 namespace hil::cli::can_cmd {
@@ -24,7 +25,7 @@ struct DumpOptions {
   std::string pcap;
   std::string log;
   std::uint64_t count = 0;
-  double duration_s = 0;
+  Duration duration{};  ///< 0: until --count frames or SIGINT/SIGTERM
   bool quiet = false;
   bool jsonl = false;  ///< stdout: one JSON object per frame (docs/json.md) instead of candump lines
 };
@@ -70,7 +71,8 @@ int run_dump(const DumpOptions& o) {
     std::fflush(pcap.get());
   }
   auto channel = can::make_channel(*url, {io.get_executor(), clock});
-  if (!channel) return failed(channel.error().message);
+  if (!channel)  // the bus cannot be reached: 1, as sdo, scan, nmt (docs/cli.md)
+    return report_error(o.jsonl, "hilbridge can dump: ", channel.error().message, 1);
   const auto wall_offset = std::chrono::duration_cast<Duration>(std::chrono::system_clock::now().time_since_epoch()) -
                            clock.now().time_since_epoch();
   std::uint64_t frames = 0;
@@ -104,9 +106,8 @@ int run_dump(const DumpOptions& o) {
   asio::signal_set signals(io, SIGINT, SIGTERM);
   signals.async_wait([&](const std::error_code&, int) { io.stop(); });
   asio::steady_timer deadline(io);
-  if (o.duration_s > 0) {
-    deadline.expires_after(
-        std::chrono::duration_cast<std::chrono::steady_clock::duration>(std::chrono::duration<double>(o.duration_s)));
+  if (o.duration > Duration::zero()) {
+    deadline.expires_after(std::chrono::duration_cast<std::chrono::steady_clock::duration>(o.duration));
     deadline.async_wait([&](const std::error_code& ec) {
       if (!ec) io.stop();
     });
@@ -131,7 +132,8 @@ void add_dump(CLI::App& can, Context& ctx) {
   cmd->add_option("--pcap", o->pcap, "Also write a pcap capture to FILE");
   cmd->add_option("--log", o->log, "Also write candump log lines to FILE");
   cmd->add_option("--count,-n", o->count, "Stop after N frames");
-  cmd->add_option("--duration", o->duration_s, "Stop after SECONDS")->check(CLI::PositiveNumber);
+  add_duration_option(*cmd, "--duration", o->duration, "Stop after this long, e.g. 30s or 500ms", "s",
+                      {std::chrono::microseconds(1)});
   cmd->add_flag("--quiet,-q", o->quiet, "Do not print frames on stdout (files only)");
   cmd->add_flag("--jsonl", o->jsonl,
                 "Print JSON Lines on stdout instead of candump lines: one object per frame with time, id, "

@@ -14,6 +14,8 @@
 #include "hil/can/io/socketcand_server.hpp"
 #include "hil/can/linux/socketcan_channel.hpp"
 #include "hil/can/virtual_bus.hpp"
+#include "hil/cli/duration_option.hpp"
+#include "hil/cli/endpoint_text.hpp"
 
 namespace hil::cli::can_cmd {
 
@@ -23,14 +25,15 @@ struct HubOptions {
   std::string listen = "127.0.0.1:29536";
   std::string bus_name;
   std::string bridge;
-  long latency_us = 0;
+  Duration latency{};
   std::size_t max_clients = 32;
   bool error_frames = false;
-  long join_hold_ms = 50;
+  Duration join_hold = std::chrono::milliseconds(50);
 };
 
-/// "HOST:PORT" or "[V6]:PORT" -> endpoint, or an error sentence.
-std::expected<asio::ip::tcp::endpoint, std::string> parse_listen(const std::string& text) {
+/// "HOST:PORT" or "[V6]:PORT", optionally after "tcp://" -> endpoint, or an error sentence.
+std::expected<asio::ip::tcp::endpoint, std::string> parse_listen(const std::string& given) {
+  const std::string text(strip_tcp_scheme(given));
   std::string host;
   std::string port;
   if (text.starts_with("[")) {
@@ -73,8 +76,7 @@ int run_hub(const HubOptions& o) {
   std::unique_ptr<can::AsioBusRunner> runner;
   can::socketcand::BusOpener opener;
   if (o.bridge.empty()) {
-    bus = std::make_unique<can::VirtualBus>(clock, bus_name,
-                                            can::VirtualBusOptions{.latency = std::chrono::microseconds(o.latency_us)});
+    bus = std::make_unique<can::VirtualBus>(clock, bus_name, can::VirtualBusOptions{.latency = o.latency});
     runner = std::make_unique<can::AsioBusRunner>(io.get_executor(), *bus, clock);
     opener = [&bus, bus_name, error_frames = o.error_frames](
                  std::string_view name,
@@ -89,7 +91,7 @@ int run_hub(const HubOptions& o) {
     std::string diag;
     if (auto probe = can::socketcan::SocketCanChannel::open(io.get_executor(), clock, o.bridge, {}, &diag); !probe) {
       fmt::print(stderr, "hilbridge can hub: --bridge {}: {}\n", o.bridge, diag);
-      return 2;
+      return 1;  // the interface cannot be opened (docs/cli.md)
     }
     opener = [&io, &clock, bus_name, iface = o.bridge, error_frames = o.error_frames](
                  std::string_view name,
@@ -104,12 +106,12 @@ int run_hub(const HubOptions& o) {
   }
   can::socketcand::ServerOptions server_options;
   server_options.max_clients = o.max_clients;
-  server_options.join_hold = std::chrono::milliseconds(o.join_hold_ms);
+  server_options.join_hold = o.join_hold;
   can::socketcand::Server server(io.get_executor(), clock, opener, server_options);
   if (auto ec = server.listen(*endpoint)) {
     fmt::print(stderr, "hilbridge can hub: cannot listen on {}: {} (another hub or socketcand on that port?)\n",
                o.listen, ec.message());
-    return 2;
+    return 1;  // as every server that cannot listen (emulate modbus-drive, emulate clm14 --tcp)
   }
   const auto local = server.local_endpoint();
   const std::string host =
@@ -144,21 +146,26 @@ void add_hub(CLI::App& can, Context& ctx) {
       "in-process virtual bus on real time: every frame a client sends reaches all other clients.\n"
       "With --bridge IFACE each client gets its own SocketCAN socket on IFACE, like socketcand itself.\n"
       "python-can: can.Bus(interface='socketcand', host=HOST, port=PORT, channel=BUS)");
-  cmd->add_option("--listen", o->listen, "HOST:PORT to listen on (port 0: any free port, printed at start)")
+  cmd->add_option("--listen", o->listen,
+                  "HOST:PORT or tcp://HOST:PORT to listen on (port 0: any free port, printed at start)")
       ->capture_default_str();
   cmd->add_option("--bus-name", o->bus_name,
                   "Bus name clients open (`< open NAME >`); default can0, or the --bridge interface");
   cmd->add_option("--bridge", o->bridge, "Expose this SocketCAN interface (vcan0, can0) instead of a virtual bus");
-  cmd->add_option("--latency-us", o->latency_us, "Virtual bus: delivery latency per frame in microseconds")
-      ->check(CLI::Range(0L, 1'000'000L))
-      ->capture_default_str();
+  const DurationRange latency_range{Duration{}, std::chrono::seconds(1)};
+  add_duration_option(*cmd, "--latency", o->latency, "Virtual bus: delivery latency per frame, e.g. 30us (0 .. 1s)",
+                      "us", latency_range);
+  add_duration_alias(*cmd, "--latency-us", "--latency", o->latency, "us", latency_range);
   cmd->add_option("--max-clients", o->max_clients, "Refuse clients beyond this many")->capture_default_str();
-  cmd->add_option("--join-hold-ms,--join-grace-ms", o->join_hold_ms,
-                  "A client that entered raw mode gets every frame from then on; frames are queued (never "
-                  "dropped) until it sends its first element or this time has passed, because python-can 4.1 "
-                  "fails to connect when a frame follows its `< ok >` in the same read; 0 = like socketcand")
-      ->check(CLI::Range(0L, 10'000L))
-      ->capture_default_str();
+  const DurationRange hold_range{Duration{}, std::chrono::seconds(10)};
+  add_duration_option(*cmd, "--join-hold", o->join_hold,
+                      "A client that entered raw mode gets every frame from then on; frames are queued (never "
+                      "dropped) until it sends its first element or this time has passed, because python-can 4.1 "
+                      "fails to connect when a frame follows its `< ok >` in the same read; 0 = like socketcand "
+                      "(default 50ms, at most 10s)",
+                      "ms", hold_range);
+  add_duration_alias(*cmd, "--join-hold-ms", "--join-hold", o->join_hold, "ms", hold_range);
+  add_duration_alias(*cmd, "--join-grace-ms", "--join-hold", o->join_hold, "ms", hold_range);
   cmd->add_flag("--error-frames", o->error_frames, "Forward error frames to clients as `< error CLASS TIME >`");
   cmd->callback([o, &ctx] { ctx.exit_code = run_hub(*o); });
 }

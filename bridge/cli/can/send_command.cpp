@@ -14,6 +14,7 @@
 #include "hil/can/io/make_channel.hpp"
 #include "hil/can/io/socketcand_channel.hpp"
 #include "hil/can/linux/socketcan_channel.hpp"
+#include "hil/cli/duration_option.hpp"
 #include "hil/cli/progress.hpp"
 
 namespace hil::cli::can_cmd {
@@ -45,10 +46,15 @@ struct Timed {
 int send_all(const std::string& bus, const std::vector<Timed>& frames, const char* verb, bool progress) {
   asio::io_context io;
   SteadyClock clock;
-  auto channel = can::make_channel(bus, {io.get_executor(), clock});
+  auto url = can::parse_bus_url(bus);
+  if (!url) {
+    fmt::print(stderr, "hilbridge can {}: --bus: {}\n", verb, url.error());
+    return 2;  // the command line is wrong
+  }
+  auto channel = can::make_channel(*url, {io.get_executor(), clock});
   if (!channel) {
     fmt::print(stderr, "hilbridge can {}: {}\n", verb, channel.error().message);
-    return 2;
+    return 1;  // the bus cannot be reached (as sdo, scan, nmt)
   }
   std::unique_ptr<ProgressBar> bar;
   if (progress) bar = std::make_unique<ProgressBar>(std::string("replay ") + bus, frames.size(), "frames", clock);
@@ -94,7 +100,7 @@ int send_all(const std::string& bus, const std::vector<Timed>& frames, const cha
 struct SendOptions {
   std::string bus;
   std::vector<std::string> frames;
-  double interval_ms = 0;
+  Duration interval{};  ///< pause between frames
 };
 
 int run_send(const SendOptions& o) {
@@ -105,8 +111,7 @@ int run_send(const SendOptions& o) {
       fmt::print(stderr, "hilbridge can send: frame {} '{}': {}\n", i + 1, o.frames[i], f.error().message());
       return 2;
     }
-    frames.push_back({*f, std::chrono::duration_cast<Duration>(
-                              std::chrono::duration<double, std::milli>(o.interval_ms * static_cast<double>(i)))});
+    frames.push_back({*f, std::chrono::duration_cast<Duration>(o.interval * static_cast<Duration::rep>(i))});
   }
   return send_all(o.bus, frames, "send", false);
 }
@@ -154,8 +159,9 @@ void add_send(CLI::App& can, Context& ctx) {
       "705#R or 705#R1 (remote frame), 080# (no data). socketcand cannot carry remote frames.");
   cmd->add_option("--bus", o->bus, bus_help)->required();
   cmd->add_option("frames", o->frames, "Frames to send, in order")->required();
-  cmd->add_option("--interval-ms", o->interval_ms, "Pause between frames in milliseconds")
-      ->check(CLI::NonNegativeNumber);
+  add_duration_option(*cmd, "--interval", o->interval, "Pause between frames, e.g. 10ms (default 0: back to back)",
+                      "ms");
+  add_duration_alias(*cmd, "--interval-ms", "--interval", o->interval, "ms");
   cmd->callback([o, &ctx] { ctx.exit_code = run_send(*o); });
 }
 

@@ -13,6 +13,7 @@
 #include "hil/canopen/nmt.hpp"
 #include "hil/canopen/sdo_client.hpp"
 #include "hil/cli/context.hpp"
+#include "hil/cli/duration_option.hpp"
 #include "hil/cli/json_output.hpp"
 #include "hil/cli/progress.hpp"
 #include "session.hpp"
@@ -40,7 +41,7 @@ struct SdoArgs {
   std::string object;
   std::string value;
   std::string type;
-  int timeout_ms = 500;
+  Duration timeout = std::chrono::milliseconds(500);
   int retries = 0;
   bool block = false;
   bool json = false;  ///< read --json (docs/json.md)
@@ -91,7 +92,7 @@ int run_sdo(const SdoArgs& a, bool upload) {
   BusSession s(a.bus, "hilbridge-sdo");
   if (!s.ok()) return failed(fmt::format("--bus {}: {}", a.bus, s.error()), 1);
   co::SdoClientOptions o;
-  o.timeout = std::chrono::milliseconds(a.timeout_ms);
+  o.timeout = a.timeout;
   o.retries = a.retries;
   o.block = a.block;
   co::SdoClient client(
@@ -162,8 +163,8 @@ void register_sdo(Context& ctx) {
       c->add_option("value", a->value, "Value in the --type's notation (integers: decimal or 0x hex)")->required();
     c->add_option("--type,-t", a->type,
                   "Value type: " + value_types_help() + (upload ? " (default: raw hex and unsigned)" : ""));
-    c->add_option("--timeout", a->timeout_ms, "Timeout per SDO answer in ms (default 500)")
-        ->check(CLI::Range(1, 600000));
+    add_duration_option(*c, "--timeout", a->timeout, "Timeout per SDO answer, e.g. 2s (default 500ms; 1ms .. 10min)",
+                        "ms", {std::chrono::milliseconds(1), std::chrono::minutes(10)});
     c->add_option("--retries", a->retries, "Retries after a timeout (default 0)")->check(CLI::Range(0, 10));
     c->add_flag("--block", a->block, "Use SDO block transfer (CRC-16) for values over 28 bytes");
     if (upload)
@@ -236,15 +237,15 @@ void register_nmt(Context& ctx) {
 void register_scan(Context& ctx) {
   struct ScanArgs {
     std::string bus;
-    int timeout_ms = 300;
+    Duration timeout = std::chrono::milliseconds(300);
     bool json = false;
   };
   auto a = std::make_shared<ScanArgs>();
   auto* c = ctx.app.add_subcommand(
       "scan", "Find CANopen nodes (SDO upload of 0x1000 to 1..127) and read their identity 0x1018");
   c->add_option("--bus", a->bus, k_bus_help)->required();
-  c->add_option("--timeout", a->timeout_ms, "How long to wait for answers, ms (default 300)")
-      ->check(CLI::Range(10, 60000));
+  add_duration_option(*c, "--timeout", a->timeout, "How long to wait for answers, e.g. 1s (default 300ms; 10ms .. 60s)",
+                      "ms", {std::chrono::milliseconds(10), std::chrono::seconds(60)});
   c->add_flag("--json", a->json,
               "Print one JSON object on stdout: {\"nodes\": [{\"node\", \"device_type\", \"vendor_id\", ...}]} "
               "(docs/json.md)");
@@ -266,7 +267,7 @@ void register_scan(Context& ctx) {
     std::map<int, Found> found;
     std::vector<std::unique_ptr<co::SdoClient>> clients(128);
     co::SdoClientOptions o;
-    o.timeout = std::chrono::milliseconds(a->timeout_ms);
+    o.timeout = a->timeout;
     int outstanding = 0;
     auto u32 = [](const std::vector<std::uint8_t>& d) {
       std::uint32_t v = 0;
@@ -321,7 +322,10 @@ void register_scan(Context& ctx) {
                          {"serial", f.values[4]},
                          {"name", f.name}});
       }
-      print_json({{"bus", a->bus}, {"timeout_ms", a->timeout_ms}, {"count", count}, {"nodes", std::move(nodes)}});
+      print_json({{"bus", a->bus},
+                  {"timeout_ms", std::chrono::duration_cast<std::chrono::milliseconds>(a->timeout).count()},
+                  {"count", count},
+                  {"nodes", std::move(nodes)}});
       std::fprintf(stderr, "%d node(s) answered on %s\n", count, a->bus.c_str());
       ctx.exit_code = 0;
       return;

@@ -15,6 +15,7 @@
 #include <asio/steady_timer.hpp>
 
 #include "hil/cli/context.hpp"
+#include "hil/cli/duration_option.hpp"
 #include "hil/mocks/cia402_node.hpp"
 #include "hil/mocks/key_range.hpp"
 #include "session.hpp"
@@ -25,7 +26,7 @@ namespace {
 struct EmulateArgs {
   std::string bus;
   std::vector<int> nodes;
-  double duration_s = 0.0;
+  Duration duration{};  ///< 0: until SIGINT/SIGTERM
   double kv = 50.0;
   double max_velocity = 5.0e6;
   std::string eds;  ///< the user's EDS/DCF (empty: the shipped simulated drive's)
@@ -93,7 +94,7 @@ int run_emulate(const EmulateArgs& a) {
     if (!ec) stop = true;
   });
   asio::steady_timer timer(io);
-  const auto end = a.duration_s > 0 ? clock.now() + from_seconds(a.duration_s) : TimePoint::max();
+  const auto end = a.duration > Duration::zero() ? clock.now() + a.duration : TimePoint::max();
   auto next = std::chrono::steady_clock::now();
   std::function<void()> tick = [&] {
     next += std::chrono::milliseconds(1);
@@ -126,8 +127,8 @@ void register_emulate_cia402(Context& ctx) {
                                        "Simulated CiA 402 servo drive(s) on a CAN bus (CANopen slave, plant model)");
   c->add_option("--bus", a->bus, "Bus URL: vcan0, can0, socketcand://HOST[:PORT]/BUS, or virtual:NAME")->required();
   c->add_option("--node", a->nodes, "Node-ID 1..127 (repeat for several nodes)")->required()->check(CLI::Range(1, 127));
-  c->add_option("--duration", a->duration_s, "Stop after this many seconds (default: until SIGINT/SIGTERM)")
-      ->check(CLI::NonNegativeNumber);
+  add_duration_option(*c, "--duration", a->duration, "Stop after this long, e.g. 30s (default: until SIGINT/SIGTERM)",
+                      "s");
   c->add_option("--eds", a->eds,
                 "Build the node from this EDS/DCF (object dictionary, PDO defaults, identity) to rehearse against "
                 "your own drive; default: the shipped simulated drive");

@@ -11,6 +11,8 @@
 #include <fmt/format.h>
 
 #include "hil/cli/context.hpp"
+#include "hil/cli/duration_option.hpp"
+#include "hil/cli/endpoint_text.hpp"
 #include "hil/drives/modbus_transport.hpp"
 #include "hil/mocks/modbus_server.hpp"
 #include "hil/modbus/profile.hpp"
@@ -23,14 +25,16 @@ struct EmulateOptions {
   std::string profile = "cia402";
   int unit = -1;
   bool strict_unit = false;
-  double step_period_ms = 1.0;
+  Duration step_period = std::chrono::milliseconds(1);
   int max_connections = 64;
-  double duration_s = 0.0;
-  double frame_timeout_s = 5.0;
+  Duration duration{};  ///< 0: until SIGINT/SIGTERM
+  Duration frame_timeout = std::chrono::seconds(5);
   bool quiet = false;
 };
 
-int run_emulate(const EmulateOptions& o) {
+int run_emulate(const EmulateOptions& opts) {
+  EmulateOptions o = opts;
+  o.listen = std::string(strip_tcp_scheme(o.listen));  // HOST:PORT or tcp://HOST:PORT (docs/cli.md)
   const auto colon = o.listen.rfind(':');
   if (colon == std::string::npos) {
     std::fprintf(
@@ -62,8 +66,8 @@ int run_emulate(const EmulateOptions& o) {
   config.handler.unit_id = o.unit >= 0 ? static_cast<std::uint8_t>(o.unit) : profile->unit_id;
   config.handler.strict_unit = o.strict_unit;
   config.max_connections = static_cast<std::size_t>(o.max_connections);
-  config.auto_step = from_seconds(o.step_period_ms / 1000.0);
-  config.frame_timeout = from_seconds(o.frame_timeout_s);
+  config.auto_step = o.step_period;
+  config.frame_timeout = o.frame_timeout;
   if (!o.quiet)
     config.log = [](std::string_view msg) { std::fprintf(stderr, "%.*s\n", static_cast<int>(msg.size()), msg.data()); };
   const std::string name = profile->name;
@@ -87,10 +91,10 @@ int run_emulate(const EmulateOptions& o) {
               server.port(), config.handler.unit_id, o.strict_unit ? " (strict unit)" : "");
   std::fflush(stdout);
 
-  const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(o.duration_s);
+  const auto deadline = std::chrono::steady_clock::now() + o.duration;
   for (;;) {
     timespec ts{1, 0};
-    if (o.duration_s > 0) {
+    if (o.duration > Duration::zero()) {
       const auto left = deadline - std::chrono::steady_clock::now();
       if (left <= std::chrono::steady_clock::duration::zero()) break;
       const auto ns = std::chrono::duration_cast<std::chrono::nanoseconds>(left).count();
@@ -116,25 +120,29 @@ void register_emulate_modbus_drive(Context& ctx) {
   auto* cmd = ctx.emulate.add_subcommand(
       "modbus-drive",
       "Simulated servo/stepper drive on Modbus/TCP: serves a register profile backed by the plant model");
-  cmd->add_option("--listen", o->listen,
-                  "HOST:PORT to bind, HOST an address or a host name (default 127.0.0.1:1502, loopback only; "
-                  "0.0.0.0:502 serves the network; port 0 "
-                  "picks a free port, printed on stdout)");
+  cmd->add_option(
+      "--listen", o->listen,
+      "HOST:PORT or tcp://HOST:PORT to bind, HOST an address or a host name (default 127.0.0.1:1502, loopback only; "
+      "0.0.0.0:502 serves the network; port 0 "
+      "picks a free port, printed on stdout)");
   cmd->add_option(
       "--profile", o->profile,
       "Register profile: a name in profiles/modbus (cia402, vendor_simple) or a YAML path (default cia402)");
   cmd->add_option("--unit", o->unit, "Unit id to answer as (default: the profile's)")->check(CLI::Range(0, 255));
   cmd->add_flag("--strict-unit", o->strict_unit,
                 "Answer only our unit id (and 0/255); others get exception 0B. Default: any unit, like libmodbus");
-  cmd->add_option("--step-period-ms", o->step_period_ms, "Plant step period in real time, ms (default 1)")
-      ->check(CLI::Range(0.1, 1000.0));
+  const DurationRange step_range{std::chrono::microseconds(100), std::chrono::seconds(1)};
+  add_duration_option(*cmd, "--step-period", o->step_period,
+                      "Plant step period in real time (default 1ms; 100us .. 1s)", "ms", step_range);
+  add_duration_alias(*cmd, "--step-period-ms", "--step-period", o->step_period, "ms", step_range);
   cmd->add_option("--max-connections", o->max_connections, "Simultaneous clients (default 64)")
       ->check(CLI::Range(1, 1024));
-  cmd->add_option("--duration", o->duration_s, "Stop after this many seconds (default: until SIGINT/SIGTERM)")
-      ->check(CLI::Range(0.0, 1e7));
-  cmd->add_option("--frame-timeout", o->frame_timeout_s,
-                  "Close a connection whose started frame is still incomplete after this many seconds (default 5)")
-      ->check(CLI::Range(0.001, 3600.0));
+  add_duration_option(*cmd, "--duration", o->duration, "Stop after this long, e.g. 30s (default: until SIGINT/SIGTERM)",
+                      "s");
+  add_duration_option(*cmd, "--frame-timeout", o->frame_timeout,
+                      "Close a connection whose started frame is still incomplete after this long (default 5s; "
+                      "1ms .. 1h)",
+                      "s", {std::chrono::milliseconds(1), std::chrono::hours(1)});
   cmd->add_flag("--quiet", o->quiet, "Do not log malformed frames and refused connections on stderr");
   cmd->footer(
       "Function codes: 3, 4, 6, 16, 22, 23; others answer exception 01. Writes to read-only registers answer 02.\n"

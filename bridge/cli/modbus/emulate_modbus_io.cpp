@@ -13,6 +13,7 @@
 #include <fmt/format.h>
 
 #include "hil/cli/context.hpp"
+#include "hil/cli/duration_option.hpp"
 #include "hil/mocks/modbus_server.hpp"
 #include "hil/modbus/bus_address.hpp"
 
@@ -25,7 +26,7 @@ struct EmulateIoOptions {
   int coils = 64;
   int discrete_inputs = 64;
   std::vector<int> set_inputs;
-  double duration_s = 0.0;
+  Duration duration{};  ///< 0: until SIGINT/SIGTERM
   bool quiet = false;
 };
 
@@ -73,7 +74,7 @@ int run_emulate_io(const EmulateIoOptions& o) {
 
   // Report every coil change (what the clients switched), sampled every 10 ms.
   std::vector<std::uint8_t> last(static_cast<std::size_t>(o.coils), 0);
-  const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(o.duration_s);
+  const auto deadline = std::chrono::steady_clock::now() + o.duration;
   for (;;) {
     server.with_terminal([&](mocks::IoTerminal& t) {
       for (std::size_t a = 0; a < last.size(); ++a) {
@@ -84,7 +85,7 @@ int run_emulate_io(const EmulateIoOptions& o) {
       }
     });
     std::fflush(stdout);
-    if (o.duration_s > 0 && std::chrono::steady_clock::now() >= deadline) break;
+    if (o.duration > Duration::zero() && std::chrono::steady_clock::now() >= deadline) break;
     timespec ts{0, 10'000'000};
     const int sig = sigtimedwait(&stop_signals, nullptr, &ts);
     if (sig == SIGINT || sig == SIGTERM) break;
@@ -112,8 +113,8 @@ void register_emulate_modbus_io(Context& ctx) {
   cmd->add_option("--discrete-inputs", o->discrete_inputs, "Discrete inputs 0..N-1 (default 64)")
       ->check(CLI::Range(1, 65535));
   cmd->add_option("--set-input", o->set_inputs, "A discrete input that reads 1 (repeatable; the others read 0)");
-  cmd->add_option("--duration", o->duration_s, "Stop after this many seconds (default: until SIGINT/SIGTERM)")
-      ->check(CLI::Range(0.0, 1e7));
+  add_duration_option(*cmd, "--duration", o->duration, "Stop after this long, e.g. 30s (default: until SIGINT/SIGTERM)",
+                      "s");
   cmd->add_flag("--quiet", o->quiet, "Do not log malformed frames and refused connections on stderr");
   cmd->footer(
       "Prints every coil change ('modbus-io: coil 17 -> 1'). Example:\n"

@@ -13,6 +13,8 @@
 #include <fmt/format.h>
 
 #include "hil/cli/context.hpp"
+#include "hil/cli/duration_option.hpp"
+#include "hil/cli/endpoint_text.hpp"
 #include "hil/cli/json_output.hpp"
 #include "hil/cli/progress.hpp"
 #include "hil/drives/modbus_transport.hpp"
@@ -32,8 +34,9 @@ struct Endpoint {
   std::uint16_t port = modbus::kDefaultPort;
 };
 
-/// "host", "host:port", "[v6]:port".
-std::optional<Endpoint> parse_endpoint(const std::string& s, std::string& why) {
+/// "host", "host:port", "[v6]:port", each optionally after "tcp://".
+std::optional<Endpoint> parse_endpoint(const std::string& text, std::string& why) {
+  const std::string s(strip_tcp_scheme(text));
   Endpoint e;
   std::string port_text;
   if (!s.empty() && s.front() == '[') {
@@ -67,7 +70,7 @@ struct Common {
   int address = 0;
   std::string type = "u16";
   std::string word_order = "high_first";
-  double timeout_s = 1.0;
+  Duration timeout = std::chrono::seconds(1);
   bool json = false;  ///< read --json: one object on stdout (docs/json.md)
 };
 
@@ -75,14 +78,14 @@ std::optional<modbus::ValueFormat> parse_format(const Common& c, std::string& wh
   modbus::ValueFormat f;
   if (c.type == "u16" || c.type == "hex")
     f = {1, false};
-  else if (c.type == "s16")
+  else if (c.type == "i16")
     f = {1, true};
   else if (c.type == "u32")
     f = {2, false};
-  else if (c.type == "s32")
+  else if (c.type == "i32")
     f = {2, true};
   else
-    return why = fmt::format("--type '{}': expected u16, s16, u32, s32 or hex", c.type), std::nullopt;
+    return why = fmt::format("--type '{}': expected u16, i16, u32, i32 or hex", c.type), std::nullopt;
   if (c.word_order == "low_first")
     f.order = modbus::WordOrder::low_first;
   else if (c.word_order != "high_first")
@@ -101,7 +104,7 @@ CtxPtr connect(const Common& c, const Endpoint& ep, std::string& why) {
     why = fmt::format("cannot create a Modbus/TCP context for {}:{}: {}", ep.host, ep.port, modbus_strerror(errno));
     return ctx;
   }
-  const auto us = static_cast<std::uint32_t>(c.timeout_s * 1e6);
+  const auto us = static_cast<std::uint32_t>(std::chrono::duration_cast<std::chrono::microseconds>(c.timeout).count());
   modbus_set_response_timeout(ctx.get(), us / 1000000, us % 1000000);
   modbus_set_slave(ctx.get(), c.unit);
   if (modbus_connect(ctx.get()) != 0) {
@@ -117,20 +120,27 @@ std::string describe_failure(int err) {
          fmt::format(" [libmodbus: {}]", modbus_strerror(err));
 }
 
+/// The device or the link failed: exit 1.
 int fail(const std::string& what, bool json = false) {
   return report_error(json, "hilbridge modbus: ", what, 1);
 }
 
+/// The command line is wrong (nothing was sent): exit 2, as every command (docs/cli.md).
+int usage(const std::string& what, bool json = false) {
+  return report_error(json, "hilbridge modbus: ", what, 2);
+}
+
 int run_read(const Common& c, int count, bool input) {
   const auto failed = [&](const std::string& what) { return fail(what, c.json); };
+  const auto bad_usage = [&](const std::string& what) { return usage(what, c.json); };
   std::string why;
   auto ep = parse_endpoint(c.endpoint, why);
-  if (!ep) return failed(fmt::format("HOST[:PORT] '{}': {}", c.endpoint, why));
+  if (!ep) return bad_usage(fmt::format("HOST[:PORT] '{}': {}", c.endpoint, why));
   auto fmt_ = parse_format(c, why);
-  if (!fmt_) return failed(why);
+  if (!fmt_) return bad_usage(why);
   const int regs_needed = count * fmt_->words;
   if (c.address + regs_needed > 65536)
-    return failed(fmt::format("ADDR {} + {} registers runs past 65535", c.address, regs_needed));
+    return bad_usage(fmt::format("ADDR {} + {} registers runs past 65535", c.address, regs_needed));
   auto ctx = connect(c, *ep, why);
   if (!ctx) return failed(why);
   std::vector<std::uint16_t> regs(static_cast<std::size_t>(regs_needed));
@@ -189,9 +199,9 @@ int run_read(const Common& c, int count, bool input) {
 int run_write(const Common& c, const std::vector<std::string>& values, int fc) {
   std::string why;
   auto ep = parse_endpoint(c.endpoint, why);
-  if (!ep) return fail(fmt::format("HOST[:PORT] '{}': {}", c.endpoint, why));
+  if (!ep) return usage(fmt::format("HOST[:PORT] '{}': {}", c.endpoint, why));
   auto f = parse_format(c, why);
-  if (!f) return fail(why);
+  if (!f) return usage(why);
   std::vector<std::uint16_t> regs;
   for (const auto& text : values) {
     std::int64_t v = 0;
@@ -199,17 +209,18 @@ int run_write(const Common& c, const std::vector<std::string>& values, int fc) {
     const char* b = text.data() + (hex ? 2 : 0);
     auto [p, ec] = std::from_chars(b, text.data() + text.size(), v, hex ? 16 : 10);
     if (ec != std::errc{} || p != text.data() + text.size())
-      return fail(fmt::format("value '{}' is not an integer", text));
-    if (modbus::saturate(v, *f) != v) return fail(fmt::format("value {} does not fit --type {}", v, c.type));
+      return usage(fmt::format("value '{}' is not an integer", text));
+    if (modbus::saturate(v, *f) != v) return usage(fmt::format("value {} does not fit --type {}", v, c.type));
     std::uint16_t r[2] = {};
     modbus::pack_value(v, *f, std::span<std::uint16_t>(r, f->words));
     regs.insert(regs.end(), r, r + f->words);
   }
   if (fc == 0) fc = regs.size() == 1 ? 6 : 16;
-  if (fc == 6 && regs.size() != 1) return fail("--fc 6 writes exactly one register; use --fc 16 for several");
+  if (fc == 6 && regs.size() != 1) return usage("--fc 6 writes exactly one register; use --fc 16 for several");
   if (regs.size() > modbus::kMaxWriteRegisters)
-    return fail(fmt::format("at most {} registers per FC 16 request, got {}", modbus::kMaxWriteRegisters, regs.size()));
-  if (c.address + static_cast<int>(regs.size()) > 65536) return fail("the values run past address 65535");
+    return usage(
+        fmt::format("at most {} registers per FC 16 request, got {}", modbus::kMaxWriteRegisters, regs.size()));
+  if (c.address + static_cast<int>(regs.size()) > 65536) return usage("the values run past address 65535");
   auto ctx = connect(c, *ep, why);
   if (!ctx) return fail(why);
   const int rc = fc == 6 ? modbus_write_register(ctx.get(), c.address, regs[0])
@@ -224,7 +235,8 @@ int run_write(const Common& c, const std::vector<std::string>& values, int fc) {
 }
 
 void add_common(CLI::App* cmd, Common& c) {
-  cmd->add_option("endpoint", c.endpoint, "Drive address: HOST, HOST:PORT or [IPv6]:PORT (default port 502)")
+  cmd->add_option("endpoint", c.endpoint,
+                  "Drive address: HOST, HOST:PORT, [IPv6]:PORT or tcp://HOST:PORT (default port 502)")
       ->required();
   cmd->add_option("unit", c.unit, "Unit id (slave id) 0..255; most Modbus/TCP drives accept 1 or 255")
       ->required()
@@ -232,9 +244,22 @@ void add_common(CLI::App* cmd, Common& c) {
   cmd->add_option("address", c.address, "First register, PDU address 0..65535 (0-based, as on the wire)")
       ->required()
       ->check(CLI::Range(0, 65535));
-  cmd->add_option("--type", c.type, "Value type: u16 (default), s16, u32, s32, hex (u16 shown in hex)");
+  // The type names of `sdo` (docs/cli.md, "Type names"); s16/s32 are the old spellings.
+  cmd->add_option_function<std::string>(
+         "--type",
+         [&c](const std::string& t) {
+           if (t == "s16" || t == "s32") {
+             c.type = t == "s16" ? "i16" : "i32";
+             fmt::print(stderr, "hilbridge: warning: --type {} is deprecated; write --type {}\n", t, c.type);
+           } else {
+             c.type = t == "x16" ? "hex" : t;
+           }
+         },
+         "Value type: u16 (default), i16, u32, i32, hex or x16 (u16 shown in hex)")
+      ->type_name("TYPE");
   cmd->add_option("--word-order", c.word_order, "32-bit word order: high_first (default) or low_first");
-  cmd->add_option("--timeout", c.timeout_s, "Response timeout in seconds (default 1)")->check(CLI::Range(0.001, 60.0));
+  add_duration_option(*cmd, "--timeout", c.timeout, "Response timeout, e.g. 500ms (default 1s; 1ms .. 60s)", "s",
+                      {std::chrono::milliseconds(1), std::chrono::seconds(60)});
 }
 
 }  // namespace
@@ -250,7 +275,7 @@ void register_modbus(Context& ctx) {
       "  hilbridge modbus read 10.0.0.5 1 1 --input --type s32 --word-order low_first\n"
       "  hilbridge modbus write 127.0.0.1:1502 1 0 6              # control word: Shutdown\n"
       "  hilbridge modbus write 127.0.0.1:1502 1 2 -5000 --type s32\n"
-      "Exit status 0 on success; 1 with the Modbus exception or link error on stderr.");
+      "Exit status 0 on success; 1 with the Modbus exception or link error on stderr; 2 usage (nothing sent).");
 
   auto common_r = std::make_shared<Common>();
   auto count = std::make_shared<int>(1);

@@ -19,6 +19,7 @@
 #include <asio/signal_set.hpp>
 
 #include "hil/cli/context.hpp"
+#include "hil/cli/duration_option.hpp"
 #include "hil/runtime/latency_report.hpp"
 #include "hil/runtime/linux/absolute_sleeper.hpp"
 #include "hil/runtime/linux/realtime_session.hpp"
@@ -30,8 +31,8 @@ namespace hil::cli {
 namespace {
 
 struct LatencyArgs {
-  double seconds = 10.0;
-  std::string period = "1ms";
+  Duration duration = std::chrono::seconds(10);
+  Duration period = std::chrono::milliseconds(1);
   int realtime_priority = 0;
   int realtime_cpu = -1;
   bool realtime_fallback = false;
@@ -77,17 +78,9 @@ std::string period_text(Duration d) {
 }
 
 int latency_command(const LatencyArgs& args) {
-  if (!(args.seconds > 0.0) || args.seconds > 86400.0) {
-    fmt::print(stderr, "error: --seconds: expected a measuring time > 0 and at most 86400 s, got {}\n", args.seconds);
-    return 2;
-  }
-  const auto period = runtime::parse_duration(args.period);
-  if (!period || *period < std::chrono::microseconds(50) || *period > std::chrono::seconds(1)) {
-    fmt::print(stderr, "error: --period: expected a cycle period between 50us and 1s (e.g. 1ms, 250us), got '{}'\n",
-               args.period);
-    return 2;
-  }
-  const auto cycles = static_cast<std::uint64_t>(std::max(1.0, std::round(args.seconds / to_seconds(*period))));
+  const double seconds = to_seconds(args.duration);
+  const Duration period = args.period;  // checked by its option: 50us .. 1s
+  const auto cycles = static_cast<std::uint64_t>(std::max(1.0, std::round(seconds / to_seconds(period))));
 
   std::optional<LoadGenerator> load;
   if (args.load) load.emplace(std::max(1u, std::thread::hardware_concurrency()));
@@ -115,7 +108,7 @@ int latency_command(const LatencyArgs& args) {
   SteadyClock clock;
   std::optional<runtime::linux_rt::AbsoluteSleeper> sleeper;
   if (realtime) sleeper.emplace(clock);
-  runtime::AsioScheduler scheduler(io, clock, *period, sleeper ? &*sleeper : nullptr);
+  runtime::AsioScheduler scheduler(io, clock, period, sleeper ? &*sleeper : nullptr);
   asio::signal_set signals(io, SIGINT, SIGTERM);
   bool interrupted = false;
   signals.async_wait([&](const std::error_code& ec, int) {
@@ -124,8 +117,8 @@ int latency_command(const LatencyArgs& args) {
     scheduler.stop();
   });
   if (!args.json)
-    fmt::print("measuring wake-up latency for {:g} s at {} ({}{}), Ctrl-C ends early...\n", args.seconds,
-               period_text(*period), realtime ? realtime->report().describe() : "normal scheduling, Asio timer",
+    fmt::print("measuring wake-up latency for {:g} s at {} ({}{}), Ctrl-C ends early...\n", seconds,
+               period_text(period), realtime ? realtime->report().describe() : "normal scheduling, Asio timer",
                load ? ", under load" : "");
   std::fflush(stdout);
   runtime::SchedulerStats stats;
@@ -148,7 +141,7 @@ int latency_command(const LatencyArgs& args) {
         "{{\"seconds\":{:.6f},\"period_us\":{:.3f},\"realtime\":{},\"load\":{},\"interrupted\":{},\"cycles\":{},"
         "\"overruns\":{},\"skipped_cycles\":{},\"max_cycle_work_us\":{:.3f},\"wake_latency\":{},"
         "\"recommended_min_period_us\":{}}}\n",
-        to_seconds(stats.wall), us(*period), report.requested ? realtime_json(report) : "null", args.load, interrupted,
+        to_seconds(stats.wall), us(period), report.requested ? realtime_json(report) : "null", args.load, interrupted,
         stats.cycles, stats.overruns, stats.skipped_cycles, us(stats.max_cycle_work), runtime::latency_json(h),
         recommended ? fmt::format("{:.0f}", us(*recommended)) : "null");
     return 0;
@@ -174,15 +167,19 @@ void register_latency_command(Context& ctx) {
   auto args = std::make_shared<LatencyArgs>();
   auto* cmd = ctx.app.add_subcommand("latency", "Measure this machine's cycle wake-up latency (like cyclictest)");
   cmd->footer(
-      "Runs the cycle scheduler's own wake-up loop with an empty cycle for --seconds at --period and prints\n"
+      "Runs the cycle scheduler's own wake-up loop with an empty cycle for --duration at --period and prints\n"
       "the wake-up latency (actual wake-up minus deadline: min, mean, p99, p99.9, max and a histogram),\n"
       "overruns and skipped cycles, and the smallest standard cycle period at least twice the worst latency.\n"
       "Without --realtime it measures what `hilbridge run` gets on normal scheduling (Asio timer); with\n"
       "--realtime what `hilbridge run --realtime` gets. --load adds one CPU and memory hog per CPU.\n"
       "Run it before choosing a scenario's period: docs/runtime.md. Exit status: 0 measured; 2 bad option or\n"
       "a real-time setting refused (the message says what to do).");
-  cmd->add_option("--seconds", args->seconds, "How long to measure (default 10)");
-  cmd->add_option("--period", args->period, "Cycle period to wake up at (default 1ms; 50us .. 1s)");
+  const DurationRange duration_range{std::chrono::microseconds(1), std::chrono::hours(24)};
+  add_duration_option(*cmd, "--duration", args->duration, "How long to measure, e.g. 60s (default 10s; at most 24h)",
+                      "s", duration_range);
+  add_duration_alias(*cmd, "--seconds", "--duration", args->duration, "s", duration_range);
+  add_duration_option(*cmd, "--period", args->period, "Cycle period to wake up at (default 1ms; 50us .. 1s)", "s",
+                      {std::chrono::microseconds(50), std::chrono::seconds(1)});
   cmd->add_flag("--realtime{80}", args->realtime_priority,
                 "Measure with the real-time settings of `hilbridge run --realtime` at SCHED_FIFO PRIO (default 80)")
       ->check(CLI::Range(1, 99));

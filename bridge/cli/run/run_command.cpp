@@ -6,6 +6,7 @@
 
 #include "examples.hpp"
 #include "hil/cli/context.hpp"
+#include "hil/cli/duration_option.hpp"
 #include "hil/cli/json_output.hpp"
 #include "hil/runtime/runner.hpp"
 #include "hil/runtime/scenario_loader.hpp"
@@ -29,7 +30,7 @@ struct RunArgs {
   bool json = false;
   std::string trace;
   std::string plot;
-  std::string duration;
+  Duration duration{};        ///< 0: the scenario's own duration:
   int realtime_priority = 0;  ///< --realtime[=PRIO]; 0 = not given
   int realtime_cpu = -1;      ///< --realtime-cpu; -1 = not given
   bool realtime_fallback = false;
@@ -66,13 +67,9 @@ int run_command(Context& ctx, const RunArgs& args) {
   }
   auto scenario = runtime::load_scenario(file);
   if (!scenario) return failed(scenario.error().describe());
-  if (!args.duration.empty()) {
-    const auto d = runtime::parse_duration(args.duration);
-    if (!d || *d <= Duration::zero())
-      return failed(
-          fmt::format("--duration: expected a duration > 0 (seconds, or '250ms', '60s'), got '{}'", args.duration));
-    scenario->duration = *d;
-    scenario->timeout = std::max(scenario->timeout, *d);
+  if (args.duration > Duration::zero()) {
+    scenario->duration = args.duration;
+    scenario->timeout = std::max(scenario->timeout, args.duration);
     // "Run this long, whatever the program does": a cut by --duration is what was asked for.
     scenario->cut_off_expected = true;
   }
@@ -142,8 +139,9 @@ void register_run(Context& ctx) {
   run->add_flag("--json", args->json,
                 "Print the result as JSON on stdout instead of the summary (scheduler statistics with the "
                 "wake-up latency histogram, real-time settings); the live status goes to stderr");
-  run->add_option("--duration", args->duration,
-                  "Run this long (e.g. 60s), whatever the program does; overrides the scenario's duration:");
+  add_duration_option(*run, "--duration", args->duration,
+                      "Run this long (e.g. 60s), whatever the program does; overrides the scenario's duration:", "s",
+                      {std::chrono::microseconds(1)});
   run->add_flag("--realtime{80}", args->realtime_priority,
                 "Run the cycle thread on real time: SCHED_FIFO at PRIO (default 80; --realtime=90), memory "
                 "locked, pinned to its own CPU, /dev/cpu_dma_latency held at 0, clock_nanosleep wake-ups. "

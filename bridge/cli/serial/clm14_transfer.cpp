@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// hilbridge download/upload clm14: programs and parameter sets over the CLM1.4 ASCII protocol.
+// hilbridge upload/download clm14: programs and parameter sets over the CLM1.4 ASCII protocol.
 #include <fmt/format.h>
 
 #include <filesystem>
@@ -40,14 +40,14 @@ std::expected<clm::FileKind, std::string> kind_of(const TransferOptions& o, std:
 clm::ClientOptions client_options(const LinkOptions& l) {
   clm::ClientOptions c;
   c.station = l.station;
-  c.response_timeout = std::chrono::milliseconds(l.timeout_ms);
+  c.response_timeout = l.timeout;
   c.retries = l.retries;
   return c;
 }
 
 }  // namespace
 
-int clm14_download(const TransferOptions& o) {
+int clm14_read(const TransferOptions& o) {
   auto data = clm::load_device_data();
   if (!data) {
     fmt::print(stderr, "error: device profile clm14: {}\n", data.error());
@@ -71,9 +71,9 @@ int clm14_download(const TransferOptions& o) {
   clm::ParameterDevice par(client);
   hil::serial::ItemDevice& dev = *kind == clm::FileKind::program ? static_cast<hil::serial::ItemDevice&>(prog) : par;
   install_interrupt_handler();
-  ProgressBar bar(fmt::format("download {}", *kind == clm::FileKind::program ? "program" : "parameters"), keys.size(),
+  ProgressBar bar(fmt::format("upload {}", *kind == clm::FileKind::program ? "program" : "parameters"), keys.size(),
                   *kind == clm::FileKind::program ? "lines" : "params", clock);
-  auto items = hil::serial::download_items(
+  auto items = hil::serial::read_items(
       dev, keys, [&](std::size_t d, std::size_t) { bar.update(d); }, &interrupted());
   if (!items) {
     bar.finish("failed");
@@ -99,7 +99,7 @@ int clm14_download(const TransferOptions& o) {
   return 0;
 }
 
-int clm14_upload(const TransferOptions& o) {
+int clm14_send(const TransferOptions& o) {
   auto data = clm::load_device_data();
   if (!data) {
     fmt::print(stderr, "error: device profile clm14: {}\n", data.error());
@@ -132,7 +132,7 @@ int clm14_upload(const TransferOptions& o) {
     if (auto j = hil::serial::ResumeJournal::load(o.file)) {
       if (j->hash != journal.hash && !o.force) {
         fmt::print(stderr,
-                   "error: {} changed since the interrupted upload; resume would mix two versions. Upload from the "
+                   "error: {} changed since the interrupted download; resume would mix two versions. Download from the "
                    "start (without --resume) or give --force.\n",
                    o.file);
         return 2;
@@ -140,7 +140,7 @@ int clm14_upload(const TransferOptions& o) {
       journal.next = std::min(j->next, items.size());
       fmt::print("resuming at item {} of {} ({})\n", journal.next, items.size(), j->device);
     } else {
-      fmt::print("no interrupted upload of {} recorded; starting at the beginning\n", o.file);
+      fmt::print("no interrupted download of {} recorded; starting at the beginning\n", o.file);
     }
   }
   SteadyClock clock;
@@ -154,10 +154,10 @@ int clm14_upload(const TransferOptions& o) {
   clm::ParameterDevice par(client);
   hil::serial::ItemDevice& dev = *kind == clm::FileKind::program ? static_cast<hil::serial::ItemDevice&>(prog) : par;
   install_interrupt_handler();
-  ProgressBar bar(fmt::format("upload {}", o.file), items.size(), "items", clock);
+  ProgressBar bar(fmt::format("download {}", o.file), items.size(), "items", clock);
   bar.update(journal.next);
   std::size_t since_save = 0;
-  auto report = hil::serial::upload_items(
+  auto report = hil::serial::send_items(
       dev, items, journal.next, [&](std::size_t d, std::size_t) { bar.update(d); }, &interrupted(),
       [&](std::size_t idx) {
         journal.next = idx + 1;
@@ -169,7 +169,7 @@ int clm14_upload(const TransferOptions& o) {
   if (!report.ok()) {
     bar.finish(report.cancelled ? "interrupted" : "failed");
     (void)journal.save(o.file);
-    fmt::print(stderr, "upload of {} incomplete: {}\n", o.file, report.describe());
+    fmt::print(stderr, "download of {} incomplete: {}\n", o.file, report.describe());
     if (report.error && report.error->code == clm::SerialError::invalid_mode)
       fmt::print(stderr,
                  "The CLM accepts parameters only in Parameter mode: set input X3/1 (Parameter) and clear X3/2 (Auto), "
@@ -191,7 +191,7 @@ int clm14_upload(const TransferOptions& o) {
   vbar.finish(diffs->empty() ? "identical" : "differences");
   for (const auto& d : *diffs) fmt::print(stderr, "differs {}: file '{}' device '{}'\n", d.key, d.expected, d.actual);
   if (!diffs->empty()) {
-    fmt::print(stderr, "error: {} item(s) differ after upload\n", diffs->size());
+    fmt::print(stderr, "error: {} item(s) differ after download\n", diffs->size());
     return 1;
   }
   fmt::print("verified: the device holds exactly {}\n", o.file);

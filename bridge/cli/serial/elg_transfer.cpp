@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// hilbridge download/upload elg: SINUMERIK ELG machine-data (%TEA1) and setting-data (%SEA) tapes.
+// hilbridge upload/download elg: SINUMERIK ELG machine-data (%TEA1) and setting-data (%SEA) tapes.
 #include <fmt/format.h>
 
 #include <array>
@@ -61,13 +61,13 @@ std::expected<std::vector<tp::ElgSection>, std::string> read_device(hil::serial:
                                                                     const TransferOptions& o) {
   std::vector<tp::ElgSection> all;
   const bool want_sd = o.what.empty() || o.what == "both" || o.what == "sd";
-  ProgressBar bar("download elg tape", 0, "bytes", clock);
+  ProgressBar bar("upload elg tape", 0, "bytes", clock);
   // The ELG outputs MD on the first Data Start and SD on the second.
-  auto md = read_section(s, clock, std::chrono::milliseconds(o.link.timeout_ms), bar);
+  auto md = read_section(s, clock, o.link.timeout, bar);
   if (!md) return std::unexpected(md.error());
   if (o.what.empty() || o.what == "both" || o.what == "md") all.insert(all.end(), md->begin(), md->end());
   if (want_sd) {
-    auto sd = read_section(s, clock, std::chrono::milliseconds(o.link.timeout_ms), bar);
+    auto sd = read_section(s, clock, o.link.timeout, bar);
     if (!sd) return std::unexpected(sd.error());
     all.insert(all.end(), sd->begin(), sd->end());
   }
@@ -77,7 +77,7 @@ std::expected<std::vector<tp::ElgSection>, std::string> read_device(hil::serial:
 
 }  // namespace
 
-int elg_download(const TransferOptions& o) {
+int elg_read(const TransferOptions& o) {
   if (!o.what.empty() && o.what != "md" && o.what != "sd" && o.what != "both") {
     fmt::print(stderr, "error: --what for elg: md, sd or both\n");
     return 2;
@@ -107,7 +107,7 @@ int elg_download(const TransferOptions& o) {
   return 0;
 }
 
-int elg_upload(const TransferOptions& o) {
+int elg_send(const TransferOptions& o) {
   const auto text = read_text_file(o.file);
   if (!text) {
     fmt::print(stderr, "error: {}\nNothing was sent.\n", text.error());
@@ -151,7 +151,7 @@ int elg_upload(const TransferOptions& o) {
     return 1;
   }
   install_interrupt_handler();
-  ProgressBar bar(fmt::format("upload {}", o.file), tape->size(), "bytes", clock);
+  ProgressBar bar(fmt::format("download {}", o.file), tape->size(), "bytes", clock);
   std::size_t pos = 0;
   while (pos < tape->size()) {
     if (interrupted()) break;
@@ -159,10 +159,11 @@ int elg_upload(const TransferOptions& o) {
     // The ELG's time monitoring allows 60 s of XOFF.
     if (auto ec = (*link)->write(std::span(tape->data() + pos, n), std::chrono::seconds(60))) {
       bar.finish("failed");
-      fmt::print(stderr,
-                 "upload of {} stopped after {} of {} tape bytes: {}\nThe ELG takes over a tape only when it was read "
-                 "completely: its data are unchanged. Send the tape again.\n",
-                 o.file, pos, tape->size(), ec.message());
+      fmt::print(
+          stderr,
+          "download of {} stopped after {} of {} tape bytes: {}\nThe ELG takes over a tape only when it was read "
+          "completely: its data are unchanged. Send the tape again.\n",
+          o.file, pos, tape->size(), ec.message());
       return 1;
     }
     pos += n;
@@ -170,7 +171,7 @@ int elg_upload(const TransferOptions& o) {
   }
   if (pos < tape->size()) {
     bar.finish("interrupted");
-    fmt::print(stderr, "upload interrupted after {} of {} tape bytes; the ELG discards an incomplete tape.\n", pos,
+    fmt::print(stderr, "download interrupted after {} of {} tape bytes; the ELG discards an incomplete tape.\n", pos,
                tape->size());
     return 1;
   }
@@ -197,7 +198,7 @@ int elg_upload(const TransferOptions& o) {
     }
   }
   if (diffs > 0) {
-    fmt::print(stderr, "error: {} datum/data differ after upload (the ELG rejected the tape? check its alarm)\n",
+    fmt::print(stderr, "error: {} datum/data differ after download (the ELG rejected the tape? check its alarm)\n",
                diffs);
     return 1;
   }

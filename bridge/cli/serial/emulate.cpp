@@ -13,6 +13,7 @@
 #include <optional>
 #include <thread>
 
+#include "hil/cli/duration_option.hpp"
 #include "hil/serial/linux/ports.hpp"
 #include "hil/serial/serial_stream.hpp"
 
@@ -29,11 +30,10 @@ void add_emulate_options(CLI::App& cmd, EmulateOptions& o) {
   cmd.add_option("--flow", o.link.flow, "Flow control: none, rtscts or xonxoff")->capture_default_str();
   cmd.add_option("--xon", o.link.xon, "XON byte")->capture_default_str();
   cmd.add_option("--xoff", o.link.xoff, "XOFF byte")->capture_default_str();
-  cmd.add_option("--idle-timeout", o.idle_timeout_s,
-                 "With --tcp: close a client that sends nothing for this many seconds, so an idle or "
-                 "half-open client does not hold the line")
-      ->capture_default_str()
-      ->check(CLI::Range(0.1, 86400.0));
+  add_duration_option(cmd, "--idle-timeout", o.idle_timeout,
+                      "With --tcp: close a client that sends nothing for this long, so an idle or half-open client "
+                      "does not hold the line (default 60s; 100ms .. 24h)",
+                      "s", {std::chrono::milliseconds(100), std::chrono::hours(24)});
   cmd.add_option("--state", o.state_file,
                  "State file (saved atomically whenever the line is quiet after a change); default "
                  "$XDG_STATE_HOME/hilbridge/<device>.json; 'none' keeps nothing");
@@ -119,8 +119,9 @@ int serve(mocks::legacy::Endpoint& endpoint, const EmulateOptions& o, const std:
         if (!host) host = std::make_unique<mocks::legacy::EndpointHost>(endpoint, *stream, clock, state);
       }
       const auto ec = host->step(std::chrono::milliseconds(50));
-      const bool idle = listener && clock.now() - host->last_rx() > from_seconds(o.idle_timeout_s);
-      if (idle) fmt::print(stderr, "closing the TCP client: nothing received for {} s\n", o.idle_timeout_s);
+      const bool idle = listener && clock.now() - host->last_rx() > o.idle_timeout;
+      if (idle)
+        fmt::print(stderr, "closing the TCP client: nothing received for {}\n", format_duration(o.idle_timeout));
       if (listener && (ec == hil::serial::LineError::closed || idle)) {
         // The TCP client went away (or idles): keep the state, wait for the next one.
         std::lock_guard lock(endpoint_mutex);

@@ -16,9 +16,10 @@ struct EmulateOptions {
   bool pty = false;
   int tcp_port = -1;  ///< >= 0: listen on this TCP port (0 = any free port)
   std::string bind = "127.0.0.1";
-  LinkOptions link;              ///< baud/format/flow for the emulator's side of the line
-  std::string state_file;        ///< "" = default path per device; "none" = no persistence
-  double idle_timeout_s = 60.0;  ///< TCP: a client that sends nothing this long is closed (frees the line)
+  LinkOptions link;        ///< baud/format/flow for the emulator's side of the line
+  std::string state_file;  ///< "" = default path per device; "none" = no persistence
+  Duration idle_timeout =
+      std::chrono::seconds(60);  ///< TCP: a client that sends nothing this long is closed (frees the line)
 };
 
 void add_emulate_options(CLI::App& cmd, EmulateOptions& o);

@@ -12,6 +12,7 @@
 
 #include "emulate.hpp"
 #include "hil/cli/context.hpp"
+#include "hil/cli/duration_option.hpp"
 #include "hil/controllers/clm14/motion_axis_port.hpp"
 #include "hil/controllers/s5/ip247_module_endpoint.hpp"
 #include "hil/core/clock.hpp"
@@ -281,21 +282,24 @@ void register_emulators(Context& ctx) {
                  : "Emulated WF 725/726 data codes behind 3964R/RK512 (DB number = data code; code 1 = MD1..MD50)");
     add_emulate_options(*cmd, *so);
     auto switches = std::make_shared<std::vector<std::string>>();
-    auto cycle_ms = std::make_shared<double>(1.0);
+    auto cycle = std::make_shared<Duration>(std::chrono::milliseconds(1));
     if (dev == "ip247") {
       cmd->add_option("--switch", *switches,
                       "Mock switch of an axis, actuated as a function of the pulses output: "
                       "AXIS:limit-start:PULSES, AXIS:limit-end:PULSES or AXIS:cam:FROM:TO; repeatable");
-      cmd->add_option("--cycle-ms", *cycle_ms, "Module cycle in ms")->capture_default_str();
+      const DurationRange cycle_range{std::chrono::microseconds(1), std::chrono::seconds(1)};
+      add_duration_option(*cmd, "--cycle", *cycle, "Module cycle, e.g. 2ms (default 1ms; 1us .. 1s)", "ms",
+                          cycle_range);
+      add_duration_alias(*cmd, "--cycle-ms", "--cycle", *cycle, "ms", cycle_range);
     }
-    cmd->callback([&ctx, so, dev, switches, cycle_ms] {
+    cmd->callback([&ctx, so, dev, switches, cycle] {
       std::unique_ptr<lg::DbPolicy> policy;
       hil::controllers::s5::Ip247ModulePolicy* module = nullptr;
       if (dev == "ip247") {
         // A running module: 3 axes on the IP247 step planner, DX1..3 = axis interface DBs
         // (docs/ip247.md), DB n = MD and VP images.
         hil::controllers::s5::Ip247ModuleOptions mo;
-        mo.cycle = std::chrono::nanoseconds(static_cast<std::int64_t>(*cycle_ms * 1e6));
+        mo.cycle = *cycle;
         for (const auto& sw : *switches) {
           int axis = 0;
           long long a = 0, b = 0;

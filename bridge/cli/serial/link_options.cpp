@@ -7,6 +7,8 @@
 
 #include <charconv>
 
+#include "hil/cli/duration_option.hpp"
+#include "hil/cli/endpoint_text.hpp"
 #include "hil/serial/linux/ports.hpp"
 #include "hil/serial/serial_stream.hpp"
 
@@ -14,7 +16,7 @@ namespace hil::cli::serial_cli {
 
 void add_link_options(CLI::App& cmd, LinkOptions& o, bool with_station) {
   cmd.add_option("--port,-p", o.port,
-                 "Serial port (/dev/ttyUSB0, a /dev/pts/N printed by `hilbridge emulate`), or tcp:HOST:PORT for a "
+                 "Serial port (/dev/ttyUSB0, a /dev/pts/N printed by `hilbridge emulate`), or tcp://HOST:PORT for a "
                  "serial-over-IP adapter")
       ->required();
   cmd.add_option("--baud,-b", o.baud, "Baud rate, any value 110..115200")->capture_default_str();
@@ -30,9 +32,10 @@ void add_link_options(CLI::App& cmd, LinkOptions& o, bool with_station) {
     cmd.add_option("--station,-s", o.station, "RS-485 station 1..32 (0 = RS-232 point to point)")
         ->check(CLI::Range(0, 32))
         ->capture_default_str();
-  cmd.add_option("--timeout-ms", o.timeout_ms, "Response timeout per telegram in ms")
-      ->check(CLI::Range(10, 600000))
-      ->capture_default_str();
+  const DurationRange timeout_range{std::chrono::milliseconds(10), std::chrono::minutes(10)};
+  add_duration_option(cmd, "--timeout", o.timeout, "Response timeout per telegram, e.g. 2s (default 1s; 10ms .. 10min)",
+                      "ms", timeout_range);
+  add_duration_alias(cmd, "--timeout-ms", "--timeout", o.timeout, "ms", timeout_range);
   cmd.add_option("--retries", o.retries, "Repeats of a telegram after a checksum error or timeout")
       ->check(CLI::Range(0, 20))
       ->capture_default_str();
@@ -73,10 +76,12 @@ std::expected<std::unique_ptr<hil::serial::ByteStream>, std::string> open_link(c
                                                                                const Clock& clock) {
   auto f = line_format(o);
   if (!f) return std::unexpected(f.error());
+  // A serial-over-IP adapter: tcp://HOST:PORT (the CLI's TCP spelling, docs/cli.md) or tcp:HOST:PORT
+  // (as before, and as `hilbridge emulate --tcp` prints it).
   if (o.port.starts_with("tcp:")) {
-    const std::string rest = o.port.substr(4);
+    const std::string rest(o.port.starts_with("tcp://") ? strip_tcp_scheme(o.port) : o.port.substr(4));
     const auto colon = rest.rfind(':');
-    if (colon == std::string::npos) return std::unexpected(fmt::format("--port {}: expected tcp:HOST:PORT", o.port));
+    if (colon == std::string::npos) return std::unexpected(fmt::format("--port {}: expected tcp://HOST:PORT", o.port));
     // The whole text, 1..65535: 99999 or 80x is an error, never a cast to another port.
     const std::string digits = rest.substr(colon + 1);
     unsigned port = 0;

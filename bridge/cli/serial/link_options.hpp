@@ -25,11 +25,12 @@ struct LinkOptions {
   std::string xoff = "0x13";
   bool dtr_dsr = false;
   int station = 0;
-  int timeout_ms = 1000;
+  Duration timeout = std::chrono::milliseconds(1000);  ///< per telegram
   int retries = 2;
 };
 
-/// Adds --port, --baud, --format, --flow, --xon, --xoff, --dtr-dsr, --station, --timeout-ms, --retries.
+/// Adds --port, --baud, --format, --flow, --xon, --xoff, --dtr-dsr, --station, --timeout (alias --timeout-ms),
+/// --retries.
 void add_link_options(CLI::App& cmd, LinkOptions& o, bool with_station);
 /// The LineFormat the options describe, or a message saying which option is wrong.
 [[nodiscard]] std::expected<hil::serial::LineFormat, std::string> line_format(const LinkOptions& o);

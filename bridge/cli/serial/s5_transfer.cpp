@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// hilbridge download/upload ip247|wf725: data-block images over 3964R + RK512.
+// hilbridge upload/download ip247|wf725: data-block images over 3964R + RK512.
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
@@ -24,7 +24,7 @@ s5::Rk512ClientOptions client_options(const LinkOptions& l) {
   s5::Rk512ClientOptions c;
   c.procedure.transmit_attempts = l.retries + 1;
   c.procedure.connect_attempts = l.retries + 1;
-  c.reaction_timeout = std::max<Duration>(std::chrono::milliseconds(l.timeout_ms), std::chrono::seconds(1));
+  c.reaction_timeout = std::max<Duration>(l.timeout, std::chrono::seconds(1));
   return c;
 }
 
@@ -52,7 +52,7 @@ std::expected<s5::DbImage, std::string> fetch_image(s5::Rk512Client& c, const st
 
 }  // namespace
 
-int s5_download(const TransferOptions& o) {
+int s5_read(const TransferOptions& o) {
   std::vector<int> dbs = o.blocks;
   if (dbs.empty()) {
     if (o.device == "wf725")
@@ -74,7 +74,7 @@ int s5_download(const TransferOptions& o) {
     return 1;
   }
   s5::Rk512Client client(**link, clock, client_options(o.link));
-  ProgressBar bar(fmt::format("download {}", o.device), dbs.size(), "DBs", clock);
+  ProgressBar bar(fmt::format("upload {}", o.device), dbs.size(), "DBs", clock);
   std::vector<s5::DbImage> images;
   for (std::size_t i = 0; i < dbs.size(); ++i) {
     auto img = fetch_image(client, o.device, static_cast<std::uint8_t>(dbs[i]));
@@ -99,7 +99,7 @@ int s5_download(const TransferOptions& o) {
   return 0;
 }
 
-int s5_upload(const TransferOptions& o) {
+int s5_send(const TransferOptions& o) {
   const auto input = read_text_file(o.file);
   if (!input) {
     fmt::print(stderr, "error: {}\nNothing was sent.\n", input.error());
@@ -182,7 +182,7 @@ int s5_upload(const TransferOptions& o) {
   }
   s5::Rk512Client client(**link, clock, client_options(o.link));
   install_interrupt_handler();
-  ProgressBar bar(fmt::format("upload {}", o.file), images->size(), "DBs", clock);
+  ProgressBar bar(fmt::format("download {}", o.file), images->size(), "DBs", clock);
   std::vector<std::string> done;
   for (std::size_t i = journal.next; i < images->size(); ++i) {
     const auto& img = (*images)[i];
@@ -198,7 +198,7 @@ int s5_upload(const TransferOptions& o) {
     if (!r) {
       bar.finish("failed");
       (void)journal.save(o.file);
-      fmt::print(stderr, "upload of {} stopped at DB{}: {}\n", o.file, img.db, r.error().message);
+      fmt::print(stderr, "download of {} stopped at DB{}: {}\n", o.file, img.db, r.error().message);
       if (r.error().code == s5::Rk512Error::db_exists)
         fmt::print(stderr, "The IP247 has no overwrite: add --replace to delete DB{} first.\n", img.db);
       fmt::print(stderr, "Confirmed by the module: {}. DB{} {}. Resume with --resume.\n",
@@ -238,7 +238,7 @@ int s5_upload(const TransferOptions& o) {
     }
   }
   if (diffs > 0) {
-    fmt::print(stderr, "error: {} data word(s) differ after upload\n", diffs);
+    fmt::print(stderr, "error: {} data word(s) differ after download\n", diffs);
     return 1;
   }
   fmt::print("verified: the module holds exactly {}\n", o.file);

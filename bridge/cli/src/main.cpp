@@ -49,7 +49,7 @@ int main(int argc, char** argv) {
       try {
         app.parse(std::vector<std::string>{"run"});
       } catch (const CLI::ParseError& e) {
-        return app.exit(e);
+        return app.exit(e) == 0 ? 0 : 2;  // usage errors exit 2, as above
       }
     } else {
       fmt::print("{}", app.help());

@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "coupling_loader.hpp"
+#include "hil/core/duration_text.hpp"
 #include "hil/core/text_file.hpp"
 #include "io_link_loader.hpp"
 #include "yaml_reader.hpp"
@@ -834,30 +835,7 @@ std::optional<std::pair<std::int64_t, std::int64_t>> parse_ratio(std::string_vie
 }
 
 std::optional<Duration> parse_duration(std::string_view text) {
-  auto trim = [](std::string_view s) {
-    while (!s.empty() && std::isspace(static_cast<unsigned char>(s.front()))) s.remove_prefix(1);
-    while (!s.empty() && std::isspace(static_cast<unsigned char>(s.back()))) s.remove_suffix(1);
-    return s;
-  };
-  text = trim(text);
-  double value = 0.0;
-  const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
-  if (ec != std::errc{} || end == text.data()) return std::nullopt;
-  const std::string_view unit = trim(std::string_view(end, static_cast<std::size_t>(text.data() + text.size() - end)));
-  double scale = 1.0;
-  if (unit.empty() || unit == "s")
-    scale = 1.0;
-  else if (unit == "ms")
-    scale = 1e-3;
-  else if (unit == "us")
-    scale = 1e-6;
-  else if (unit == "min")
-    scale = 60.0;
-  else
-    return std::nullopt;
-  const double seconds = value * scale;
-  if (!std::isfinite(seconds) || seconds < 0.0 || seconds > 10.0 * 86400.0) return std::nullopt;
-  return Duration{std::llround(seconds * 1e9)};  // round: 100us must not become 99999ns
+  return parse_duration_text(text, "s");  // the one grammar of scenario files and the CLI
 }
 
 std::optional<FaultCode> parse_fault_code(std::string_view text) {

@@ -171,14 +171,14 @@ class Loader {
       const std::string type = n["type"] ? n["type"].as<std::string>("") : "u16";
       if (type == "u16")
         f.format = {1, false, WordOrder::high_first};
-      else if (type == "s16")
+      else if (type == "i16" || type == "s16")  // i16: the CLI's type names (docs/cli.md); s16 as before
         f.format = {1, true, WordOrder::high_first};
       else if (type == "u32")
         f.format = {2, false, WordOrder::high_first};
-      else if (type == "s32")
+      else if (type == "i32" || type == "s32")
         f.format = {2, true, WordOrder::high_first};
       else
-        return error(n["type"], key + ".type", fmt::format("expected u16, s16, u32 or s32, got '{}'", type));
+        return error(n["type"], key + ".type", fmt::format("expected u16, i16, u32 or i32, got '{}'", type));
       if (auto wo = n["word_order"]) {
         const auto s = wo.as<std::string>("");
         if (s == "high_first")

@@ -18,7 +18,7 @@
 
 namespace hil::serial {
 
-std::string UploadReport::describe() const {
+std::string SendReport::describe() const {
   std::string s;
   if (confirmed == 0) {
     s = "nothing confirmed by the device";
@@ -34,10 +34,9 @@ std::string UploadReport::describe() const {
   return s;
 }
 
-UploadReport upload_items(ItemDevice& device, const std::vector<Item>& items, std::size_t start,
-                          const ProgressFn& progress, const std::atomic<bool>* cancel,
-                          const std::function<void(std::size_t)>& on_confirmed) {
-  UploadReport r;
+SendReport send_items(ItemDevice& device, const std::vector<Item>& items, std::size_t start, const ProgressFn& progress,
+                      const std::atomic<bool>* cancel, const std::function<void(std::size_t)>& on_confirmed) {
+  SendReport r;
   r.total = items.size();
   r.start = std::min(start, items.size());
   for (std::size_t i = r.start; i < items.size(); ++i) {
@@ -59,9 +58,8 @@ UploadReport upload_items(ItemDevice& device, const std::vector<Item>& items, st
   return r;
 }
 
-std::expected<std::vector<Item>, ItemError> download_items(ItemDevice& device, const std::vector<std::string>& keys,
-                                                           const ProgressFn& progress,
-                                                           const std::atomic<bool>* cancel) {
+std::expected<std::vector<Item>, ItemError> read_items(ItemDevice& device, const std::vector<std::string>& keys,
+                                                       const ProgressFn& progress, const std::atomic<bool>* cancel) {
   std::vector<Item> out;
   out.reserve(keys.size());
   for (std::size_t i = 0; i < keys.size(); ++i) {
@@ -170,7 +168,7 @@ std::string ResumeJournal::text() const {
 
 std::optional<ResumeJournal> ResumeJournal::parse(std::string_view text) {
   // Exactly the lines text() writes: "hash <16 hex digits>", "next <decimal>", "device <text>".
-  // Anything else (truncated, edited, binary) is no journal: the upload starts from the beginning.
+  // Anything else (truncated, edited, binary) is no journal: the send starts from the beginning.
   ResumeJournal j;
   bool hash = false, next = false, device = false;
   while (!text.empty()) {

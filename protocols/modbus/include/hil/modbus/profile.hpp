@@ -99,7 +99,7 @@ struct Profile {
 };
 
 /// Parse a profile from YAML text. `source` names the file in errors. Checks: required fields
-/// (control_word, status_word, target_position, actual_position), types (u16 s16 u32 s32),
+/// (control_word, status_word, target_position, actual_position), types (u16 i16 u32 i32; s16 s32 too),
 /// overlapping registers, FC choices (read 3|4, write 6|16, FC 23 only with holding feedback
 /// and contiguous blocks), vendor bits in 0..15 and present for a vendor state machine.
 [[nodiscard]] std::expected<Profile, ConfigError> parse_profile(const std::string& yaml_text,

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 #pragma once
-// Device-independent upload / download / read-back verification of keyed text items (program
+// Device-independent sending (file -> device: the CLI's `download`), reading (device -> file: the
+// CLI's `upload`, CiA 301 / STEP 7 terms, docs/cli.md) and read-back verification of keyed text items (program
 // lines, parameters, data blocks), with progress, cancellation, an exact report of what
 // reached the device, and a resume journal. The device side is an ItemDevice adapter
 // (CLM1.4 client, ELG tape, IP247 blocks).
@@ -47,9 +48,9 @@ class ItemDevice {
 /// done/total items, called after every item.
 using ProgressFn = std::function<void(std::size_t done, std::size_t total)>;
 
-struct UploadReport {
+struct SendReport {
   std::size_t total = 0;                ///< items in the file
-  std::size_t start = 0;                ///< index the upload started at (resume)
+  std::size_t start = 0;                ///< index the send started at (resume)
   std::size_t confirmed = 0;            ///< items [start, start + confirmed) confirmed by the device
   std::optional<std::string> in_doubt;  ///< key sent but not confirmed (may or may not be stored)
   std::vector<std::string> confirmed_keys;
@@ -62,15 +63,15 @@ struct UploadReport {
 
 /// Write items[start..] in order; stops at the first error or when `cancel` becomes true.
 /// `on_confirmed(index)` runs after each confirmed item (resume journal).
-[[nodiscard]] UploadReport upload_items(ItemDevice& device, const std::vector<Item>& items, std::size_t start,
-                                        const ProgressFn& progress, const std::atomic<bool>* cancel,
-                                        const std::function<void(std::size_t)>& on_confirmed = {});
+[[nodiscard]] SendReport send_items(ItemDevice& device, const std::vector<Item>& items, std::size_t start,
+                                    const ProgressFn& progress, const std::atomic<bool>* cancel,
+                                    const std::function<void(std::size_t)>& on_confirmed = {});
 
 /// Read the given keys.
-[[nodiscard]] std::expected<std::vector<Item>, ItemError> download_items(ItemDevice& device,
-                                                                         const std::vector<std::string>& keys,
-                                                                         const ProgressFn& progress,
-                                                                         const std::atomic<bool>* cancel);
+[[nodiscard]] std::expected<std::vector<Item>, ItemError> read_items(ItemDevice& device,
+                                                                     const std::vector<std::string>& keys,
+                                                                     const ProgressFn& progress,
+                                                                     const std::atomic<bool>* cancel);
 
 struct Difference {
   std::string key;
@@ -85,8 +86,8 @@ struct Difference {
 /// FNV-1a 64 of a text (stable content hash for the resume journal).
 [[nodiscard]] std::uint64_t content_hash(std::string_view text) noexcept;
 
-/// Resume journal "<file>.hilbridge-resume": which upload of which file content to which
-/// device reached which index. Written atomically; removed after a complete upload.
+/// Resume journal "<file>.hilbridge-resume": which send (`hilbridge download`) of which file content to which
+/// device reached which index. Written atomically; removed after a complete send.
 struct ResumeJournal {
   std::string device;      ///< "clm14 program on /dev/ttyUSB0 station 0"
   std::uint64_t hash = 0;  ///< content_hash of the file

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
 #pragma once
-// CLM1.4 program lines and parameters as ItemDevices (for upload/download/verify).
+// CLM1.4 program lines and parameters as ItemDevices (for send/read/verify).
 
 #include <string>
 #include <vector>
@@ -37,7 +37,7 @@ class ParameterDevice final : public ItemDevice {
 
 /// Items of a parsed file, in file order.
 [[nodiscard]] std::vector<Item> to_items(const DeviceFile& f);
-/// A program as downloaded: drops the NOP lines after the last instruction.
+/// A program as read from the device: drops the NOP lines after the last instruction.
 [[nodiscard]] DeviceFile program_from_items(const std::vector<Item>& items);
 
 }  // namespace hil::serial::clm14
