@@ -14,6 +14,7 @@
 // Thread: the cycle thread only; cycle() never throws.
 
 #include <expected>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
@@ -101,6 +102,13 @@ class Machine {
   /// bits), opens the device and attaches its source and sink to the controller's image.
   [[nodiscard]] std::optional<ConfigError> attach_io_link(const Scenario& scenario, const IoLink& link,
                                                           const Clock& clock);
+  /// Resolves one linked signal to its image bit (input: an input or data bit; else an output or marker bit).
+  using ResolveLinkBit = std::function<std::expected<controllers::BitAddress, ConfigError>(const IoLinkBit&, bool)>;
+  /// `- drive: AXIS`: DriveInputs / DriveOutputs on the axis, after checking the axis exists and its
+  /// drive has the digital inputs / output bits the link uses.
+  [[nodiscard]] std::optional<ConfigError> make_drive_link(const Scenario& scenario, const IoLink& link,
+                                                           const DriveLinkDevice& device,
+                                                           const ResolveLinkBit& resolve);
   [[nodiscard]] std::optional<ConfigError> bind_controller(const Scenario& scenario);
   /// The controller's copy of a controller axis' spec (units, rotary, windows filled in), else `spec`.
   [[nodiscard]] const AxisSpec& controller_spec(const AxisSpec& spec) const noexcept;
@@ -112,8 +120,11 @@ class Machine {
   std::vector<MachineAxis> axes_;
   MachineCouplings couplings_;
   std::vector<std::unique_ptr<controllers::IoSource>> stimuli_;
-  std::vector<std::unique_ptr<controllers::GpioLink>> gpio_links_;  ///< io_links: gpio
-  std::unique_ptr<controllers::Controller> controller_;             ///< declared after the axes: destroyed first
+  std::vector<std::unique_ptr<controllers::GpioLink>> gpio_links_;    ///< io_links: gpio
+  std::vector<std::unique_ptr<controllers::IoSource>> drive_inputs_;  ///< io_links: drive (after the axes)
+  std::vector<std::unique_ptr<controllers::IoSink>> drive_outputs_;
+  std::vector<std::pair<std::string, std::uint32_t>> drive_output_bits_;  ///< axis -> bits some link drives
+  std::unique_ptr<controllers::Controller> controller_;                   ///< declared after the axes: destroyed first
   std::vector<std::pair<std::string, controllers::BitAddress>> io_signals_;
   std::uint64_t controller_every_ = 1;  ///< run cycles per controller cycle
   std::uint64_t cycle_count_ = 0;
