@@ -276,6 +276,41 @@ program:
   EXPECT_NE(render_svg(few.data()).find("more edges than the plot keeps"), std::string::npos);
 }
 
+TEST(ControllerScenario, ElgAxisFaultsAreTheElgsAxisAlarmsNumberedByMeasuringCircuit) {
+  // The annex tape: Z is the axial axis on measuring circuit 3 (MD 5021), so the motion core's
+  // following-error fault on Z is ELG alarm 116* + 2 = 1162 "CONTOUR MONITORING"; X is the NC's
+  // axis, not measured by the ELG: its fault stays the motion core's.
+  const auto r = run_text(R"(
+period: 1ms
+duration: 3s
+cut_off: expected
+controller:
+  device: sinumerik-elg
+  parameters: elg-hobbing.tape.txt
+  programs: [elg-annex.nc]
+machine:
+  axes:
+    - {name: B, drive: {transport: sim, kv: 200, feedforward: 1.0}}
+    - {name: C, drive: {transport: sim, kv: 200, feedforward: 1.0}}
+    - {name: Z, drive: {transport: sim, kv: 200, feedforward: 1.0}}
+    - {name: X, drive: {transport: sim, kv: 200, feedforward: 1.0}}
+program:
+  - wait: 1s
+  - inject_fault: {axis: Z, fault: following_blowup}
+  - inject_fault: {axis: X, fault: following_blowup}
+  - wait: 2s
+expect:
+  - {axis: Z, fault: "sinumerik-elg.alarms:1162"}
+  - {axis: X, fault: "motion:1"}
+)");
+  ASSERT_TRUE(r) << r.error().describe();
+  EXPECT_TRUE(r->ok) << (r->failures.empty() ? "" : r->failures.front());
+  ASSERT_EQ(r->device_errors.size(), 1U);
+  EXPECT_EQ(r->device_errors[0].code, "1162");
+  EXPECT_EQ(r->device_errors[0].reaction, "drive_off");
+  EXPECT_NE(r->device_errors[0].describe().find("CONTOUR MONITORING"), std::string::npos);
+}
+
 TEST(ControllerScenario, ConfigurationErrorsNameTheKey) {
   const auto unknown_device = run_text(R"(
 controller: {device: wf999, parameters: x.md}

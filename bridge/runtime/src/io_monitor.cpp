@@ -132,7 +132,7 @@ void IoMonitor::finish(Duration t_end, RunResult& r) const {
         }
       }
     }
-    ExpectationResult er{"io", describe(*s.e), s.passed, s.detail, s.e->source.line, s.e->source.path};
+    ExpectationResult er{"io", describe(*s.e), s.passed, s.detail, s.e->source.line, s.e->source.path, true};
     if (!er.passed) {
       r.ok = false;
       r.failures.push_back(fmt::format("I/O: expected {}, {}", er.description, er.detail));

@@ -31,12 +31,12 @@ std::string make_junit_xml(const std::vector<ScenarioOutcome>& outcomes) {
     std::string cases;
     for (const auto& e : r.expectations) {
       cases += fmt::format("    <testcase classname=\"{}\" name=\"{}\" time=\"0\"", suite,
-                           xml_escape(fmt::format("axis {}: {}", e.axis, e.description)));
+                           xml_escape(fmt::format("{}: {}", e.subject(), e.description)));
       if (e.passed) {
         cases += "/>\n";
       } else {
         ++suite_failures;
-        const std::string msg = fmt::format("axis {}: expected {}, {}", e.axis, e.description, e.detail);
+        const std::string msg = fmt::format("{}: expected {}, {}", e.subject(), e.description, e.detail);
         cases += fmt::format(
             ">\n      <failure message=\"{}\" type=\"expectation\">{} ({}:{} {})</failure>\n"
             "    </testcase>\n",

@@ -105,11 +105,13 @@ std::optional<int> whole_number(const std::string& text) {
 }  // namespace
 
 ElgController::ElgController(LoadedParameters parameters, HobbingConfig config, NcProgram program,
-                             std::vector<ControllerAxis> axes, bool auto_start, Duration cycle)
+                             std::vector<ControllerAxis> axes, std::vector<int> circuits, bool auto_start,
+                             Duration cycle)
     : Controller(parameters.profile, std::move(parameters.set), IoLayout{{1, 1, 2, 0}}, cycle),
       config_(std::move(config)),
       program_(std::move(program)),
-      auto_start_(auto_start) {
+      auto_start_(auto_start),
+      circuits_(std::move(circuits)) {
   for (auto& a : axes) add_axis(std::move(a));
   alarms_ = catalogue("alarms");
   (void)io().name_bit("cycle_start", {IoArea::input, in_byte, 0});
@@ -174,9 +176,25 @@ void ElgController::on_cycle(const CycleTime& cycle) noexcept {
   }
 }
 
-std::optional<DeviceErrorCode> ElgController::map_axis_fault(std::size_t, const hil::Fault&,
+std::optional<DeviceErrorCode> ElgController::map_axis_fault(std::size_t axis, const hil::Fault& fault,
                                                              const motion::AxisStatus&) const noexcept {
-  return std::nullopt;  // the ELG numbers no motion-core fault; they stay motion:N
+  // The ELG's axis-specific reset alarms (10.2), base + measuring circuit. Its own coupled
+  // following-error monitor (2215) is the gearbox's; the motion core's supervision maps onto the
+  // monitors the ELG runs on an axis (docs/controllers.md, ELG table).
+  if (alarms_ == nullptr || axis >= circuits_.size() || circuits_[axis] < 0) return std::nullopt;
+  int base = 0;
+  const std::error_code& f = fault.code;
+  if (f == hil::MotionFault::following_error || f == hil::MotionFault::following_error_dynamic)
+    base = 1160;  // contour monitoring (MD 332* band)
+  else if (f == hil::MotionFault::standstill || f == hil::MotionFault::in_position_timeout)
+    base = 1120;  // monitoring of standstill (MD 156 / MD 212*)
+  else if (f == hil::MotionFault::drive_lost)
+    base = 1320;  // hardware control loop: the measuring signals are missing
+  else if (f == hil::MotionFault::not_enabled)
+    base = 1680;  // controller enable for traversing axis refused
+  else
+    return std::nullopt;
+  return DeviceErrorCode{alarms_, base + circuits_[axis]};
 }
 
 void register_elg(ControllerRegistry& registry) {
@@ -298,8 +316,13 @@ void register_elg(ControllerRegistry& registry) {
           return std::unexpected(
               ConfigError{spec.programs.front().string(), program.error().line, 0, "program", program.error().what()});
         }
+        // Measuring circuits (MD 5020/5021 axis numbers 1..4); X is the NC's, not the ELG's.
+        std::vector<int> circuits{static_cast<int>(guide_i), static_cast<int>(drive_i),
+                                  *axial >= 1 && *axial <= 4 ? static_cast<int>(*axial - 1) : -1, -1};
+        if (*tangential != 0)
+          circuits.push_back(*tangential >= 1 && *tangential <= 4 ? static_cast<int>(*tangential - 1) : -1);
         return std::make_unique<ElgController>(std::move(*loaded), std::move(config), std::move(*program),
-                                               std::move(axes), auto_start, cycle);
+                                               std::move(axes), std::move(circuits), auto_start, cycle);
       });
 }
 

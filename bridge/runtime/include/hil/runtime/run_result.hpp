@@ -57,12 +57,15 @@ struct AxisSummary {
 };
 
 struct ExpectationResult {
-  std::string axis;
+  std::string axis;         ///< the axis expected on; "io" for an I/O expectation (`io` set)
   std::string description;  ///< "position 100.000 +/- 0.010 mm at t=2.000 s"
   bool passed = false;
   std::string detail;  ///< why it failed, with values ("was 99.412 mm (off by 0.588 mm)")
   int line = 0;
   std::string path;  ///< "expect[3]"
+  bool io = false;   ///< an I/O expectation (`{io: SIGNAL, ...}`), not an axis'
+  /// "axis x" or "I/O", as reports name what was expected on.
+  [[nodiscard]] std::string subject() const { return io ? std::string("I/O") : "axis " + axis; }
 };
 
 struct RunResult {

@@ -28,8 +28,10 @@ namespace hil::controllers::elg {
 
 class ElgController final : public Controller {
  public:
+  /// `circuits`: per axis (in `axes` order) the ELG's measuring circuit 0..3 (MD 5020/5021), -1 for
+  /// an axis the ELG does not measure (X): the axis alarms 104*..184* are numbered base + circuit.
   ElgController(LoadedParameters parameters, HobbingConfig config, NcProgram program, std::vector<ControllerAxis> axes,
-                bool auto_start, Duration cycle);
+                std::vector<int> circuits, bool auto_start, Duration cycle);
 
   [[nodiscard]] const HobbingMachine* machine() const noexcept { return machine_.get(); }
   /// "C_linkage_error_deg": C's actual position against the hobbing linkage (HobbingMachine).
@@ -51,6 +53,7 @@ class ElgController final : public Controller {
   bool enabled_ = false;
   bool started_ = false;
   std::vector<Alarm> reported_;  ///< the ELG's alarms as last reported as device errors
+  std::vector<int> circuits_;    ///< measuring circuit per axis, -1: none
   const profiles::ErrorCatalogue* alarms_ = nullptr;
 };
 
