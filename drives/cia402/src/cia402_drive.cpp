@@ -59,6 +59,7 @@ Mode Cia402Drive::mode_display(const canopen::ObjectDictionary& img) const {
 bool Cia402Drive::sdo_writes_settled(const canopen::ObjectDictionary& img) const {
   if (writes_in_flight_ != 0) return false;
   for (const auto key : written_) {
+    if (key.index == k_digital_outputs) continue;  // outputs do not hold up a set-point or a mode
     const auto* v = img.find(key.index, key.sub);
     const auto it = last_written_.find(key_of(key));
     if (v != nullptr && (it == last_written_.end() || it->second != v->value)) return false;
