@@ -33,6 +33,8 @@ done
 #   Modbus drive worker + server  test_modbus_loopback, test_modbus_faults, test_modbus_transport,
 #                                 test_modbus_server_abuse, test_modbus_interop_pymodbus_server (the
 #                                 worker against Debian's pymodbus; skips without it)
+#   Modbus I/O link worker        test_controller_modbus (TcpModbusIoBus against the simulated
+#                                 terminal's server), test_modbus_io_terminal (libmodbus client)
 #   socketcand hub + client       test_can_socketcand (loopback), test_can_socketcand_abuse
 #   GPIO edge writer              test_gpio_edge_writer (AsyncEdgeWriter on mock lines)
 #   serial emulator host, TCP     test_serial_line (TcpLine, TcpListener), test_serial_clm14_e2e
@@ -40,6 +42,7 @@ done
 targets=(
   test_modbus_loopback test_modbus_faults test_modbus_transport test_modbus_server_abuse
   test_modbus_interop_pymodbus_server
+  test_controller_modbus test_modbus_io_terminal
   test_can_socketcand test_can_socketcand_abuse
   test_gpio_edge_writer
   test_serial_line test_serial_clm14_e2e
@@ -47,6 +50,7 @@ targets=(
 # Their googletest suites, as ctest names them (Suite.Test).
 suites=(
   ModbusLoopback ModbusFaults ModbusServer ModbusTransport ModbusServerAbuse ModbusPymodbusServer
+  ModbusIoLinkTcp ModbusIoLinkSim TerminalOverTcp
   SocketcandLoopback SocketcandAbuse
   AsyncEdgeWriter
   SerialStream PtyPair TcpLine TcpListener

@@ -72,7 +72,11 @@ TEST(CanopenInterop, PythonCanSdoRightAfterConnectIsAnsweredFiftyTimes) {
   EXPECT_NE(py.output().find("DONE 50 rounds"), std::string::npos) << py.output();
   const auto stats = hub.run([&] { return hub.server->stats(); });
   EXPECT_EQ(stats.dropped_slow_client, 0u);
-  EXPECT_EQ(stats.accepted, 50u);
+  // Late rounds (the machine was busy) are repeated: one accepted connection per round made.
+  const auto at = py.output().rfind("CONNECTIONS ");
+  ASSERT_NE(at, std::string::npos) << py.output();
+  EXPECT_EQ(stats.accepted, std::stoul(py.output().substr(at + 12)));
+  EXPECT_GE(stats.accepted, 50u);
   hub.run([&] {
     ticker.reset();
     node.reset();

@@ -261,7 +261,7 @@ TEST(Ip247Axis, InterruptionAndContinuation) {
   EXPECT_EQ(r.store.erase(4), Ip247Error::none);
 }
 
-TEST(Ip247Axis, DISABLED_LimitSwitchAbortsAndLocksTheDirection) {
+TEST(Ip247Axis, LimitSwitchAbortsAndLocksTheDirection) {
   Rig r;
   // NO switch "end" actuated from 20 mm (2000 pulses) on.
   r.switches = [](Ip247Inputs& in, std::int64_t p) { in.limit_end = p >= 2'000; };
@@ -415,7 +415,7 @@ TEST(Ip247Axis, RotaryForcedDirectionIsAFullRevolution) {
   EXPECT_EQ(bad.load_machine_data(w.md, 0), static_cast<hil::stepdir::Ip247MdError>(21));
 }
 
-TEST(Ip247Axis, DISABLED_ReferenceApproachWithCamAndLimit) {
+TEST(Ip247Axis, ReferenceApproachWithCamAndLimit) {
   Rig r;  // reference direction backward (MD 20h); away = forward
   r.md.reference_speed = 1200;
   // cam between -10 mm and -5 mm, limit end at +100 mm (physical pulses, 10 µm/pulse)

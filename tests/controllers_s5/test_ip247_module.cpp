@@ -34,7 +34,7 @@ struct Module {
 };
 }  // namespace
 
-TEST(Ip247Module, DISABLED_ImagesCommandsAndStatus) {
+TEST(Ip247Module, ImagesCommandsAndStatus) {
   Ip247ModuleOptions o;
   o.switches[0].limit_end_at = 6'000;  // pulses = 60 mm
   Module m(o);
@@ -43,6 +43,7 @@ TEST(Ip247Module, DISABLED_ImagesCommandsAndStatus) {
   EXPECT_EQ(m.policy.on_write(m.store, 1, 0, make_ip247_md_db(md)), Rk512Error::ok);
   EXPECT_EQ(m.policy.on_write(m.store, 1, 0, make_ip247_md_db(md)), Rk512Error::db_exists);
   Ip247MachineData bad = md;
+  bad.db = 2;  // the image's own DB number must be the one it is written to (else rk512:9)
   bad.axis = 2;
   bad.fss_hz = 20'000;
   EXPECT_EQ(m.policy.on_write(m.store, 2, 0, make_ip247_md_db(bad)), Rk512Error::image_rejected);

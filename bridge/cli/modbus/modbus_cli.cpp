@@ -23,6 +23,7 @@
 namespace hil::cli {
 
 void register_emulate_modbus_drive(Context& ctx);  // emulate_modbus_drive.cpp
+void register_emulate_modbus_io(Context& ctx);     // emulate_modbus_io.cpp
 
 namespace {
 
@@ -274,6 +275,7 @@ void register_modbus(Context& ctx) {
   wr->callback([&ctx, common_w, values, fc] { ctx.exit_code = run_write(*common_w, *values, *fc); });
 
   register_emulate_modbus_drive(ctx);
+  register_emulate_modbus_io(ctx);
 }
 
 }  // namespace hil::cli

@@ -14,6 +14,7 @@ void LiveStatus::on_start(const runtime::Scenario& scenario, const runtime::Mach
   lines_ = machine.axes().size() + 1;
   fmt::print(out_, "running {}{}\n", scenario.name.empty() ? scenario.file : scenario.name,
              scenario.description.empty() ? "" : ": " + scenario.description);
+  for (const auto& note : machine.io_link_notes()) fmt::print(out_, "{}\n", note);
   std::fflush(out_);
 }
 

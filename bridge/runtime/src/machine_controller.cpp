@@ -268,6 +268,7 @@ std::optional<ConfigError> Machine::attach_io_link(const Scenario& scenario, con
     if (auto* sink = (*opened)->sink()) io.attach(*sink);
     gpio_links_.push_back(std::move(*opened));
   }
+  if (const auto* m = std::get_if<ModbusLinkDevice>(&link.device)) return make_modbus_link(scenario, link, *m, resolve);
   return std::nullopt;
 }
 

@@ -85,6 +85,7 @@ std::string describe(const Expectation& e, const AxisSpec& axis) {
 
 RunMonitor::RunMonitor(const Scenario& scenario, const Machine& machine)
     : scenario_(scenario), machine_(machine), io_(scenario, machine) {
+  link_outages_seen_.assign(machine.modbus_links().size(), 0);
   for (const auto& a : machine.axes()) tracks_.push_back(AxisTrack{&a, 0.0, {}, {}, {}});
   for (const auto& e : scenario.expectations) {
     ExpectationState s;
@@ -198,6 +199,15 @@ void RunMonitor::observe(Duration t) noexcept {
                                                 e.fault.text, std::string(profiles::to_string(e.reaction)),
                                                 std::string(controllers::to_string(e.ack))});
     }
+  }
+  // An I/O link outage (the terminal stopped answering, refused a request, or its data went
+  // stale) is a fault event of the link, once per outage.
+  const auto& links = machine_.modbus_links();
+  for (std::size_t i = 0; i < links.size() && i < link_outages_seen_.size(); ++i) {
+    const auto& l = *links[i].link;
+    if (l.fault_count() == link_outages_seen_[i]) continue;
+    link_outages_seen_[i] = l.fault_count();
+    faults_.push_back(FaultEvent{t, links[i].name, "io_link", l.fault()});
   }
   io_.observe(t);
   for (auto& s : states_) {
@@ -347,6 +357,14 @@ void RunMonitor::finish(Duration t_end, RunResult& r) const {
     r.ok = false;
     r.failures.push_back(
         fmt::format("controller: unexpected device error at t={:.3f} s: {}", to_seconds(ev.t), fault_text(ev)));
+  }
+  // An I/O link outage fails the run: the test bench lost its I/O, so what the run saw of it
+  // cannot be trusted (there is no expectation for it).
+  for (const auto& ev : faults_) {
+    if (ev.source != "io_link") continue;
+    r.ok = false;
+    r.failures.push_back(
+        fmt::format("{}: I/O link fault at t={:.3f} s: {}", ev.axis, to_seconds(ev.t), fault_text(ev)));
   }
   if (const auto* c = machine_.controller()) {
     r.controller = c->device();

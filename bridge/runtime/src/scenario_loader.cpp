@@ -11,6 +11,7 @@
 
 #include "coupling_loader.hpp"
 #include "hil/core/text_file.hpp"
+#include "io_link_loader.hpp"
 #include "yaml_reader.hpp"
 
 namespace hil::runtime {
@@ -283,7 +284,7 @@ class Loader {
   // `io_links:` entry: one device kind (gpio | modbus | drive) with `inputs:` / `outputs:` maps
   // from signal to the device's address of the bit.
   IoLink load_io_link(const Field& f) {
-    const auto keys = f.expect_map({"gpio", "drive", "inputs", "outputs"});
+    const auto keys = f.expect_map({"gpio", "modbus", "drive", "inputs", "outputs"});
     IoLink link;
     link.source = {f.line(), f.path()};
     std::string kind;
@@ -292,7 +293,7 @@ class Loader {
       if (!kind.empty()) f.child(k).fail(fmt::format("one device per io_links entry; got '{}' and '{}'", kind, k));
       kind = k;
     }
-    if (kind.empty()) f.fail("an io_links entry needs one of: gpio, drive");
+    if (kind.empty()) f.fail("an io_links entry needs one of: gpio, modbus, drive");
     if (!f.child("inputs").present() && !f.child("outputs").present())
       f.fail(fmt::format("the {} link wires nothing: give 'inputs:' and/or 'outputs:'", kind));
     const auto bits = [&](const std::string& key, bool input, auto load_bit) {
@@ -328,6 +329,11 @@ class Loader {
       const bool mock = d.chip == "mock";
       link.device = std::move(d);
       const auto load = [&](const Field& bit, bool input) { return load_gpio_bit(bit, input, mock); };
+      link.inputs = bits("inputs", true, load);
+      link.outputs = bits("outputs", false, load);
+    } else if (kind == "modbus") {
+      link.device = load_modbus_device(f.child("modbus"));
+      const auto load = [&](const Field& bit, bool input) { return load_modbus_bit(bit, input); };
       link.inputs = bits("inputs", true, load);
       link.outputs = bits("outputs", false, load);
     }

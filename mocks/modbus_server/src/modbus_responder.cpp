@@ -85,6 +85,12 @@ modbus::HandleResult ModbusResponder::handle(std::span<const std::uint8_t> adu, 
   mapping.tab_registers = holding.data();
   mapping.nb_input_registers = static_cast<int>(input.size());
   mapping.tab_input_registers = input.data();
+  auto coils = table.values(modbus::BitSpace::coil);
+  auto discrete = table.values(modbus::BitSpace::discrete_input);
+  mapping.nb_bits = static_cast<int>(coils.size());
+  mapping.tab_bits = coils.data();
+  mapping.nb_input_bits = static_cast<int>(discrete.size());
+  mapping.tab_input_bits = discrete.data();
 
   const int sent = check.error == modbus::ModbusError::none
                        ? modbus_reply(ctx_, adu.data(), static_cast<int>(adu.size()), &mapping)
@@ -113,6 +119,8 @@ modbus::HandleResult ModbusResponder::handle(std::span<const std::uint8_t> adu, 
   if (check.error == modbus::ModbusError::none) {
     result.written_first = check.written_first;
     result.written_count = check.written_count;
+    result.coils_written_first = check.coils_written_first;
+    result.coils_written_count = check.coils_written_count;
   }
   return result;
 }

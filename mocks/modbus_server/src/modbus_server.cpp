@@ -109,7 +109,7 @@ class ModbusDriveServer::Connection : public std::enable_shared_from_this<Connec
         modbus::HandleResult r;
         {
           std::lock_guard lock(srv.device_mutex_);
-          r = srv.device_.handle(adu, out, srv.config_.handler);
+          r = std::visit([&](auto& d) { return d.handle(adu, out, srv.config_.handler); }, srv.device_);
         }
         size = r.size;
         if (r.error != modbus::ModbusError::none) srv.exceptions_.fetch_add(1);
@@ -258,6 +258,11 @@ ModbusDriveServer::ModbusDriveServer(DriveDevice device, ModbusServerConfig conf
   port_ = config_.port;
 }
 
+ModbusDriveServer::ModbusDriveServer(IoTerminal terminal, ModbusServerConfig config)
+    : device_(std::move(terminal)), config_(std::move(config)) {
+  port_ = config_.port;
+}
+
 ModbusDriveServer::~ModbusDriveServer() {
   stop();
 }
@@ -329,12 +334,12 @@ void ModbusDriveServer::adopt(int fd) {
 
 void ModbusDriveServer::step(Duration dt) {
   std::lock_guard lock(device_mutex_);
-  device_.step(dt);
+  if (auto* d = std::get_if<DriveDevice>(&device_)) d->step(dt);
 }
 
 void ModbusDriveServer::inject(PlantFault fault, bool active) {
   std::lock_guard lock(device_mutex_);
-  device_.inject(fault, active);
+  if (auto* d = std::get_if<DriveDevice>(&device_)) d->inject(fault, active);
 }
 
 void ModbusDriveServer::fail_next(std::uint32_t count, modbus::ModbusError code) {

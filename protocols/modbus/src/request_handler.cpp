@@ -25,6 +25,37 @@ RequestCheck check_request(std::span<const std::uint8_t> adu, const RegisterTabl
     return fail(r, ModbusError::gateway_target_failed);
   const auto u16 = [&](std::size_t at) { return get_u16(pdu + at); };
   switch (r.function) {
+    case fc::read_coils:
+    case fc::read_discrete_inputs: {
+      const auto space = r.function == fc::read_coils ? BitSpace::coil : BitSpace::discrete_input;
+      if (!table.has(space)) return fail(r, ModbusError::illegal_function);
+      if (n != 5) return fail(r, ModbusError::illegal_data_value);
+      const std::uint16_t qty = u16(3);
+      if (qty < 1 || qty > kMaxReadBits) return fail(r, ModbusError::illegal_data_value);
+      if (!table.range_ok(space, u16(1), qty, false)) return fail(r, ModbusError::illegal_data_address);
+      return r;
+    }
+    case fc::write_single_coil: {
+      if (!table.has(BitSpace::coil)) return fail(r, ModbusError::illegal_function);
+      if (n != 5) return fail(r, ModbusError::illegal_data_value);
+      if (u16(3) != 0x0000 && u16(3) != 0xFF00) return fail(r, ModbusError::illegal_data_value);  // MB spec §6.5
+      if (!table.range_ok(BitSpace::coil, u16(1), 1, true)) return fail(r, ModbusError::illegal_data_address);
+      r.coils_written_first = u16(1);
+      r.coils_written_count = 1;
+      return r;
+    }
+    case fc::write_multiple_coils: {
+      if (!table.has(BitSpace::coil)) return fail(r, ModbusError::illegal_function);
+      if (n < 6) return fail(r, ModbusError::illegal_data_value);
+      const std::uint16_t qty = u16(3);
+      const std::uint8_t bytes = pdu[5];
+      if (qty < 1 || qty > kMaxWriteBits || bytes != (qty + 7) / 8 || n != 6 + std::size_t{bytes})
+        return fail(r, ModbusError::illegal_data_value);
+      if (!table.range_ok(BitSpace::coil, u16(1), qty, true)) return fail(r, ModbusError::illegal_data_address);
+      r.coils_written_first = u16(1);
+      r.coils_written_count = qty;
+      return r;
+    }
     case fc::read_holding_registers:
     case fc::read_input_registers: {
       if (n != 5) return fail(r, ModbusError::illegal_data_value);

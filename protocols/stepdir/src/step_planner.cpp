@@ -42,8 +42,11 @@ void StepPlanner::halt() noexcept {
     stop_now();
     return;
   }
-  // Steps still needed to decelerate from the current table index down to f_ss.
-  target_ = pos_ + dir_ * (last_idx_ + 1 - backlash_pending_);
+  // Steps still needed to decelerate from the current table index down to f_ss. A halt only
+  // ever shortens the move: halting again while braking (a limit switch seen every cycle) must
+  // not push the end ahead by the shrinking braking distance, or the axis creeps on at f_ss.
+  const std::int64_t brake_end = pos_ + dir_ * (last_idx_ + 1 - backlash_pending_);
+  if (dir_ * (brake_end - target_) < 0) target_ = brake_end;
 }
 
 void StepPlanner::stop_now() noexcept {

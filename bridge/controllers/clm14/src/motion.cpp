@@ -145,6 +145,17 @@ void Controller::update_axes_in(TimePoint now) {
     auto& a = axes_[static_cast<std::size_t>(ax - 1)];
     if (a.port == nullptr) continue;
     a.fb = a.port->feedback();
+    // Actual velocity = the travel over the last velocity_window NC cycles, as the CLM counts
+    // it (a rotary position that wrapped is unwrapped by the modulo); 0 on the first cycle.
+    const double position = a.fb.position;
+    const std::size_t n = std::min(a.positions_seen, velocity_window);
+    const double oldest = n == 0 ? position : a.positions[(a.positions_seen - n) % velocity_window];
+    double travel = position - oldest;
+    const double modulo = settings_.axes[static_cast<std::size_t>(ax - 1)].modulo;
+    if (modulo > 0.0 && std::abs(travel) > 0.5 * modulo) travel -= std::copysign(modulo, travel);
+    a.fb.velocity = n == 0 ? 0.0 : travel / (static_cast<double>(n) * settings_.cycle_ms / 1000.0);
+    a.positions[a.positions_seen % velocity_window] = position;
+    ++a.positions_seen;
     if (a.fb.fault && a.drive_enable && error_ == 0) {
       a.homed = false;  // Lag/Runaway clear the homed state (§8.2 Ax14)
       raise(axis_code(ClmError::position_lag, ax),
@@ -248,8 +259,8 @@ Controller::Flow Controller::exec_motion(int t, Task& k, const Instruction& in, 
          "FAK 5 (master encoder 1) needs flying cutoff, which this model does not run");
     return Flow::halt;
   }
-  auto axis_or = integer(in.n[0], t, 1, 4);
-  if (in.op == Op::rep) axis_or = integer(in.n[1], t, 1, 4);
+  // The axis operand: first, except REP tttt a dddddd.ddd.
+  auto axis_or = integer(in.op == Op::rep ? in.n[1] : in.n[0], t, 1, 4);
   if (!axis_or) return Flow::halt;
   const int ax = *axis_or;
   auto& a = axes_[static_cast<std::size_t>(ax - 1)];

@@ -25,6 +25,7 @@
 #include "hil/controllers/controller_registry.hpp"
 #include "hil/controllers/gpio_link.hpp"
 #include "hil/controllers/io_image.hpp"
+#include "hil/controllers/modbus_io_link.hpp"
 #include "hil/core/config_error.hpp"
 #include "hil/core/fault_injection.hpp"
 #include "hil/core/transport.hpp"
@@ -43,6 +44,12 @@ struct MachineAxis {
   std::unique_ptr<motion::Axis> axis;
   FaultInjectable* injectable = nullptr;  ///< the drive's fault injection, when it has one
   std::string transport;
+};
+
+/// An `io_links: - modbus:` entry at run time: its key path ("io_links[1]") and the link.
+struct ModbusLinkEntry {
+  std::string name;
+  std::unique_ptr<controllers::ModbusIoLink> link;
 };
 
 struct NamedReport {
@@ -81,6 +88,11 @@ class Machine {
   [[nodiscard]] const std::vector<std::pair<std::string, controllers::BitAddress>>& io_signals() const noexcept {
     return io_signals_;
   }
+  /// The scenario's Modbus I/O links (their faults become run fault events, source "io_link").
+  [[nodiscard]] const std::vector<ModbusLinkEntry>& modbus_links() const noexcept { return modbus_links_; }
+  /// What a run prints before its first cycle about its I/O links ("io_links[0]: simulated Modbus
+  /// I/O terminal listening on 127.0.0.1:40123 (unit 1)").
+  [[nodiscard]] const std::vector<std::string>& io_link_notes() const noexcept { return io_link_notes_; }
   /// True when the last cycle ran the controller's step (always true without a controller): a
   /// run ends only then, so a fault of the last cycles has reached the device's error handling.
   [[nodiscard]] bool controller_cycle_complete() const noexcept {
@@ -102,8 +114,11 @@ class Machine {
   /// bits), opens the device and attaches its source and sink to the controller's image.
   [[nodiscard]] std::optional<ConfigError> attach_io_link(const Scenario& scenario, const IoLink& link,
                                                           const Clock& clock);
-  /// Resolves one linked signal to its image bit (input: an input or data bit; else an output or marker bit).
   using ResolveLinkBit = std::function<std::expected<controllers::BitAddress, ConfigError>(const IoLinkBit&, bool)>;
+  /// The `modbus:` kind (machine_io_modbus.cpp): the simulated terminal or a tcp:// one.
+  [[nodiscard]] std::optional<ConfigError> make_modbus_link(const Scenario& scenario, const IoLink& link,
+                                                            const ModbusLinkDevice& device,
+                                                            const ResolveLinkBit& resolve);
   /// `- drive: AXIS`: DriveInputs / DriveOutputs on the axis, after checking the axis exists and its
   /// drive has the digital inputs / output bits the link uses.
   [[nodiscard]] std::optional<ConfigError> make_drive_link(const Scenario& scenario, const IoLink& link,
@@ -120,11 +135,14 @@ class Machine {
   std::vector<MachineAxis> axes_;
   MachineCouplings couplings_;
   std::vector<std::unique_ptr<controllers::IoSource>> stimuli_;
-  std::vector<std::unique_ptr<controllers::GpioLink>> gpio_links_;    ///< io_links: gpio
+  std::vector<std::unique_ptr<controllers::GpioLink>> gpio_links_;  ///< io_links: gpio
+  std::vector<ModbusLinkEntry> modbus_links_;                       ///< io_links: modbus
+  std::vector<std::string> io_link_notes_;
   std::vector<std::unique_ptr<controllers::IoSource>> drive_inputs_;  ///< io_links: drive (after the axes)
   std::vector<std::unique_ptr<controllers::IoSink>> drive_outputs_;
   std::vector<std::pair<std::string, std::uint32_t>> drive_output_bits_;  ///< axis -> bits some link drives
-  std::unique_ptr<controllers::Controller> controller_;                   ///< declared after the axes: destroyed first
+  std::unique_ptr<SteadyClock> steady_clock_;            ///< tcp:// terminals age their data on real time (heap: moves)
+  std::unique_ptr<controllers::Controller> controller_;  ///< declared after the axes: destroyed first
   std::vector<std::pair<std::string, controllers::BitAddress>> io_signals_;
   std::uint64_t controller_every_ = 1;  ///< run cycles per controller cycle
   std::uint64_t cycle_count_ = 0;

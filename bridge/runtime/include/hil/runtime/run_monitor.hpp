@@ -67,7 +67,8 @@ class RunMonitor {
   Duration latest_{};
   IoMonitor io_;
   std::size_t device_errors_seen_ = 0;
-  std::vector<DeviceErrorEvent> device_events_;  ///< controller error history entries turned into events
+  std::vector<std::uint64_t> link_outages_seen_;  ///< per Machine::modbus_links() entry
+  std::vector<DeviceErrorEvent> device_events_;   ///< controller error history entries turned into events
 };
 
 /// "wf725-726.traversing:96" for a device error event, "motion:5" otherwise.

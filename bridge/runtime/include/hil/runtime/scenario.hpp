@@ -246,6 +246,22 @@ struct GpioLinkBit {
   std::vector<std::pair<Duration, bool>> mock;
 };
 
+/// `modbus:` (docs/scenarios.md): a Modbus/TCP digital I/O terminal.
+struct ModbusLinkDevice {
+  std::string bus = "sim";  ///< "sim" (the in-process simulated terminal) or "tcp://HOST[:PORT]"
+  std::string listen;       ///< sim only: "HOST:PORT" where peers reach the simulated terminal ("": none)
+  int unit = 1;             ///< unit id 0..255 (tcp)
+  Duration poll{std::chrono::milliseconds(10)};
+  Duration timeout{std::chrono::milliseconds(100)};  ///< response timeout (and connect timeout)
+  std::optional<Duration> stale_after;               ///< default: timeout + 2 poll
+  std::string status;                                ///< a signal set to 1 while the terminal answers ("": none)
+  SourceRef status_source;
+};
+struct ModbusLinkBit {
+  bool coil = false;          ///< coil (FC 1/5/15), else discrete input (FC 2)
+  std::uint16_t address = 0;  ///< 0-based protocol address
+};
+
 /// `- drive: AXIS`: the digital I/O of the axis' drive (DriveFeedback::digital_inputs, CiA 402
 /// 0x60FD layout; DriveCommand::digital_outputs, 0x60FE:1 layout).
 struct DriveLinkDevice {
@@ -257,12 +273,12 @@ struct DriveLinkBit {
 
 struct IoLinkBit {
   std::string signal;  ///< an I/O name or the device's address
-  std::variant<GpioLinkBit, DriveLinkBit> where;
+  std::variant<GpioLinkBit, ModbusLinkBit, DriveLinkBit> where;
   SourceRef source;
 };
 
 struct IoLink {
-  std::variant<GpioLinkDevice, DriveLinkDevice> device;
+  std::variant<GpioLinkDevice, ModbusLinkDevice, DriveLinkDevice> device;
   std::vector<IoLinkBit> inputs;   ///< device -> image (input or data bits)
   std::vector<IoLinkBit> outputs;  ///< image (output or marker bits) -> device
   SourceRef source;

@@ -1,14 +1,15 @@
 // SPDX-License-Identifier: MIT
 #pragma once
-// Simulated Modbus/TCP drive server: serves a DriveDevice (profile + state machine + plant) to
-// any number of clients at once on one Asio I/O thread.
+// Simulated Modbus/TCP server: serves a DriveDevice (profile + state machine + plant) or an
+// IoTerminal (coils and discrete inputs) to any number of clients at once on one Asio I/O thread.
 //
 // Threads:
 //  - the I/O thread (started by start(), joined by stop()) accepts connections, frames requests
 //    by the MBAP length, has libmodbus answer each one (DriveDevice / ModbusResponder) under the
 //    device mutex and writes the replies;
 //    with `auto_step` set it also steps the plant on a real-time timer;
-//  - any other thread may call step(), inject(), with_device(), the fault hooks and stats().
+//  - any other thread may call step(), inject(), with_device(), with_terminal(), the fault hooks
+//    and stats().
 // Each connection owns its receive buffer: a client sending garbage (bad protocol id / length)
 // is logged and disconnected alone; one that stops mid-frame only holds its own buffer; wrong
 // PDU lengths inside a well-framed ADU get exception 03 and the connection stays up.
@@ -26,9 +27,11 @@
 #include <string_view>
 #include <system_error>
 #include <thread>
+#include <variant>
 
 #include "hil/core/clock.hpp"
 #include "hil/mocks/modbus_drive_device.hpp"
+#include "hil/mocks/modbus_io_terminal.hpp"
 #include "hil/modbus/error.hpp"
 #include "hil/modbus/request_handler.hpp"
 
@@ -68,6 +71,8 @@ struct ModbusServerStats {
 class ModbusDriveServer {
  public:
   ModbusDriveServer(DriveDevice device, ModbusServerConfig config);
+  /// Serve a simulated I/O terminal instead of a drive (step() and inject() do nothing).
+  ModbusDriveServer(IoTerminal terminal, ModbusServerConfig config);
   ~ModbusDriveServer();
   ModbusDriveServer(const ModbusDriveServer&) = delete;
   ModbusDriveServer& operator=(const ModbusDriveServer&) = delete;
@@ -88,11 +93,18 @@ class ModbusDriveServer {
   /// Step the plant by `dt` (any thread; takes the device mutex).
   void step(Duration dt);
   void inject(PlantFault fault, bool active);
-  /// Run `fn(device)` under the device mutex.
+  /// Run `fn(device)` under the device mutex. Only for a server built on a DriveDevice
+  /// (std::bad_variant_access otherwise).
   template <class Fn>
   decltype(auto) with_device(Fn&& fn) {
     std::lock_guard lock(device_mutex_);
-    return fn(device_);
+    return fn(std::get<DriveDevice>(device_));
+  }
+  /// Run `fn(terminal)` under the device mutex. Only for a server built on an IoTerminal.
+  template <class Fn>
+  decltype(auto) with_terminal(Fn&& fn) {
+    std::lock_guard lock(device_mutex_);
+    return fn(std::get<IoTerminal>(device_));
   }
 
   /// Fault hooks for tests: answer the next `count` requests with exception `code` instead of
@@ -105,7 +117,7 @@ class ModbusDriveServer {
  private:
   struct Impl;
   class Connection;
-  DriveDevice device_;
+  std::variant<DriveDevice, IoTerminal> device_;
   mutable std::mutex device_mutex_;
   ModbusServerConfig config_;
   std::unique_ptr<Impl> impl_;

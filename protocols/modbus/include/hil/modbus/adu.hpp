@@ -18,9 +18,15 @@ inline constexpr std::size_t kMaxAduSize = kMbapSize + kMaxPduSize;  // 260
 inline constexpr std::uint16_t kMaxReadRegisters = 125;              // FC 3/4
 inline constexpr std::uint16_t kMaxWriteRegisters = 123;             // FC 16
 inline constexpr std::uint16_t kMaxRwWriteRegisters = 121;           // FC 23 write part
+inline constexpr std::uint16_t kMaxReadBits = 2000;                  // FC 1/2 (MB spec §6.1, §6.2)
+inline constexpr std::uint16_t kMaxWriteBits = 1968;                 // FC 15 (0x7B0, MB spec §6.11)
 inline constexpr std::uint16_t kDefaultPort = 502;
 
 namespace fc {
+inline constexpr std::uint8_t read_coils = 0x01;
+inline constexpr std::uint8_t read_discrete_inputs = 0x02;
+inline constexpr std::uint8_t write_single_coil = 0x05;
+inline constexpr std::uint8_t write_multiple_coils = 0x0F;
 inline constexpr std::uint8_t read_holding_registers = 0x03;
 inline constexpr std::uint8_t read_input_registers = 0x04;
 inline constexpr std::uint8_t write_single_register = 0x06;

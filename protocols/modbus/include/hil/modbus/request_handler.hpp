@@ -1,9 +1,9 @@
 // SPDX-License-Identifier: MIT
 #pragma once
 // The server's request rules as a pure function (what may be served), ahead of libmodbus'
-// modbus_reply() (which serves it). Supported: FC 3, 4, 6, 16, 22, 23; anything else answers
-// exception 01. Check order follows libmodbus and the spec's state diagrams (MB spec §6): PDU
-// length and quantity/byte-count errors give 03 before address errors give 02.
+// modbus_reply() (which serves it). Supported: FC 1, 2, 5, 15 (when the device has coils /
+// discrete inputs), 3, 4, 6, 16, 22, 23; anything else answers exception 01. Check order follows libmodbus and the
+// spec's state diagrams (MB spec §6): PDU length and quantity/byte-count errors give 03 before address errors give 02.
 
 #include <cstddef>
 #include <cstdint>
@@ -28,6 +28,8 @@ struct HandleResult {
   ModbusError error = ModbusError::none;  ///< exception sent, or invalid_request for a bad ADU
   std::uint16_t written_first = 0;        ///< holding registers written by this request
   std::uint16_t written_count = 0;
+  std::uint16_t coils_written_first = 0;  ///< coils written by this request (FC 5/15)
+  std::uint16_t coils_written_count = 0;
 };
 
 /// What a request asks for, and whether this device may serve it. Pure: no sockets, no state.
@@ -41,6 +43,8 @@ struct RequestCheck {
   ModbusError error = ModbusError::none;  ///< the exception to answer, or invalid_request: no answer, close
   std::uint16_t written_first = 0;        ///< holding registers the request writes (when error == none)
   std::uint16_t written_count = 0;
+  std::uint16_t coils_written_first = 0;  ///< coils the request writes (FC 5/15, when error == none)
+  std::uint16_t coils_written_count = 0;
 };
 
 /// Check one complete request ADU (as delimited by check_frame()). A malformed ADU (size

@@ -58,7 +58,8 @@ class StepPlanner {
   bool move_to(std::int64_t target, double f_v_hz) noexcept;
   /// Follow mode: the position to reach by the end of the next window.
   void follow(std::int64_t target) noexcept { target_ = target; }
-  /// Ramp mode: brake along the ramp now (IP247 stop). Follow mode: same as stop_now().
+  /// Ramp mode: brake along the ramp now (IP247 stop); never lengthens the move (halting again
+  /// while braking keeps the end). Follow mode: same as stop_now().
   void halt() noexcept;
   /// No more new steps (a pulse already begun still ends properly).
   void stop_now() noexcept;

@@ -168,9 +168,17 @@ class Controller {
     double at = 0.0;  ///< CLM coordinates: the position at which to switch / to have reached v
     double velocity = 0.0;
   };
+  /// NC cycles over which the actual velocity is measured (8: 16 ms at 2 ms; one encoder
+  /// increment of standstill jitter reads as a few thousandths of Vmax, not as motion).
+  static constexpr std::size_t velocity_window = 8;
   struct AxisRun {
     AxisPort* port = nullptr;
     AxisFeedback fb{};
+    /// The actual positions of the last velocity_window NC cycles (a ring): the CLM's actual
+    /// velocity is its encoder travel over that window (fb.velocity is that, not the drive's
+    /// instantaneous reading; docs/clm14.md).
+    std::array<double, velocity_window> positions{};
+    std::size_t positions_seen = 0;
     double base = 0.0;  ///< CLM position = raw + base (homing) + sac
     double sac = 0.0;   ///< SAC offset
     bool homed = false;
