@@ -179,7 +179,8 @@ TEST(CanopenEndToEnd, LostProcessDataMakesTheFeedbackStale) {
   ASSERT_TRUE(m.run_until([&] { return m.all_in(DriveState::operation_enabled); }, 100ms));
   hil::can::FrameFault drop;
   drop.action = hil::can::FaultAction::drop;
-  drop.match = [](const hil::can::Frame& f) { return f.id == 0x181 || f.id == 0x281; };
+  // Every TPDO of the node (TPDO3 carries the digital inputs 0x60FD).
+  drop.match = [](const hil::can::Frame& f) { return f.id == 0x181 || f.id == 0x281 || f.id == 0x381; };
   m.bus.inject(drop);
   ASSERT_TRUE(m.run_until([&] { return m.drives[0]->feedback().state == DriveState::fault; }, 200ms));
   EXPECT_EQ(m.drives[0]->feedback().fault.code, hil::MotionFault::drive_lost);

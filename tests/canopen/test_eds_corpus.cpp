@@ -202,7 +202,8 @@ TEST(CorpusDecisions, DriveWithout603FSaysSoAndPollsNothingForIt) {
   EXPECT_NE(text.find("0x603F error code: not in the EDS, left out (fault codes come from EMCY)"), std::string::npos)
       << text;
   EXPECT_EQ(rig.layout.path(0x603F), cia402::ObjectPath::absent);
-  EXPECT_EQ(rig.layout.polled(), (std::vector<std::uint16_t>{0x6077, 0x60F4, 0x60FD})) << text;
+  EXPECT_EQ(rig.layout.polled(), (std::vector<cia402::ObjectKey>{{0x6077, 0}, {0x60F4, 0}})) << text;
+  EXPECT_EQ(rig.layout.path(0x60FD), cia402::ObjectPath::pdo) << "digital inputs in a TPDO where there is room";
   rig.enable();
 }
 

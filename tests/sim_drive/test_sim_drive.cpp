@@ -169,3 +169,61 @@ TEST(SimDriveConfig, EveryNumericKeyHasItsDocumentedRange) {
     EXPECT_NE(r.error().describe().find(c.error), std::string::npos) << r.error().describe();
   }
 }
+
+TEST(SimDriveSwitches, ReportLimitAndHomeSwitchesAsDigitalInputs) {
+  auto doc =
+      hil::yaml::load_string("transport: sim\nswitches: {negative: -100, positive: 900, home: [400, 450]}\n", "s.yaml");
+  ASSERT_TRUE(doc);
+  auto c = hil::mocks::parse_sim_drive_config(*doc, hil::yaml::Where{"s.yaml", "drive"});
+  ASSERT_TRUE(c) << c.error().describe();
+  Rig rig(*c);
+  EXPECT_TRUE(rig.drive.capabilities().digital_inputs);
+  rig.drive.request(DriveRequest::enable);
+  rig.cycles(10);
+  ASSERT_EQ(rig.drive.feedback().state, DriveState::operation_enabled);
+  namespace di = hil::digital_input;
+  const std::pair<std::int64_t, std::uint32_t> stops[] = {
+      {0, 0}, {420, di::home_switch}, {950, di::positive_limit}, {-150, di::negative_limit}, {-50, 0}};
+  for (const auto& [at, bits] : stops) {
+    hil::DriveCommand cmd;
+    cmd.position_inc = at;
+    rig.cycles(1000, cmd);
+    EXPECT_EQ(rig.drive.feedback().digital_inputs, bits) << "at " << at;
+  }
+  rig.drive.inputs().force(di::interlock | di::negative_limit, di::interlock);  // a test's own bits
+  rig.cycle();
+  EXPECT_EQ(rig.drive.feedback().digital_inputs, di::interlock);
+  rig.drive.inputs().release(di::negative_limit);
+  rig.cycle();
+  EXPECT_EQ(rig.drive.feedback().digital_inputs, di::interlock);
+  hil::DriveCommand out;
+  out.digital_outputs = 0x00010002u;
+  rig.cycle(out);
+  EXPECT_EQ(rig.drive.digital_outputs(), 0x00010002u);
+}
+
+TEST(SimDriveSwitches, BadSwitchesNameTheKey) {
+  struct Case {
+    const char* yaml;
+    const char* error;
+  };
+  const Case cases[] = {
+      {"switches: 5", "s.yaml:1:11: drive.switches: expected a map of switch positions"},
+      {"switches: {neg: 1}", "s.yaml:1:12: drive.switches.neg: unknown key 'neg' (allowed: negative, positive, home)"},
+      {"switches: {negative: x}", "s.yaml:1:22: drive.switches.negative: expected a number"},
+      {"switches: {positive: 2e15}",
+       "drive.switches.positive: must be a position in [-1e15, 1e15] inc, got 2000000000000000"},
+      {"switches: {home: [5]}", "drive.switches.home: the home cam is two positions [from, to]"},
+      {"switches: {home: [5, a]}", "drive.switches.home: 'a' is not a number"},
+      {"switches: {home: [50, 10]}", "drive.switches.home: the cam's start 50 is after its end 10"},
+      {"switches: {negative: 10, positive: 10}",
+       "drive.switches.negative: the negative limit 10 must lie below the positive limit 10"},
+  };
+  for (const auto& c : cases) {
+    auto doc = hil::yaml::load_string(c.yaml, "s.yaml");
+    ASSERT_TRUE(doc) << c.yaml;
+    auto r = hil::mocks::parse_sim_drive_config(*doc, hil::yaml::Where{"s.yaml", "drive"});
+    ASSERT_FALSE(r) << c.yaml;
+    EXPECT_NE(r.error().describe().find(c.error), std::string::npos) << c.yaml << "\n" << r.error().describe();
+  }
+}

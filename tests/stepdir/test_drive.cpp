@@ -104,6 +104,8 @@ TEST(StepDirDrive, LimitEndStopsLocksAndUnlocksMovingAway) {
   EXPECT_GE(fb.position_inc, 500);
   EXPECT_LE(fb.position_inc, 520);  // stopped within about one cycle of steps
   EXPECT_EQ(r.sd->locked_direction(), 1);
+  EXPECT_TRUE(r.drive->capabilities().digital_inputs);
+  EXPECT_EQ(fb.digital_inputs, hil::digital_input::positive_limit) << "the end limit as 0x60FD bit 1";
   const auto stop = fb.position_inc;
   r.drive->request(hil::DriveRequest::fault_reset);
   for (int i = 0; i < 50; ++i) r.cycle(stop + 100);  // forward stays locked
@@ -112,6 +114,7 @@ TEST(StepDirDrive, LimitEndStopsLocksAndUnlocksMovingAway) {
   for (int i = 0; i < 200; ++i) r.cycle(stop - 100);  // backward is allowed and releases the switch
   EXPECT_EQ(r.drive->feedback().position_inc, stop - 100);
   EXPECT_EQ(r.sd->locked_direction(), 0);
+  EXPECT_EQ(r.drive->feedback().digital_inputs, 0U);
   r.expect_clean();
 }
 

@@ -25,6 +25,7 @@
 #include "hil/core/fault_injection.hpp"
 #include "hil/mocks/cia402_node.hpp"
 #include "hil/mocks/key_range.hpp"
+#include "hil/mocks/switches.hpp"
 
 namespace hil::cli::canopen_cli {
 namespace {
@@ -123,7 +124,9 @@ class CanopenTransport final : public TransportFactory {
                                    "master_heartbeat_timeout",
                                    "master_node",
                                    "rpdo",
-                                   "tpdo"});
+                                   "tpdo",
+                                   "output_mask",
+                                   "switches"});
         !k)
       return std::unexpected(k.error());
     auto id = yaml::get_int(node, where, "node");
@@ -315,6 +318,19 @@ class CanopenTransport final : public TransportFactory {
     ao.master_heartbeat_timeout = *master_hb_timeout;
     ao.setup = setup;
     ao.mapping = std::move(mapping);
+    auto output_mask = yaml::get_int(node, where, "output_mask");
+    if (!output_mask) return std::unexpected(output_mask.error());
+    if (output_mask->has_value()) {
+      if (**output_mask < 0 || **output_mask > 0xFFFFFFFFLL)
+        return std::unexpected(
+            yaml::error_at(node["output_mask"], where.key("output_mask"),
+                           fmt::format("the 0x60FE:2 bit mask is 32 bits: 0 .. 0xFFFFFFFF, got {}", **output_mask)));
+      ao.digital_output_mask = static_cast<std::uint32_t>(**output_mask);
+    }
+    if (node["switches"] && !simulated)
+      return std::unexpected(yaml::error_at(node["switches"], where.key("switches"),
+                                            "switches belong to a simulated node: a real drive reads its own switches "
+                                            "into 0x60FD; leave `switches:` out"));
     auto axis = cia402::make_axis_config(*eds, ao);
     if (!axis) {
       // Point at the scenario key (eds:, or the override); the text names the EDS file.
@@ -339,6 +355,11 @@ class CanopenTransport final : public TransportFactory {
       for (auto r : {plant("kv", o.plant.kv_per_s), plant("max_velocity", o.plant.max_velocity_inc_per_s),
                      plant("velocity_lag", o.plant.velocity_lag_s), plant("feedforward", o.plant.velocity_feedforward)})
         if (!r) return std::unexpected(r.error());
+      if (const auto sw = node["switches"]) {
+        auto switches = mocks::parse_switches(sw, where.key("switches"));
+        if (!switches) return std::unexpected(switches.error());
+        o.switches = *switches;
+      }
       can::ParticipantOptions po;
       po.filters = mocks::predefined_filters(static_cast<canopen::NodeId>(nid));  // like the node's CAN controller
       if (wanted.node_id != 0)
@@ -411,6 +432,14 @@ class CanopenTransport final : public TransportFactory {
         }
       }
       for (const auto& l : bus.lines) r.lines.push_back(fmt::format("canopen {}: {}", name, l));
+      // What each simulated node's I/O shows at the end (0x60FD, and 0x60FE:1 through its 0x60FE:2 mask).
+      for (const auto& n : bus.nodes) {
+        const auto& od = n->od();
+        if (od.find(0x60FD, 0) == nullptr && od.find(0x60FE, 1) == nullptr) continue;
+        r.lines.push_back(fmt::format(
+            "canopen {}: node {} (simulated) at the end: digital inputs 0x60FD = 0x{:08X}, outputs 0x60FE = 0x{:08X}",
+            name, n->node_id(), static_cast<std::uint32_t>(od.get_int(0x60FD, 0)), n->digital_outputs()));
+      }
       r.lines.push_back(fmt::format("canopen {}: {} of {} node(s) started{}, {} transmit error(s)", name, started,
                                     m.nodes().size(), bus.simulated ? " (simulated CiA 402 nodes)" : "",
                                     bus.network->stats().tx_errors));

@@ -172,10 +172,10 @@ int run_eds(const EdsArgs& a, bool show) {
       for (std::size_t k = 0; k < dec.size(); ++k) out += (k ? ", " : "") + json_string(dec[k]);
       out += "], \"sdo_polled\": [";
       const auto polled = p.config->layout.polled();
-      for (std::size_t k = 0; k < polled.size(); ++k) out += fmt::format("{}{}", k ? ", " : "", polled[k]);
+      for (std::size_t k = 0; k < polled.size(); ++k) out += fmt::format("{}{}", k ? ", " : "", polled[k].index);
       out += "], \"sdo_written\": [";
       const auto written = p.config->layout.written();
-      for (std::size_t k = 0; k < written.size(); ++k) out += fmt::format("{}{}", k ? ", " : "", written[k]);
+      for (std::size_t k = 0; k < written.size(); ++k) out += fmt::format("{}{}", k ? ", " : "", written[k].index);
       out += "]}";
     }
     out += "}}";

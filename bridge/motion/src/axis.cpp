@@ -600,6 +600,7 @@ CycleResult Axis::update(const hil::CycleTime& cycle) {
   cmd.velocity_inc_per_s = cmd_v_ * scaling_.inc_per_unit();
   cmd.acceleration_inc_per_s2 = cmd_a_ * scaling_.inc_per_unit();
   cmd.move = drive_move_;
+  cmd.digital_outputs = digital_outputs_;
   drive_->write(cycle, cmd);
   last_drive_cmd_inc_ = cmd.position_inc;
   last_now_ = cycle.now;

@@ -7,6 +7,7 @@
 #include <fmt/format.h>
 
 #include "hil/controllers/clm14/runtime_controller.hpp"
+#include "hil/controllers/drive_io.hpp"
 #include "hil/controllers/elg/elg_controller.hpp"
 #include "hil/controllers/io_stimulus.hpp"
 #include "hil/controllers/parameter_controller.hpp"
@@ -251,6 +252,7 @@ std::optional<ConfigError> Machine::attach_io_link(const Scenario& scenario, con
     }
     return std::nullopt;
   };
+  if (const auto* d = std::get_if<DriveLinkDevice>(&link.device)) return make_drive_link(scenario, link, *d, resolve);
   if (const auto* g = std::get_if<GpioLinkDevice>(&link.device)) {
     controllers::GpioLinkConfig config;
     config.chip = g->chip;
@@ -267,6 +269,65 @@ std::optional<ConfigError> Machine::attach_io_link(const Scenario& scenario, con
     gpio_links_.push_back(std::move(*opened));
   }
   if (const auto* m = std::get_if<ModbusLinkDevice>(&link.device)) return make_modbus_link(scenario, link, *m, resolve);
+  return std::nullopt;
+}
+
+std::optional<ConfigError> Machine::make_drive_link(const Scenario& scenario, const IoLink& link,
+                                                    const DriveLinkDevice& device, const ResolveLinkBit& resolve) {
+  const auto it = std::ranges::find_if(axes_, [&](const MachineAxis& a) { return a.spec->name == device.axis; });
+  if (it == axes_.end()) {
+    std::string names;
+    for (const auto& a : axes_) names += (names.empty() ? "" : ", ") + a.spec->name;
+    return ConfigError{scenario.file, link.source.line, 0, link.source.path + ".drive",
+                       fmt::format("unknown axis '{}': the machine's axes are {}", device.axis, names)};
+  }
+  motion::Axis& axis = *it->axis;
+  const auto caps = axis.drive().capabilities();
+  const auto fail = [&](const IoLinkBit& b, std::string message) {
+    return ConfigError{scenario.file, b.source.line, 0, b.source.path, std::move(message)};
+  };
+  std::vector<controllers::DriveIoBit> inputs, outputs;
+  for (const IoLinkBit& b : link.inputs) {
+    const unsigned n = std::get<DriveLinkBit>(b.where).bit;
+    if (!caps.digital_inputs)
+      return fail(b, fmt::format("the drive of axis {} ({}) has no digital inputs (CiA 402 0x60FD): a canopen drive "
+                                 "needs 0x60FD in its EDS, a sim drive has them always, see docs/canopen.md",
+                                 device.axis, axis.drive().name()));
+    auto a = resolve(b, true);
+    if (!a) return a.error();
+    inputs.push_back({static_cast<std::uint8_t>(n), *a});
+  }
+  std::uint32_t used = 0;  // the bits earlier links of this axis drive
+  for (const auto& [name, bits] : drive_output_bits_)
+    if (name == device.axis) used |= bits;
+  std::uint32_t mine = 0;
+  for (const IoLinkBit& b : link.outputs) {
+    const unsigned n = std::get<DriveLinkBit>(b.where).bit;
+    const std::uint32_t mask = 1U << n;
+    if ((caps.digital_output_mask & mask) == 0)
+      return fail(b, fmt::format("bit {} is not among the digital outputs the drive of axis {} ({}) applies (mask "
+                                 "0x{:08X}){}",
+                                 n, device.axis, axis.drive().name(), caps.digital_output_mask,
+                                 caps.digital_output_mask == 0
+                                     ? ": it has no digital outputs (a canopen drive needs 0x60FE:1 in its EDS)"
+                                     : "; a canopen drive's `output_mask` (0x60FE:2) sets them"));
+    if ((used & mask) != 0 || (mine & mask) != 0)
+      return fail(b, fmt::format("drive bit {} of axis {} is already driven by another output", n, device.axis));
+    mine |= mask;
+    auto a = resolve(b, false);
+    if (!a) return a.error();
+    outputs.push_back({static_cast<std::uint8_t>(n), *a});
+  }
+  drive_output_bits_.emplace_back(device.axis, mine);
+  auto& io = controller_->io();
+  if (!inputs.empty()) {
+    drive_inputs_.push_back(std::make_unique<controllers::DriveInputs>(axis, std::move(inputs)));
+    io.attach(*drive_inputs_.back());
+  }
+  if (!outputs.empty()) {
+    drive_outputs_.push_back(std::make_unique<controllers::DriveOutputs>(axis, std::move(outputs)));
+    io.attach(*drive_outputs_.back());
+  }
   return std::nullopt;
 }
 

@@ -285,7 +285,7 @@ class Loader {
   // `io_links:` entry: one device kind (gpio | modbus | drive) with `inputs:` / `outputs:` maps
   // from signal to the device's address of the bit.
   IoLink load_io_link(const Field& f) {
-    const auto keys = f.expect_map({"gpio", "modbus", "inputs", "outputs"});
+    const auto keys = f.expect_map({"gpio", "modbus", "drive", "inputs", "outputs"});
     IoLink link;
     link.source = {f.line(), f.path()};
     std::string kind;
@@ -294,7 +294,7 @@ class Loader {
       if (!kind.empty()) f.child(k).fail(fmt::format("one device per io_links entry; got '{}' and '{}'", kind, k));
       kind = k;
     }
-    if (kind.empty()) f.fail("an io_links entry needs one of: gpio, modbus");
+    if (kind.empty()) f.fail("an io_links entry needs one of: gpio, modbus, drive");
     if (!f.child("inputs").present() && !f.child("outputs").present())
       f.fail(fmt::format("the {} link wires nothing: give 'inputs:' and/or 'outputs:'", kind));
     const auto bits = [&](const std::string& key, bool input, auto load_bit) {
@@ -314,7 +314,13 @@ class Loader {
       }
       return out;
     };
-    if (kind == "gpio") {
+    if (kind == "drive") {
+      const Field d = f.child("drive");
+      link.device = DriveLinkDevice{d.as_string("the name of a machine axis (its drive's digital I/O)")};
+      const auto load = [&](const Field& bit, bool) { return load_drive_bit(bit); };
+      link.inputs = bits("inputs", true, load);
+      link.outputs = bits("outputs", false, load);
+    } else if (kind == "gpio") {
       const Field g = f.child("gpio");
       g.expect_map({"chip", "consumer"});
       GpioLinkDevice d;
@@ -333,6 +339,17 @@ class Loader {
       link.outputs = bits("outputs", false, load);
     }
     return link;
+  }
+
+  // A drive's digital I/O bit: `{bit: 2}` or `2`, 0..31 (CiA 402 0x60FD / 0x60FE:1 layout).
+  DriveLinkBit load_drive_bit(const Field& f) {
+    if (f.node().IsMap()) (void)f.expect_map({"bit"});
+    const Field b = f.node().IsMap() ? f.required("bit", "the drive's bit 0..31") : f;
+    const double v = b.as_number("a drive bit 0..31");
+    if (v < 0 || v > 31 || v != static_cast<double>(static_cast<unsigned>(v)))
+      b.fail(
+          fmt::format("expected a drive bit 0..31 (CiA 402 0x60FD inputs / 0x60FE:1 outputs), got {}", b.describe()));
+    return DriveLinkBit{static_cast<unsigned>(v)};
   }
 
   // A GPIO line: `3` (offset), `LIMIT_X` (name) or {line, active_low, bias, mock}.

@@ -13,7 +13,12 @@ namespace hil::cia402 {
 namespace {
 constexpr std::uint16_t k_cw = 0x6040, k_sw = 0x6041, k_mode = 0x6060, k_mode_display = 0x6061, k_error = 0x603F,
                         k_target_pos = 0x607A, k_target_vel = 0x60FF, k_actual_pos = 0x6064, k_actual_vel = 0x606C,
-                        k_profile_vel = 0x6081, k_profile_acc = 0x6083, k_profile_dec = 0x6084;
+                        k_profile_vel = 0x6081, k_profile_acc = 0x6083, k_profile_dec = 0x6084,
+                        k_digital_inputs = 0x60FD, k_digital_outputs = 0x60FE;
+
+std::uint32_t key_of(ObjectKey k) {
+  return (std::uint32_t{k.index} << 8) | k.sub;
+}
 
 std::int32_t clamp32(double v) {
   if (!std::isfinite(v)) return 0;
@@ -42,8 +47,8 @@ Cia402Drive::~Cia402Drive() {
   network_.detach(node_);
 }
 
-bool Cia402Drive::routed(std::uint16_t index) const noexcept {
-  return options_.layout.routes.empty() || options_.layout.has(index);
+bool Cia402Drive::routed(std::uint16_t index, std::uint8_t sub) const noexcept {
+  return options_.layout.routes.empty() || options_.layout.has(index, sub);
 }
 
 Mode Cia402Drive::mode_display(const canopen::ObjectDictionary& img) const {
@@ -53,9 +58,10 @@ Mode Cia402Drive::mode_display(const canopen::ObjectDictionary& img) const {
 
 bool Cia402Drive::sdo_writes_settled(const canopen::ObjectDictionary& img) const {
   if (writes_in_flight_ != 0) return false;
-  for (const auto index : written_) {
-    const auto* v = img.find(index, 0);
-    const auto it = last_written_.find(index);
+  for (const auto key : written_) {
+    if (key.index == k_digital_outputs) continue;  // outputs do not hold up a set-point or a mode
+    const auto* v = img.find(key.index, key.sub);
+    const auto it = last_written_.find(key_of(key));
     if (v != nullptr && (it == last_written_.end() || it->second != v->value)) return false;
   }
   return true;
@@ -65,31 +71,33 @@ void Cia402Drive::sdo_service(TimePoint now, canopen::ObjectDictionary& img) {
   if (!booted_) return;
   auto& sdo = network_.master().sdo(node_);
   if (!polled_.empty() && !poll_in_flight_ && now >= next_poll_at_) {
-    const auto index = polled_[next_poll_++ % polled_.size()];
+    const auto key = polled_[next_poll_++ % polled_.size()];
     poll_in_flight_ = true;
     next_poll_at_ = now + options_.poll_period / static_cast<long>(polled_.size());
-    sdo.async_upload(index, 0, now, [this, alive = alive_, index](std::error_code ec, std::vector<std::uint8_t> d) {
-      if (!*alive) return;
-      poll_in_flight_ = false;
-      if (!ec) network_.master().image(node_).set_bytes(index, 0, d);
-    });
+    sdo.async_upload(key.index, key.sub, now,
+                     [this, alive = alive_, key](std::error_code ec, std::vector<std::uint8_t> d) {
+                       if (!*alive) return;
+                       poll_in_flight_ = false;
+                       if (!ec) network_.master().image(node_).set_bytes(key.index, key.sub, d);
+                     });
   }
-  for (const auto index : written_) {
-    const auto* v = img.find(index, 0);
+  for (const auto key : written_) {
+    const auto* v = img.find(key.index, key.sub);
     if (v == nullptr) continue;
-    auto& last = last_written_[index];
+    auto& last = last_written_[key_of(key)];
     if (last == v->value) continue;
     last = v->value;
     ++writes_in_flight_;
-    sdo.async_download(
-        index, 0, v->value, now, [this, alive = alive_, index](std::error_code ec, std::vector<std::uint8_t>) {
-          if (!*alive) return;
-          --writes_in_flight_;
-          if (ec) {
-            last_written_[index].clear();  // try again with the next change... or the next cycle
-            set_fault(ec, fmt::format("node {}: SDO write of 0x{:04X} failed: {}", node_, index, ec.message()));
-          }
-        });
+    sdo.async_download(key.index, key.sub, v->value, now,
+                       [this, alive = alive_, key](std::error_code ec, std::vector<std::uint8_t>) {
+                         if (!*alive) return;
+                         --writes_in_flight_;
+                         if (ec) {
+                           last_written_[key_of(key)].clear();  // try again with the next change... or the next cycle
+                           set_fault(ec, fmt::format("node {}: SDO write of 0x{:04X}:{} failed: {}", node_, key.index,
+                                                     key.sub, ec.message()));
+                         }
+                       });
   }
 }
 
@@ -100,6 +108,8 @@ DriveCapabilities Cia402Drive::capabilities() const noexcept {
   c.homing = options_.homing;
   c.drive_profile = options_.setup == OperatingSetup::pp;
   c.min_period = std::chrono::microseconds(250);
+  c.digital_inputs = options_.layout.has(k_digital_inputs);
+  c.digital_output_mask = options_.layout.digital_output_mask;
   return c;
 }
 
@@ -151,6 +161,8 @@ void Cia402Drive::read(const CycleTime& cycle) {
   statusword_ = static_cast<std::uint16_t>(img.get_int(k_sw, 0));
   feedback_.position_inc = img.get_int(k_actual_pos, 0);
   feedback_.velocity_inc_per_s = static_cast<double>(img.get_int(k_actual_vel, 0));
+  if (options_.layout.has(k_digital_inputs))
+    feedback_.digital_inputs = static_cast<std::uint32_t>(img.get_int(k_digital_inputs, 0));
   const auto state = decode_state(statusword_);
   raw_state_ = state;
   if (heartbeat_lost_) {
@@ -258,6 +270,8 @@ void Cia402Drive::write(const CycleTime& cycle, const DriveCommand& command) {
   img.set_int(k_mode, 0, static_cast<std::int8_t>(mode));
   img.set_int(k_target_pos, 0, clamp32(static_cast<double>(target)));
   img.set_int(k_target_vel, 0, clamp32(velocity));
+  if (options_.layout.digital_output_mask != 0)  // outputs are not motion: written in every state
+    img.set_int(k_digital_outputs, 1, command.digital_outputs & options_.layout.digital_output_mask);
   controlword_ = cwv;
   if (mode == commanded_mode_) {
     ++commanded_mode_cycles_;

@@ -24,7 +24,13 @@ struct Wish {
   std::uint16_t index;
   const char* name;
   bool required;
+  std::uint8_t sub = 0;
 };
+
+/// An object's place in the `covered` / `placed` lists: index and sub-index.
+constexpr std::uint32_t key_of(std::uint16_t index, std::uint8_t sub) noexcept {
+  return (std::uint32_t{index} << 8) | sub;
+}
 
 const char* object_name(std::uint16_t index) {
   switch (index) {
@@ -56,6 +62,8 @@ const char* object_name(std::uint16_t index) {
       return "following error actual value";
     case 0x60FD:
       return "digital inputs";
+    case 0x60FE:
+      return "digital outputs";
     case 0x60FF:
       return "target velocity";
     default:
@@ -63,8 +71,10 @@ const char* object_name(std::uint16_t index) {
   }
 }
 
-std::string describe_object(std::uint16_t index) {
-  return fmt::format("0x{:04X} {}", index, object_name(index));
+std::string describe_object(std::uint16_t index, std::uint8_t sub = 0) {
+  if (sub == 0) return fmt::format("0x{:04X} {}", index, object_name(index));
+  const std::string_view name = object_name(index);
+  return name == "object" ? fmt::format("0x{:04X}:{}", index, sub) : fmt::format("0x{:04X}:{} {}", index, sub, name);
 }
 
 /// The node's PDO `n` of one direction as its EDS/DCF declares it.
@@ -138,7 +148,7 @@ std::string list_mapping(const std::vector<PdoMappingEntry>& m) {
   for (const auto& e : m) {
     if (!s.empty()) s += ", ";
     s += e.sub == 0 ? fmt::format("0x{:04X} {} ({} bit)", e.index, object_name(e.index), e.bits)
-                    : fmt::format("0x{:04X}:{} ({} bit)", e.index, e.sub, e.bits);
+                    : fmt::format("{} ({} bit)", describe_object(e.index, e.sub), e.bits);
   }
   return s.empty() ? "nothing" : s;
 }
@@ -158,9 +168,12 @@ std::string plan_direction(const DeviceDescription& eds, const AxisOptions& o, b
   auto res = resources(eds, rx, o.node);
   auto& pdos = rx ? layout.rpdos : layout.tpdos;
   const char* dir = rx ? "RPDO" : "TPDO";
-  std::vector<std::uint16_t> covered;
-  auto bits_of = [&](std::uint16_t idx) -> std::uint8_t {
-    const auto* v = od.find(idx, 0);
+  std::vector<std::uint32_t> covered;  ///< key_of(index, sub)
+  auto is_covered = [&](std::uint16_t idx, std::uint8_t sub) {
+    return std::find(covered.begin(), covered.end(), key_of(idx, sub)) != covered.end();
+  };
+  auto bits_of = [&](std::uint16_t idx, std::uint8_t sub) -> std::uint8_t {
+    const auto* v = od.find(idx, sub);
     return v ? static_cast<std::uint8_t>(8 * canopen::data_type_size(v->type)) : 0;
   };
   auto use_declared = [&](const Resource& r, PlannedPdo::Source src, const char* why) {
@@ -181,7 +194,7 @@ std::string plan_direction(const DeviceDescription& eds, const AxisOptions& o, b
                       p.cob_id, why));
       return;
     }
-    for (const auto& e : p.mapping) covered.push_back(e.index);
+    for (const auto& e : p.mapping) covered.push_back(key_of(e.index, e.sub));
     layout.decisions.push_back(
         fmt::format("{} 0x{:03X} {}: {}", pdo_name(rx, r.n), p.cob_id, why, list_mapping(p.mapping)));
     pdos.push_back(std::move(p));
@@ -193,7 +206,8 @@ std::string plan_direction(const DeviceDescription& eds, const AxisOptions& o, b
       use_declared(r, PlannedPdo::Source::dcf, "as the DCF maps it (written with the CiA 301 sequence)");
     } else if (r.fixed) {
       if (override_ || std::any_of(r.declared.begin(), r.declared.end(), [&](const PdoMappingEntry& e) {
-            return std::any_of(wishes.begin(), wishes.end(), [&](const Wish& w) { return w.index == e.index; });
+            return std::any_of(wishes.begin(), wishes.end(),
+                               [&](const Wish& w) { return w.index == e.index && w.sub == e.sub; });
           }))
         use_declared(r, PlannedPdo::Source::fixed, fmt::format("fixed ({}), read from the EDS", r.why_fixed).c_str());
     } else {
@@ -223,7 +237,7 @@ std::string plan_direction(const DeviceDescription& eds, const AxisOptions& o, b
           return fmt::format("scenario {} {}: 0x{:04X}:{} is not PDO-mappable in {} (PDOMapping=0)", dir, k + 1,
                              e.index, e.sub, eds.file);
         total += e.bits;
-        covered.push_back(e.index);
+        covered.push_back(key_of(e.index, e.sub));
       }
       if (total > 64) return fmt::format("scenario {} {}: {} bits exceed the 64 bits of a PDO", dir, k + 1, total);
       planned[k] = want;
@@ -232,37 +246,37 @@ std::string plan_direction(const DeviceDescription& eds, const AxisOptions& o, b
   } else {
     // First fit in the wish order; if a required object finds no room that way, again with the
     // required objects first.
-    auto pack = [&](const std::vector<Wish>& order, std::vector<std::uint16_t>& placed) {
+    auto pack = [&](const std::vector<Wish>& order, std::vector<std::uint32_t>& placed) {
       std::vector<std::vector<PdoMappingEntry>> plan(free.size());
       for (const auto& w : order) {
-        if (std::find(covered.begin(), covered.end(), w.index) != covered.end()) continue;
-        const auto* v = od.find(w.index, 0);
+        if (is_covered(w.index, w.sub)) continue;
+        const auto* v = od.find(w.index, w.sub);
         if (v == nullptr || !v->pdo_mappable) continue;
-        const auto b = bits_of(w.index);
+        const auto b = bits_of(w.index, w.sub);
         if (b == 0 || b % 8 != 0) continue;
         for (std::size_t k = 0; k < free.size(); ++k) {
           unsigned total = 0;
           for (const auto& e : plan[k]) total += e.bits;
           if (plan[k].size() < free[k]->max_entries && total + b <= 64) {
-            plan[k].push_back({w.index, 0, b});
-            placed.push_back(w.index);
+            plan[k].push_back({w.index, w.sub, b});
+            placed.push_back(key_of(w.index, w.sub));
             break;
           }
         }
       }
       return plan;
     };
-    auto all_required = [&](const std::vector<std::uint16_t>& placed) {
+    auto all_required = [&](const std::vector<std::uint32_t>& placed) {
       for (const auto& w : wishes) {
-        const auto* v = od.find(w.index, 0);
+        const auto* v = od.find(w.index, w.sub);
         if (!w.required || v == nullptr || !v->pdo_mappable) continue;
-        if (std::find(covered.begin(), covered.end(), w.index) == covered.end() &&
-            std::find(placed.begin(), placed.end(), w.index) == placed.end())
+        if (!is_covered(w.index, w.sub) &&
+            std::find(placed.begin(), placed.end(), key_of(w.index, w.sub)) == placed.end())
           return false;
       }
       return true;
     };
-    std::vector<std::uint16_t> placed;
+    std::vector<std::uint32_t> placed;
     planned = pack(wishes, placed);
     if (!all_required(placed)) {
       std::vector<Wish> order;
@@ -299,18 +313,21 @@ std::string plan_direction(const DeviceDescription& eds, const AxisOptions& o, b
   for (const auto& w : wishes) {
     ObjectRoute route;
     route.index = w.index;
+    route.sub = w.sub;
     route.to_node = rx;
-    route.bits = bits_of(w.index);
-    const auto* v = od.find(w.index, 0);
-    if (std::find(covered.begin(), covered.end(), w.index) != covered.end()) {
+    route.bits = bits_of(w.index, w.sub);
+    const auto* v = od.find(w.index, w.sub);
+    if (is_covered(w.index, w.sub)) {
       route.path = ObjectPath::pdo;
     } else if (v == nullptr) {
       route.path = ObjectPath::absent;
       if (!w.required)
-        layout.decisions.push_back(fmt::format("{}: not in the EDS, left out{}", describe_object(w.index),
+        layout.decisions.push_back(fmt::format("{}: not in the EDS, left out{}", describe_object(w.index, w.sub),
                                                w.index == 0x603F   ? " (fault codes come from EMCY)"
                                                : w.index == 0x6061 ? " (the commanded mode is assumed in effect)"
                                                : w.index == 0x606C ? " (velocity feedback is 0)"
+                                               : w.index == 0x60FD ? " (the axis has no digital inputs)"
+                                               : w.index == 0x60FE ? " (the axis has no digital outputs)"
                                                                    : ""));
     } else if (w.required && (w.index == 0x6040 || w.index == 0x6041 || w.index == 0x6064 || w.index == 0x607A ||
                               w.index == 0x60FF)) {
@@ -319,7 +336,7 @@ std::string plan_direction(const DeviceDescription& eds, const AxisOptions& o, b
       continue;
     } else {
       route.path = rx ? ObjectPath::sdo_write : ObjectPath::sdo_poll;
-      layout.decisions.push_back(fmt::format("{}: {}, {}", describe_object(w.index),
+      layout.decisions.push_back(fmt::format("{}: {}, {}", describe_object(w.index, w.sub),
                                              v->pdo_mappable ? "no room in the PDOs" : "not PDO-mappable",
                                              rx ? "written by SDO when it changes" : "read by SDO every 100 ms"));
     }
@@ -331,6 +348,30 @@ std::string plan_direction(const DeviceDescription& eds, const AxisOptions& o, b
     return fmt::format("{} in {}: the cyclic {} needs it in a {}", text, eds.file, rx ? "set-point" : "feedback", dir);
   }
   return {};
+}
+
+/// Which 0x60FE:1 bits the master drives: the scenario's mask, written once to 0x60FE:2 during
+/// the configuration download where the drive has a writable bit mask.
+void plan_output_mask(const DeviceDescription& eds, const AxisOptions& o, AxisLayout& layout) {
+  if (layout.path(0x60FE, 1) == ObjectPath::absent) return;
+  const auto* mask = eds.od.find(0x60FE, 2);
+  if (mask == nullptr) {
+    layout.digital_output_mask = o.digital_output_mask;
+    layout.decisions.push_back(fmt::format(
+        "no 0x60FE:2 bit mask in the EDS: the master writes 0x60FE:1 with the bits of 0x{:08X} and 0 elsewhere",
+        o.digital_output_mask));
+  } else if (!canopen::writable(mask->access)) {
+    layout.digital_output_mask = o.digital_output_mask & static_cast<std::uint32_t>(mask->as_uint());
+    layout.decisions.push_back(
+        fmt::format("0x60FE:2 bit mask is {} = 0x{:08X}: the outputs the master drives are 0x{:08X}",
+                    canopen::to_string(mask->access), mask->as_uint(), layout.digital_output_mask));
+  } else {
+    layout.digital_output_mask = o.digital_output_mask;
+    layout.write_output_mask = true;
+    layout.decisions.push_back(
+        fmt::format("0x60FE:2 bit mask = 0x{:08X}, written once at boot-up: the master drives these 0x60FE:1 outputs",
+                    o.digital_output_mask));
+  }
 }
 
 }  // namespace
@@ -347,23 +388,23 @@ std::string_view to_string(OperatingSetup s) noexcept {
   return "?";
 }
 
-ObjectPath AxisLayout::path(std::uint16_t index) const noexcept {
+ObjectPath AxisLayout::path(std::uint16_t index, std::uint8_t sub) const noexcept {
   for (const auto& r : routes)
-    if (r.index == index) return r.path;
+    if (r.index == index && r.sub == sub) return r.path;
   return ObjectPath::absent;
 }
 
-std::vector<std::uint16_t> AxisLayout::polled() const {
-  std::vector<std::uint16_t> out;
+std::vector<ObjectKey> AxisLayout::polled() const {
+  std::vector<ObjectKey> out;
   for (const auto& r : routes)
-    if (r.path == ObjectPath::sdo_poll) out.push_back(r.index);
+    if (r.path == ObjectPath::sdo_poll) out.push_back({r.index, r.sub});
   return out;
 }
 
-std::vector<std::uint16_t> AxisLayout::written() const {
-  std::vector<std::uint16_t> out;
+std::vector<ObjectKey> AxisLayout::written() const {
+  std::vector<ObjectKey> out;
   for (const auto& r : routes)
-    if (r.path == ObjectPath::sdo_write) out.push_back(r.index);
+    if (r.path == ObjectPath::sdo_write) out.push_back({r.index, r.sub});
   return out;
 }
 
@@ -426,21 +467,24 @@ std::expected<AxisLayout, ConfigError> plan_axis_layout(const DeviceDescription&
       rx.push_back({0x60FF, "", false});
     }
   }
-  const std::vector<Wish> tx = {
-      {0x6041, "", true}, {0x6061, "", false}, {0x603F, "", false}, {0x6064, "", true}, {0x606C, "", false}};
+  // Digital I/O last: optional, in a PDO where there is room, else by SDO (never blocking the cycle).
+  rx.push_back({0x60FE, "", false, 1});
+  const std::vector<Wish> tx = {{0x6041, "", true}, {0x6061, "", false}, {0x603F, "", false},
+                                {0x6064, "", true}, {0x606C, "", false}, {0x60FD, "", false}};
   if (auto err = plan_direction(eds, o, true, rx, o.mapping.rpdo, layout); !err.empty())
     return std::unexpected(layout_error(eds, err));
   if (auto err = plan_direction(eds, o, false, tx, o.mapping.tpdo, layout); !err.empty())
     return std::unexpected(layout_error(eds, err));
-  for (std::uint16_t idx : {std::uint16_t{0x6077}, std::uint16_t{0x60F4}, std::uint16_t{0x60FD}}) {
+  for (std::uint16_t idx : {std::uint16_t{0x6077}, std::uint16_t{0x60F4}}) {
     if (od.find(idx, 0) == nullptr) {
       layout.decisions.push_back(fmt::format("{}: not in the EDS, not read", describe_object(idx)));
       continue;
     }
-    layout.routes.push_back({idx, static_cast<std::uint8_t>(8 * canopen::data_type_size(od.find(idx, 0)->type)), false,
-                             ObjectPath::sdo_poll});
+    layout.routes.push_back({idx, 0, static_cast<std::uint8_t>(8 * canopen::data_type_size(od.find(idx, 0)->type)),
+                             false, ObjectPath::sdo_poll});
     layout.decisions.push_back(fmt::format("{}: read by SDO every 100 ms (diagnostics)", describe_object(idx)));
   }
+  plan_output_mask(eds, o, layout);
   return layout;
 }
 
@@ -566,6 +610,7 @@ std::expected<AxisConfig, ConfigError> make_axis_config(const DeviceDescription&
       decisions.push_back("no 0x1016:1 heartbeat consumer in the EDS: the node cannot watch the master's heartbeat");
     }
   }
+  if (out.layout.write_output_mask) c.configuration.push_back({0x60FE, 2, le(out.layout.digital_output_mask, 4)});
   for (const auto& p : out.layout.rpdos) write_pdo(c.configuration, true, p);
   for (const auto& p : out.layout.tpdos) write_pdo(c.configuration, false, p);
   c.image = od;

@@ -43,6 +43,8 @@ DriveCapabilities StepDirDrive::capabilities() const noexcept {
   c.closed_loop = false;
   c.velocity_mode = false;
   c.homing = true;
+  // The limit and reference inputs, as CiA 402 0x60FD bits (a digital input of the axis).
+  c.digital_inputs = idx_lstart_ >= 0 || idx_lend_ >= 0 || idx_ref_ >= 0;
   return c;
 }
 
@@ -74,6 +76,10 @@ void StepDirDrive::sample_inputs() {
   inputs_.limit_start = idx_lstart_ >= 0 && (get(idx_lstart_, nc) != nc);
   inputs_.limit_end = idx_lend_ >= 0 && (get(idx_lend_, nc) != nc);
   inputs_.cam = get(idx_ref_, false);
+  // 0x60FD layout: the start limit is the negative one, the end limit the positive one.
+  fb_.digital_inputs = (inputs_.limit_start ? digital_input::negative_limit : 0U) |
+                       (inputs_.limit_end ? digital_input::positive_limit : 0U) |
+                       (inputs_.cam ? digital_input::home_switch : 0U);
 }
 
 bool StepDirDrive::limit_actuated(int direction) const noexcept {

@@ -89,7 +89,8 @@ Cia402Node::Cia402Node(can::Channel& channel, Cia402NodeOptions options)
       options_(options),
       slave_(
           load_od(options), options.node, [this](const can::Frame& f) { (void)channel_.send(f); }, options.sdo),
-      plant_(options.plant) {
+      plant_(options.plant),
+      inputs_(options.switches) {
   channel_.set_receive_handler([this](const can::Frame& f, TimePoint t) { on_frame(f, t); });
   slave_.on_sync = [this](std::optional<std::uint8_t>, TimePoint now) { on_sync(now); };
   slave_.on_heartbeat = [this](canopen::NodeId, canopen::HeartbeatEvent e, TimePoint now) {
@@ -402,7 +403,15 @@ void Cia402Node::run_device(double dt, TimePoint now) {
   od.set_int(0x6062, 0, static_cast<std::int64_t>(std::llround(demand_)));
   od.set_int(0x6064, 0, static_cast<std::int64_t>(new_actual));
   od.set_int(0x606C, 0, static_cast<std::int64_t>(std::llround(plant_.velocity_inc_per_s())));
+  if (od.find(0x60FD, 0) != nullptr) od.set_int(0x60FD, 0, inputs_.inputs(plant_.position_inc()));
   publish(reached, bit12, bit13);
+}
+
+std::uint32_t Cia402Node::digital_outputs() const {
+  const auto& od = slave_.od();
+  if (od.find(0x60FE, 1) == nullptr) return 0;
+  const auto outputs = static_cast<std::uint32_t>(od.get_int(0x60FE, 1));
+  return od.find(0x60FE, 2) == nullptr ? outputs : outputs & static_cast<std::uint32_t>(od.get_int(0x60FE, 2));
 }
 
 void Cia402Node::publish(bool target_reached, bool bit12, bool bit13) {

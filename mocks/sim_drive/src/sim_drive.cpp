@@ -15,7 +15,7 @@ std::expected<SimDriveConfig, ConfigError> parse_sim_drive_config(const YAML::No
   if (auto k = yaml::check_keys(
           node, where,
           {"transport", "kv", "max_velocity", "velocity_lag", "feedforward", "encoder_step", "initial_position",
-           "transition_time", "quick_stop_deceleration", "homing_time", "home_position"});
+           "transition_time", "quick_stop_deceleration", "homing_time", "home_position", "switches"});
       !k)
     return std::unexpected(k.error());
   // Every numeric key has its documented range (docs/scenarios.md, the `sim` drive block).
@@ -52,18 +52,28 @@ std::expected<SimDriveConfig, ConfigError> parse_sim_drive_config(const YAML::No
     if (!whole) return std::unexpected(whole.error());
     c.home_position_inc = **whole;
   }
+  if (const auto sw = node["switches"]) {
+    auto parsed = parse_switches(sw, where.key("switches"));
+    if (!parsed) return std::unexpected(parsed.error());
+    c.switches = *parsed;
+  }
   return c;
 }
 
 SimDrive::SimDrive(SimDriveConfig config)
-    : config_(std::move(config)), name_("sim:" + config_.name), plant_(config_.plant) {
+    : config_(std::move(config)), name_("sim:" + config_.name), plant_(config_.plant), inputs_(config_.switches) {
   hold_position_inc_ = static_cast<double>(plant_.encoder_position_inc());
   feedback_.position_inc = plant_.encoder_position_inc();
   feedback_.state = state_;
 }
 
 DriveCapabilities SimDrive::capabilities() const noexcept {
-  return DriveCapabilities{.closed_loop = true, .velocity_mode = true, .homing = true, .min_period = {}};
+  return DriveCapabilities{.closed_loop = true,
+                           .velocity_mode = true,
+                           .homing = true,
+                           .min_period = {},
+                           .digital_inputs = true,
+                           .digital_output_mask = 0xFFFFFFFFu};
 }
 
 std::vector<std::string> SimDrive::injectable_faults() const {
@@ -190,6 +200,7 @@ void SimDrive::read(const CycleTime& cycle) {
   feedback_.homing_active = homing_;
   feedback_.fault = fault_;
   feedback_.age = Duration::zero();
+  feedback_.digital_inputs = inputs_.inputs(plant_.position_inc());
 }
 
 void SimDrive::write(const CycleTime& cycle, const DriveCommand& command) {
@@ -197,6 +208,7 @@ void SimDrive::write(const CycleTime& cycle, const DriveCommand& command) {
     started_ = true;
     last_ = cycle.now;
   }
+  digital_outputs_ = command.digital_outputs;
   const bool was_homing = homing_;
   advance_state(cycle.now);
   // The motion core learns of a finished homing run at its next read: hold until then.

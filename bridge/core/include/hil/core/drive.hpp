@@ -72,6 +72,10 @@ struct DriveCommand {
   double velocity_inc_per_s = 0.0;
   double acceleration_inc_per_s2 = 0.0;
   DriveMove move{};
+  /// Digital outputs of the drive, CiA 402 0x60FE sub 1 layout (bit 0 set brake, 1..15 reserved,
+  /// 16..31 manufacturer specific). A drive applies only the bits of
+  /// DriveCapabilities::digital_output_mask; the others are ignored.
+  std::uint32_t digital_outputs = 0;
 };
 
 /// Requests progress over the following cycles (a CiA 402 drive walks its state machine, a
@@ -94,7 +98,21 @@ struct DriveCapabilities {
   /// own following error and reports a violation as its fault.
   bool drive_profile = false;
   Duration min_period{};  ///< shortest cycle period the transport can serve (0 = any)
+  /// DriveFeedback::digital_inputs is read from the drive (CiA 402 0x60FD, simulated switches).
+  bool digital_inputs = false;
+  /// The DriveCommand::digital_outputs bits the drive applies (CiA 402 0x60FE sub 2 bit mask as
+  /// configured); 0 = no digital outputs.
+  std::uint32_t digital_output_mask = 0;
 };
+
+/// Bits of DriveFeedback::digital_inputs (CiA 402-2 object 0x60FD): 1 = active (the drive applies
+/// the switch polarity). Bits 4..15 are reserved, 16..31 manufacturer specific.
+namespace digital_input {
+inline constexpr std::uint32_t negative_limit = 1u << 0;
+inline constexpr std::uint32_t positive_limit = 1u << 1;
+inline constexpr std::uint32_t home_switch = 1u << 2;
+inline constexpr std::uint32_t interlock = 1u << 3;
+}  // namespace digital_input
 
 struct DriveFeedback {
   DriveState state = DriveState::not_ready;
@@ -104,6 +122,9 @@ struct DriveFeedback {
   bool homing_active = false;
   Fault fault;     ///< set while state is fault / fault_reaction_active
   Duration age{};  ///< age of the freshest data in this image (transport staleness)
+  /// Digital inputs, CiA 402 0x60FD layout (namespace digital_input); 0 when the drive has none
+  /// (DriveCapabilities::digital_inputs).
+  std::uint32_t digital_inputs = 0;
 };
 
 class Drive {

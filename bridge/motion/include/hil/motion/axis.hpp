@@ -59,6 +59,17 @@ class Axis {
   CycleResult update(const hil::CycleTime& cycle);
 
   [[nodiscard]] const AxisStatus& status() const noexcept { return status_; }
+  /// The drive's digital inputs as its feedback shows them now (after the last update(): read in
+  /// that cycle). CiA 402 0x60FD layout (hil::digital_input); 0 when the drive has none
+  /// (DriveCapabilities::digital_inputs).
+  [[nodiscard]] std::uint32_t digital_inputs() const noexcept { return drive_->feedback().digital_inputs; }
+  /// Set the bits of `mask` of the digital outputs to those of `value`; every later update()
+  /// carries them in DriveCommand::digital_outputs (0x60FE sub 1 layout), in any axis state: an
+  /// output is not motion. The drive applies the bits of its digital_output_mask.
+  void set_digital_outputs(std::uint32_t mask, std::uint32_t value) noexcept {
+    digital_outputs_ = (digital_outputs_ & ~mask) | (value & mask);
+  }
+  [[nodiscard]] std::uint32_t digital_outputs() const noexcept { return digital_outputs_; }
   [[nodiscard]] hil::Drive& drive() noexcept { return *drive_; }
   [[nodiscard]] const AxisConfig& config() const noexcept { return config_; }
   [[nodiscard]] const Scaling& scaling() const noexcept { return scaling_; }
@@ -109,6 +120,7 @@ class Axis {
   bool first_cycle_ = true;
   hil::TimePoint last_now_{};
   double ext_v_inc_ = 0.0, ext_a_inc_ = 0.0;  ///< feed-forward of the coupled set-point (Mode::external)
+  std::uint32_t digital_outputs_ = 0;         ///< DriveCommand::digital_outputs of every write
 };
 
 }  // namespace hil::motion

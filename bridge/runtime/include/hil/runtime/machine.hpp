@@ -119,6 +119,11 @@ class Machine {
   [[nodiscard]] std::optional<ConfigError> make_modbus_link(const Scenario& scenario, const IoLink& link,
                                                             const ModbusLinkDevice& device,
                                                             const ResolveLinkBit& resolve);
+  /// `- drive: AXIS`: DriveInputs / DriveOutputs on the axis, after checking the axis exists and its
+  /// drive has the digital inputs / output bits the link uses.
+  [[nodiscard]] std::optional<ConfigError> make_drive_link(const Scenario& scenario, const IoLink& link,
+                                                           const DriveLinkDevice& device,
+                                                           const ResolveLinkBit& resolve);
   [[nodiscard]] std::optional<ConfigError> bind_controller(const Scenario& scenario);
   /// The controller's copy of a controller axis' spec (units, rotary, windows filled in), else `spec`.
   [[nodiscard]] const AxisSpec& controller_spec(const AxisSpec& spec) const noexcept;
@@ -133,6 +138,9 @@ class Machine {
   std::vector<std::unique_ptr<controllers::GpioLink>> gpio_links_;  ///< io_links: gpio
   std::vector<ModbusLinkEntry> modbus_links_;                       ///< io_links: modbus
   std::vector<std::string> io_link_notes_;
+  std::vector<std::unique_ptr<controllers::IoSource>> drive_inputs_;  ///< io_links: drive (after the axes)
+  std::vector<std::unique_ptr<controllers::IoSink>> drive_outputs_;
+  std::vector<std::pair<std::string, std::uint32_t>> drive_output_bits_;  ///< axis -> bits some link drives
   std::unique_ptr<SteadyClock> steady_clock_;            ///< tcp:// terminals age their data on real time (heap: moves)
   std::unique_ptr<controllers::Controller> controller_;  ///< declared after the axes: destroyed first
   std::vector<std::pair<std::string, controllers::BitAddress>> io_signals_;

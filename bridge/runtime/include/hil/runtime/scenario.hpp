@@ -262,14 +262,23 @@ struct ModbusLinkBit {
   std::uint16_t address = 0;  ///< 0-based protocol address
 };
 
+/// `- drive: AXIS`: the digital I/O of the axis' drive (DriveFeedback::digital_inputs, CiA 402
+/// 0x60FD layout; DriveCommand::digital_outputs, 0x60FE:1 layout).
+struct DriveLinkDevice {
+  std::string axis;  ///< a machine axis
+};
+struct DriveLinkBit {
+  unsigned bit = 0;  ///< 0..31
+};
+
 struct IoLinkBit {
   std::string signal;  ///< an I/O name or the device's address
-  std::variant<GpioLinkBit, ModbusLinkBit> where;
+  std::variant<GpioLinkBit, ModbusLinkBit, DriveLinkBit> where;
   SourceRef source;
 };
 
 struct IoLink {
-  std::variant<GpioLinkDevice, ModbusLinkDevice> device;
+  std::variant<GpioLinkDevice, ModbusLinkDevice, DriveLinkDevice> device;
   std::vector<IoLinkBit> inputs;   ///< device -> image (input or data bits)
   std::vector<IoLinkBit> outputs;  ///< image (output or marker bits) -> device
   SourceRef source;

@@ -9,7 +9,9 @@
 //   pp   the drive generates the trajectory: positioning moves in profile position (PP, the
 //        set-point handshake on controlword bit 4 / statusword bit 12, "change set immediately"),
 //        velocity moves in profile velocity (PV), stops with halt (bit 8) under 0x6084.
-// Homing (HM) on request in every setup. EMCY / 0x603F / heartbeat loss / boot failures become
+// Digital I/O where the layout routes it: 0x60FD into DriveFeedback::digital_inputs (TPDO or
+// SDO poll), DriveCommand::digital_outputs masked by the layout's bit mask into 0x60FE:1 (RPDO
+// or SDO write on change). Homing (HM) on request in every setup. EMCY / 0x603F / heartbeat loss / boot failures become
 // the axis's Fault (category "cia402", value = the CiA 402 error code, text from the table).
 // Thread: the motion thread, the same one that runs its Network. Non-blocking, never throws.
 
@@ -73,7 +75,7 @@ class Cia402Drive final : public Drive {
   /// Mode in effect: 0x6061 when the layout has it, else the commanded mode once it has stood
   /// for a few cycles and its SDO write (if any) is done.
   Mode mode_display(const canopen::ObjectDictionary& img) const;
-  [[nodiscard]] bool routed(std::uint16_t index) const noexcept;
+  [[nodiscard]] bool routed(std::uint16_t index, std::uint8_t sub = 0) const noexcept;
   /// SDO side of the layout: one poll per period, writes of changed set-points.
   void sdo_service(TimePoint now, canopen::ObjectDictionary& img);
   [[nodiscard]] bool sdo_writes_settled(const canopen::ObjectDictionary& img) const;
@@ -103,11 +105,11 @@ class Cia402Drive final : public Drive {
   SetPoint set_point_ = SetPoint::acknowledged;
   Mode profile_mode_ = Mode::profile_position;  ///< the profile mode last commanded (halt stays in it)
   // SDO side of the layout.
-  std::vector<std::uint16_t> polled_, written_;
+  std::vector<ObjectKey> polled_, written_;
   std::size_t next_poll_ = 0;
   TimePoint next_poll_at_{};
   bool poll_in_flight_ = false;
-  std::map<std::uint16_t, std::vector<std::uint8_t>> last_written_;
+  std::map<std::uint32_t, std::vector<std::uint8_t>> last_written_;  ///< by index << 8 | sub
   int writes_in_flight_ = 0;
   Mode commanded_mode_ = Mode::no_mode;
   int commanded_mode_cycles_ = 0;

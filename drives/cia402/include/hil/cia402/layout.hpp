@@ -14,11 +14,13 @@
 // Wish lists, in priority order (the first ones get the PDO room):
 //   node RPDOs (master -> node): controlword 0x6040, modes of operation 0x6060, target position
 //     0x607A, target velocity 0x60FF; pp also profile velocity 0x6081, acceleration 0x6083,
-//     deceleration 0x6084.
+//     deceleration 0x6084; last the digital outputs 0x60FE:1.
 //   node TPDOs (node -> master): statusword 0x6041, position actual 0x6064, modes display 0x6061,
-//     error code 0x603F, velocity actual 0x606C.
-//   SDO-polled diagnostics when present: torque actual 0x6077, following error actual 0x60F4,
-//     digital inputs 0x60FD.
+//     error code 0x603F, velocity actual 0x606C, digital inputs 0x60FD.
+//   SDO-polled diagnostics when present: torque actual 0x6077, following error actual 0x60F4.
+// Digital I/O that finds no PDO room goes by SDO like any optional object: 0x60FD polled,
+// 0x60FE:1 written when it changes (both asynchronous: the cycle never waits). The 0x60FE:2 bit
+// mask (AxisOptions::digital_output_mask) is written once in the configuration download.
 // PDOs in use are synchronous (transmission type 1): set-points written in cycle k go out after
 // SYNC k+1 and take effect at SYNC k+2 (CiA 402 CSP/CSV timing). Unused remappable PDOs are
 // disabled (COB-ID bit 31).
@@ -43,8 +45,16 @@ enum class OperatingSetup : std::uint8_t { csp, csv, pp };
 /// How the master reaches one object of the axis.
 enum class ObjectPath : std::uint8_t { pdo, sdo_poll, sdo_write, absent };
 
+/// One object of the node: index and sub-index.
+struct ObjectKey {
+  std::uint16_t index = 0;
+  std::uint8_t sub = 0;
+  friend bool operator==(const ObjectKey&, const ObjectKey&) = default;
+};
+
 struct ObjectRoute {
   std::uint16_t index = 0;
+  std::uint8_t sub = 0;
   std::uint8_t bits = 0;
   bool to_node = false;  ///< a set-point (RPDO / SDO write) rather than feedback
   ObjectPath path = ObjectPath::absent;
@@ -69,11 +79,17 @@ struct AxisLayout {
   std::vector<std::string> decisions;            ///< one line per decision
   std::optional<std::uint32_t> supported_modes;  ///< 0x6502 as the EDS declares it
   bool homing = true;                            ///< HM supported (0x6502 bit 5, or no 0x6502)
+  /// The 0x60FE:1 bits the master drives (0 when the node has no 0x60FE:1): the options' mask,
+  /// limited by a read-only 0x60FE:2.
+  std::uint32_t digital_output_mask = 0;
+  bool write_output_mask = false;  ///< 0x60FE:2 = digital_output_mask in the configuration download
 
-  [[nodiscard]] ObjectPath path(std::uint16_t index) const noexcept;
-  [[nodiscard]] bool has(std::uint16_t index) const noexcept { return path(index) != ObjectPath::absent; }
-  [[nodiscard]] std::vector<std::uint16_t> polled() const;   ///< read by SDO at a lower rate
-  [[nodiscard]] std::vector<std::uint16_t> written() const;  ///< written by SDO when they change
+  [[nodiscard]] ObjectPath path(std::uint16_t index, std::uint8_t sub = 0) const noexcept;
+  [[nodiscard]] bool has(std::uint16_t index, std::uint8_t sub = 0) const noexcept {
+    return path(index, sub) != ObjectPath::absent;
+  }
+  [[nodiscard]] std::vector<ObjectKey> polled() const;   ///< read by SDO at a lower rate
+  [[nodiscard]] std::vector<ObjectKey> written() const;  ///< written by SDO when they change
 };
 
 /// An explicit mapping from the scenario: PDO 1, 2, ... of each direction in order. An empty
@@ -93,6 +109,10 @@ struct AxisOptions {
   Duration master_heartbeat_timeout{std::chrono::milliseconds(100)};  ///< node's consumer time 0x1016:1
   OperatingSetup setup = OperatingSetup::csp;
   LayoutOverride mapping;  ///< explicit RPDO/TPDO mapping (scenario `rpdo:` / `tpdo:`)
+  /// 0x60FE:1 bits the master drives (0x60FE:2 bit mask). By default the manufacturer-specific
+  /// outputs 16..31 only: bit 0 "set brake" is the drive's own unless the scenario asks for it,
+  /// since a master whose outputs start at 0 would otherwise release a holding brake.
+  std::uint32_t digital_output_mask = 0xFFFF0000u;
 };
 
 /// Decide the layout for `eds` (see the file comment). Errors: a mandatory object missing or

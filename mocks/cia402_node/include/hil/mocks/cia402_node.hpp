@@ -3,6 +3,8 @@
 // Simulated CiA 402 servo drive on CANopen: a CiA 301 slave whose object dictionary comes from
 // the shipped EDS (profiles/canopen/hil_cia402_drive.eds, compiled in), with the CiA 402 power
 // state machine, modes CSP, CSV, PP, PV and HM, driven by the simulated plant (mocks/sim_drive).
+// Digital inputs 0x60FD from the plant's switches (limit and home switches at mechanical
+// positions) and bits a test forces; digital outputs 0x60FE:1 applied through the 0x60FE:2 bit mask.
 // Fault injection: CiA 402 error codes, plant faults, following error, slow or missing SDO
 // answers, heartbeat loss — in-process through the API, remotely through objects 0x2100..0x2103.
 // Runs on any hil::can::Channel: the in-process virtual bus, SocketCAN, socketcand.
@@ -22,6 +24,7 @@
 #include "hil/core/config_error.hpp"
 #include "hil/core/fault.hpp"
 #include "hil/mocks/plant.hpp"
+#include "hil/mocks/switches.hpp"
 
 namespace hil::mocks {
 
@@ -36,6 +39,7 @@ namespace hil::mocks {
 struct Cia402NodeOptions {
   canopen::NodeId node = 1;
   PlantConfig plant{};
+  PlantSwitches switches{};  ///< 0x60FD bits 0..2 from the plant's mechanical position
   canopen::SdoServerOptions sdo{};
   Duration fault_reaction_time{std::chrono::milliseconds(20)};  ///< fault reaction active -> fault
   /// The node's own EDS/DCF text (object dictionary, PDO defaults, identity); empty = the shipped
@@ -80,6 +84,11 @@ class Cia402Node {
   [[nodiscard]] Plant& plant() noexcept { return plant_; }
   [[nodiscard]] canopen::ObjectDictionary& od() noexcept { return slave_.od(); }
   [[nodiscard]] const Cia402NodeStats& stats() const noexcept { return stats_; }
+  /// The switches behind 0x60FD, and bits a test forces (seen at the next SYNC or step).
+  [[nodiscard]] SimulatedInputs& inputs() noexcept { return inputs_; }
+  /// The physical outputs: 0x60FE:1 masked by 0x60FE:2 (0x60FE:1 alone when the EDS has no
+  /// bit mask; 0 without 0x60FE:1).
+  [[nodiscard]] std::uint32_t digital_outputs() const;
 
   /// Fault injection (names as hil::FaultInjectable uses them).
   [[nodiscard]] static std::vector<std::string> fault_names();
@@ -124,6 +133,7 @@ class Cia402Node {
   Duration pending_sdo_delay_{};
   bool sdo_delay_pending_ = false;
   Cia402NodeStats stats_;
+  SimulatedInputs inputs_;
 };
 
 }  // namespace hil::mocks

@@ -13,6 +13,7 @@
 #include "hil/core/drive.hpp"
 #include "hil/core/fault_injection.hpp"
 #include "hil/mocks/plant.hpp"
+#include "hil/mocks/switches.hpp"
 
 namespace hil::mocks {
 
@@ -23,12 +24,13 @@ struct SimDriveConfig {
   double quick_stop_deceleration_inc_per_s2 = 1.0e8;
   Duration homing_time{std::chrono::milliseconds(200)};
   std::int64_t home_position_inc = 0;  ///< position after homing (method: current position)
+  PlantSwitches switches;              ///< limit and home switches reported as digital inputs
 };
 
 /// Parse a scenario's `drive:` block for `transport: sim`. Keys (all optional):
 /// kv [1/s], max_velocity [inc/s], velocity_lag [s], feedforward [0..1], encoder_step [inc],
 /// initial_position [inc], transition_time [s], quick_stop_deceleration [inc/s^2],
-/// homing_time [s], home_position [inc].
+/// homing_time [s], home_position [inc], switches {negative, positive, home: [from, to]} [inc].
 [[nodiscard]] std::expected<SimDriveConfig, ConfigError> parse_sim_drive_config(const YAML::Node& node,
                                                                                 const yaml::Where& where);
 
@@ -50,6 +52,10 @@ class SimDrive final : public Drive, public FaultInjectable {
   bool inject_fault(std::string_view fault, bool active) override;
 
   [[nodiscard]] Plant& plant() noexcept { return plant_; }
+  /// The digital inputs (switches from the plant position, bits a test forces).
+  [[nodiscard]] SimulatedInputs& inputs() noexcept { return inputs_; }
+  /// DriveCommand::digital_outputs as last written (every bit is applied: the sim has no mask).
+  [[nodiscard]] std::uint32_t digital_outputs() const noexcept { return digital_outputs_; }
 
  private:
   void advance_state(TimePoint now);
@@ -73,6 +79,8 @@ class SimDrive final : public Drive, public FaultInjectable {
   double hold_position_inc_ = 0.0;  ///< position command while not following the motion core
   double qs_velocity_ = 0.0;        ///< velocity during the drive-side quick stop ramp
   Fault fault_;
+  SimulatedInputs inputs_;
+  std::uint32_t digital_outputs_ = 0;
 };
 
 }  // namespace hil::mocks

@@ -34,6 +34,7 @@ class Slave {
   [[nodiscard]] NmtState state() const noexcept { return state_; }
   [[nodiscard]] NodeId node_id() const noexcept { return node_; }
   [[nodiscard]] ObjectDictionary& od() noexcept { return od_; }
+  [[nodiscard]] const ObjectDictionary& od() const noexcept { return od_; }
   [[nodiscard]] PdoEngine& pdo() noexcept { return pdo_; }
   [[nodiscard]] SdoServer& sdo() noexcept { return sdo_; }
 
