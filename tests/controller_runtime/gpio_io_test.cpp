@@ -64,8 +64,11 @@ TEST(GpioIo, InputsAndOutputsThroughTheImage) {
   io.attach(bad);
   lines.set_input(0, true);
   io.read_inputs(clock.now());
-  EXPECT_TRUE(io.get(start)) << "a failed read leaves the bit as the earlier source set it";
+  EXPECT_FALSE(io.get(start)) << "a line that cannot be read reads 0 (fail-safe), whatever an earlier source set";
   EXPECT_EQ(bad.errors(), 1U);
+  EXPECT_EQ(bad.outages(), 1U);
+  io.read_inputs(clock.now());
+  EXPECT_EQ(bad.outages(), 1U) << "one outage while it keeps failing";
 }
 
 TEST(GpioLink, MockChipScriptsInputsOnScenarioTimeAndDrivesOutputs) {
@@ -95,6 +98,32 @@ TEST(GpioLink, MockChipScriptsInputsOnScenarioTimeAndDrivesOutputs) {
   io.write_outputs(clock.now());
   EXPECT_FALSE(lines.output_level(1));
   EXPECT_EQ((*link)->errors(), 0U);
+
+  // A line that fails (the chip went away): the input reads 0 at once, one outage is one fault
+  // naming the chip, the signal and the errno; the line reads again when it heals.
+  lines.set_input(0, true);
+  io.read_inputs(clock.now());
+  ASSERT_TRUE(io.get(start));
+  EXPECT_EQ((*link)->fault_count(), 0U);
+  EXPECT_FALSE((*link)->fault());
+  lines.fail_line(0, std::make_error_code(std::errc::no_such_device));
+  io.read_inputs(clock.now());
+  io.read_inputs(clock.now());
+  EXPECT_FALSE(io.get(start));
+  EXPECT_EQ((*link)->fault_count(), 1U);
+  const Fault f = (*link)->fault();
+  EXPECT_EQ(f.code, std::errc::no_such_device);
+  EXPECT_NE(f.text.find("GPIO mock: reading the input line of 'start' failed"), std::string::npos) << f.text;
+  lines.fail_line(0, {});
+  io.read_inputs(clock.now());
+  EXPECT_TRUE(io.get(start));
+  lines.fail_line(1, std::make_error_code(std::errc::io_error));
+  io.set(lamp, false);
+  io.write_outputs(clock.now());
+  EXPECT_EQ((*link)->fault_count(), 2U) << "a failed output write is an outage of the link too";
+  lines.fail_line(1, {});
+  io.write_outputs(clock.now());
+  EXPECT_TRUE(lines.output_level(1)) << "retried: active-low, bit 0 drives the line high";
 
   // A line given twice and a chip that does not exist are errors naming them.
   GpioLinkConfig twice = c;

@@ -266,7 +266,7 @@ std::optional<ConfigError> Machine::attach_io_link(const Scenario& scenario, con
     }
     if (auto* src = (*opened)->source()) io.attach(*src);
     if (auto* sink = (*opened)->sink()) io.attach(*sink);
-    gpio_links_.push_back(std::move(*opened));
+    gpio_links_.push_back(GpioLinkEntry{link.source.path, std::move(*opened)});
   }
   if (const auto* m = std::get_if<ModbusLinkDevice>(&link.device)) return make_modbus_link(scenario, link, *m, resolve);
   return std::nullopt;

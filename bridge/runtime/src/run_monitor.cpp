@@ -86,6 +86,7 @@ std::string describe(const Expectation& e, const AxisSpec& axis) {
 RunMonitor::RunMonitor(const Scenario& scenario, const Machine& machine)
     : scenario_(scenario), machine_(machine), io_(scenario, machine) {
   link_outages_seen_.assign(machine.modbus_links().size(), 0);
+  gpio_outages_seen_.assign(machine.gpio_links().size(), 0);
   for (const auto& a : machine.axes()) tracks_.push_back(AxisTrack{&a, 0.0, {}, {}, {}});
   for (const auto& e : scenario.expectations) {
     ExpectationState s;
@@ -208,6 +209,13 @@ void RunMonitor::observe(Duration t) noexcept {
     if (l.fault_count() == link_outages_seen_[i]) continue;
     link_outages_seen_[i] = l.fault_count();
     faults_.push_back(FaultEvent{t, links[i].name, "io_link", l.fault()});
+  }
+  const auto& gpio = machine_.gpio_links();
+  for (std::size_t i = 0; i < gpio.size() && i < gpio_outages_seen_.size(); ++i) {
+    const auto& l = *gpio[i].link;
+    if (l.fault_count() == gpio_outages_seen_[i]) continue;
+    gpio_outages_seen_[i] = l.fault_count();
+    faults_.push_back(FaultEvent{t, gpio[i].name, "io_link", l.fault()});
   }
   io_.observe(t);
   for (auto& s : states_) {

@@ -17,7 +17,12 @@ bool InputScript::level_at(std::int64_t t_ns) const noexcept {
 }
 
 MockLines::MockLines(std::vector<LineSpec> specs, const Clock& clock)
-    : specs_(std::move(specs)), clock_(clock), levels_(specs_.size()), sources_(specs_.size()), forced_(specs_.size()) {
+    : specs_(std::move(specs)),
+      clock_(clock),
+      levels_(specs_.size()),
+      sources_(specs_.size()),
+      forced_(specs_.size()),
+      failing_(specs_.size()) {
   for (std::size_t i = 0; i < specs_.size(); ++i) levels_[i] = specs_[i].initial;
 }
 
@@ -51,6 +56,7 @@ std::error_code MockLines::set_value(std::size_t index, bool level) noexcept {
   if (index >= specs_.size() || specs_[index].direction != LineDirection::output) {
     return std::make_error_code(std::errc::invalid_argument);
   }
+  if (failing_[index]) return failing_[index];
   if (levels_[index] != level)
     record(Edge{clock_.now().time_since_epoch().count(), static_cast<std::uint16_t>(index), level});
   return {};
@@ -58,6 +64,7 @@ std::error_code MockLines::set_value(std::size_t index, bool level) noexcept {
 
 std::expected<bool, std::error_code> MockLines::get_value(std::size_t index) noexcept {
   if (index >= specs_.size()) return std::unexpected(std::make_error_code(std::errc::invalid_argument));
+  if (failing_[index]) return std::unexpected(failing_[index]);
   if (specs_[index].direction == LineDirection::output) return levels_[index];
   if (forced_[index]) return *forced_[index];
   if (sources_[index]) return sources_[index](clock_.now().time_since_epoch().count());
@@ -75,6 +82,10 @@ void MockLines::set_input(std::size_t index, bool level) {
 
 void MockLines::set_input_source(std::size_t index, InputSource source) {
   sources_.at(index) = std::move(source);
+}
+
+void MockLines::fail_line(std::size_t index, std::error_code error) {
+  failing_.at(index) = error;
 }
 
 void MockLines::force_input(std::size_t index, std::optional<bool> level) {

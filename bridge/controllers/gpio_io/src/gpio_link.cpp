@@ -42,6 +42,23 @@ std::size_t GpioLink::errors() const noexcept {
   return (inputs_ ? inputs_->errors() : 0) + (outputs_ ? outputs_->errors() : 0);
 }
 
+std::uint64_t GpioLink::fault_count() const noexcept {
+  return (inputs_ ? inputs_->outages() : 0) + (outputs_ ? outputs_->outages() : 0);
+}
+
+Fault GpioLink::fault() const {
+  // The newer of the two sides' errors; with both failing the input side (it feeds the logic).
+  const bool in = inputs_ && inputs_->last_error();
+  const std::error_code ec = in ? inputs_->last_error() : (outputs_ ? outputs_->last_error() : std::error_code{});
+  if (!ec) return {};
+  const std::size_t line = in ? inputs_->last_failed_line() : outputs_->last_failed_line();
+  const std::string signal = line < line_signals_.size() ? line_signals_[line] : "?";
+  return Fault{ec, fmt::format("GPIO {}: {} line of '{}' failed: {}{}", config_.chip,
+                               in ? "reading the input" : "writing the output", signal, ec.message(),
+                               in ? " (the input reads 0 until the line reads again; check the chip and its wiring)"
+                                  : " (retried every cycle; check the chip)")};
+}
+
 std::expected<std::unique_ptr<GpioLink>, std::string> GpioLink::open(GpioLinkConfig config, const Clock& clock) {
   std::unique_ptr<GpioLink> link(new GpioLink(std::move(config)));
   const GpioLinkConfig& c = link->config_;
@@ -55,6 +72,7 @@ std::expected<std::unique_ptr<GpioLink>, std::string> GpioLink::open(GpioLinkCon
     s.direction = dir;
     s.bias = l.bias;
     map.push_back({specs.size(), l.bit, l.active_low});
+    link->line_signals_.push_back(l.signal);
     specs.push_back(std::move(s));
   };
   for (const auto& l : c.inputs) add(l, gpio::LineDirection::input, in_map);

@@ -47,6 +47,11 @@ struct MachineAxis {
 };
 
 /// An `io_links: - modbus:` entry at run time: its key path ("io_links[1]") and the link.
+struct GpioLinkEntry {
+  std::string name;  ///< "io_links[0]"
+  std::unique_ptr<controllers::GpioLink> link;
+};
+
 struct ModbusLinkEntry {
   std::string name;
   std::unique_ptr<controllers::ModbusIoLink> link;
@@ -90,6 +95,8 @@ class Machine {
   }
   /// The scenario's Modbus I/O links (their faults become run fault events, source "io_link").
   [[nodiscard]] const std::vector<ModbusLinkEntry>& modbus_links() const noexcept { return modbus_links_; }
+  /// The scenario's `io_links: - gpio:` entries (a failed line is a fault of its link).
+  [[nodiscard]] const std::vector<GpioLinkEntry>& gpio_links() const noexcept { return gpio_links_; }
   /// What a run prints before its first cycle about its I/O links ("io_links[0]: simulated Modbus
   /// I/O terminal listening on 127.0.0.1:40123 (unit 1)").
   [[nodiscard]] const std::vector<std::string>& io_link_notes() const noexcept { return io_link_notes_; }
@@ -135,8 +142,8 @@ class Machine {
   std::vector<MachineAxis> axes_;
   MachineCouplings couplings_;
   std::vector<std::unique_ptr<controllers::IoSource>> stimuli_;
-  std::vector<std::unique_ptr<controllers::GpioLink>> gpio_links_;  ///< io_links: gpio
-  std::vector<ModbusLinkEntry> modbus_links_;                       ///< io_links: modbus
+  std::vector<GpioLinkEntry> gpio_links_;      ///< io_links: gpio
+  std::vector<ModbusLinkEntry> modbus_links_;  ///< io_links: modbus
   std::vector<std::string> io_link_notes_;
   std::vector<std::unique_ptr<controllers::IoSource>> drive_inputs_;  ///< io_links: drive (after the axes)
   std::vector<std::unique_ptr<controllers::IoSink>> drive_outputs_;

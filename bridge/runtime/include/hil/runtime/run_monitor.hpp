@@ -68,6 +68,7 @@ class RunMonitor {
   IoMonitor io_;
   std::size_t device_errors_seen_ = 0;
   std::vector<std::uint64_t> link_outages_seen_;  ///< per Machine::modbus_links() entry
+  std::vector<std::uint64_t> gpio_outages_seen_;  ///< per Machine::gpio_links() entry
   std::vector<DeviceErrorEvent> device_events_;   ///< controller error history entries turned into events
 };
 

@@ -2,10 +2,15 @@
 #pragma once
 // GPIO lines on the I/O image: GpioInputs reads input lines into image bits once per controller
 // cycle (an IoSource), GpioOutputs drives output lines from image bits (an IoSink, writing only
-// when a bit changed). The LineBank is libgpiod on a real chip (gpio-sim in the kernel label) or
-// the mock lines in tests. Thread: the cycle thread; get_value/set_value are non-blocking.
+// when a bit changed, retrying a failed write next cycle). A line that cannot be read reads 0
+// (a de-energised input: a stale level must not look valid; an NC limit switch then reads
+// active, the fail-safe side). A cycle with a failed line starts an outage when the cycle
+// before had none (`outages()`): the runtime reports each outage once as a fault of the link. The LineBank is libgpiod
+// on a real chip (gpio-sim in the kernel label) or the mock lines in tests. Thread: the cycle thread;
+// get_value/set_value are non-blocking.
 
 #include <cstddef>
+#include <cstdint>
 #include <system_error>
 #include <vector>
 
@@ -24,15 +29,21 @@ class GpioInputs final : public IoSource {
  public:
   GpioInputs(gpio::LineBank& lines, std::vector<GpioBit> map) : lines_(lines), map_(std::move(map)) {}
   void read(TimePoint now, IoImage& image) noexcept override;
-  /// Read errors so far (a failed read leaves the bit unchanged); the last error code.
+  /// Failed reads so far (each sets its bit to 0); the last error code and the LineBank index of
+  /// the line it came from; outages (runs of cycles with a failed read).
   [[nodiscard]] std::size_t errors() const noexcept { return errors_; }
   [[nodiscard]] std::error_code last_error() const noexcept { return last_error_; }
+  [[nodiscard]] std::size_t last_failed_line() const noexcept { return last_failed_line_; }
+  [[nodiscard]] std::uint64_t outages() const noexcept { return outages_; }
 
  private:
   gpio::LineBank& lines_;
   std::vector<GpioBit> map_;
   std::size_t errors_ = 0;
   std::error_code last_error_;
+  std::size_t last_failed_line_ = 0;
+  std::uint64_t outages_ = 0;
+  bool failing_ = false;
 };
 
 class GpioOutputs final : public IoSink {
@@ -42,6 +53,8 @@ class GpioOutputs final : public IoSink {
   void write(TimePoint now, const IoImage& image) noexcept override;
   [[nodiscard]] std::size_t errors() const noexcept { return errors_; }
   [[nodiscard]] std::error_code last_error() const noexcept { return last_error_; }
+  [[nodiscard]] std::size_t last_failed_line() const noexcept { return last_failed_line_; }
+  [[nodiscard]] std::uint64_t outages() const noexcept { return outages_; }
 
  private:
   gpio::LineBank& lines_;
@@ -49,6 +62,9 @@ class GpioOutputs final : public IoSink {
   std::vector<int> written_;  ///< last level written per entry, -1 = never
   std::size_t errors_ = 0;
   std::error_code last_error_;
+  std::size_t last_failed_line_ = 0;
+  std::uint64_t outages_ = 0;
+  bool failing_ = false;
 };
 
 }  // namespace hil::controllers

@@ -6,6 +6,7 @@
 // Thread: open() at configuration time (it blocks for a few ioctls); the source and sink on the
 // cycle thread.
 
+#include <cstdint>
 #include <expected>
 #include <memory>
 #include <optional>
@@ -16,6 +17,7 @@
 #include "hil/controllers/gpio_io.hpp"
 #include "hil/controllers/io_image.hpp"
 #include "hil/core/clock.hpp"
+#include "hil/core/fault.hpp"
 #include "hil/gpio/line_bank.hpp"
 #include "hil/gpio/line_config.hpp"
 
@@ -58,8 +60,12 @@ class GpioLink {
   [[nodiscard]] IoSource* source() noexcept;
   [[nodiscard]] IoSink* sink() noexcept { return outputs_ ? outputs_.get() : nullptr; }
   [[nodiscard]] const GpioLinkConfig& config() const noexcept { return config_; }
-  /// Read and write errors so far (a failed read keeps the bit's last value).
+  /// Read and write errors so far (a failed read sets its bit to 0).
   [[nodiscard]] std::size_t errors() const noexcept;
+  /// Outages so far (runs of cycles with a failed read or write), and the newest one as a fault:
+  /// the errno, the chip, the line and its signal. Not for the cycle thread (it allocates).
+  [[nodiscard]] std::uint64_t fault_count() const noexcept;
+  [[nodiscard]] Fault fault() const;
   /// The mock lines behind a `chip: mock` link (tests), else nullptr.
   [[nodiscard]] gpio::mock::MockLines* mock_lines() noexcept { return mock_; }
 
@@ -72,6 +78,7 @@ class GpioLink {
   std::unique_ptr<GpioInputs> inputs_;
   std::unique_ptr<GpioOutputs> outputs_;
   std::unique_ptr<Source> source_;
+  std::vector<std::string> line_signals_;  ///< per LineBank index: the signal it carries
 };
 
 }  // namespace hil::controllers

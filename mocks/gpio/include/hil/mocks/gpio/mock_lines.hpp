@@ -44,6 +44,9 @@ class MockLines final : public LineBank, public EdgeSink {
   void set_input_source(std::size_t index, InputSource source);
   /// Force an input (fault injection: a broken wire reads as 0). std::nullopt releases it.
   void force_input(std::size_t index, std::optional<bool> level);
+  /// Make every get_value/set_value of line `index` fail with `error` (a chip that went away:
+  /// ENODEV); an empty code heals it.
+  void fail_line(std::size_t index, std::error_code error);
 
   [[nodiscard]] const std::vector<Edge>& recorded() const noexcept { return recorded_; }
   void clear_recorded() noexcept { recorded_.clear(); }
@@ -64,6 +67,7 @@ class MockLines final : public LineBank, public EdgeSink {
   std::vector<bool> levels_;
   std::vector<InputSource> sources_;
   std::vector<std::optional<bool>> forced_;
+  std::vector<std::error_code> failing_;
   std::vector<Edge> recorded_;
   std::size_t record_limit_ = SIZE_MAX;
   std::uint64_t edges_seen_ = 0;
