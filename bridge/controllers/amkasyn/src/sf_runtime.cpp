@@ -48,7 +48,7 @@ SfIo SfRuntime::make_io(Slot& slot, ProcessImage& image, const ProcessImage& sna
     io.in = static_cast<std::uint8_t>(area[in.in_byte] >> ib);
   }
   const int ob = in.out_bit();
-  io.out_owned = ob < 8 ? static_cast<std::uint8_t>(0xFFu >> ob) : 0;
+  io.out_owned = static_cast<std::uint8_t>(ob < 8 ? 0xFFu >> ob : 0u);
   if (ob < 8) {
     const auto& area = in.outputs_to_m ? image.m : image.a;
     io.out = static_cast<std::uint8_t>(area[in.out_byte] >> ob);
