@@ -141,25 +141,31 @@ std::optional<ConfigError> Machine::bind_controller(const Scenario& scenario) {
   return std::nullopt;
 }
 
+std::expected<controllers::BitAddress, ConfigError> Machine::resolve_signal(const Scenario& scenario,
+                                                                            const std::string& signal,
+                                                                            const SourceRef& src) const {
+  auto a = controller_->resolve_bit(signal);
+  if (!a) return std::unexpected(ConfigError{scenario.file, src.line, 0, src.path, a.error()});
+  if (!controller_->io().contains(*a)) {
+    return std::unexpected(
+        ConfigError{scenario.file, src.line, 0, src.path,
+                    fmt::format("'{}' is outside the {} controller's I/O image", signal, controller_->device())});
+  }
+  return *a;
+}
+
+void Machine::report_signal(const std::string& name, controllers::BitAddress a) {
+  for (const auto& [n, addr] : io_signals_)
+    if (n == name) return;
+  io_signals_.emplace_back(name, a);
+}
+
 std::optional<ConfigError> Machine::attach_io(const Scenario& scenario, const Clock& clock) {
   auto& io = controller_->io();
-  const auto add_signal = [&](const std::string& name, controllers::BitAddress a) {
-    for (const auto& [n, addr] : io_signals_)
-      if (n == name) return;
-    io_signals_.emplace_back(name, a);
-  };
   for (const auto& s : io.signals())
-    if (s.bit) add_signal(s.name, controllers::BitAddress{s.area, s.byte, *s.bit});
-  const auto resolve = [&](const std::string& signal,
-                           const SourceRef& src) -> std::expected<controllers::BitAddress, ConfigError> {
-    auto a = controller_->resolve_bit(signal);
-    if (!a) return std::unexpected(ConfigError{scenario.file, src.line, 0, src.path, a.error()});
-    if (!io.contains(*a)) {
-      return std::unexpected(
-          ConfigError{scenario.file, src.line, 0, src.path,
-                      fmt::format("'{}' is outside the {} controller's I/O image", signal, controller_->device())});
-    }
-    return *a;
+    if (s.bit) report_signal(s.name, controllers::BitAddress{s.area, s.byte, *s.bit});
+  const auto resolve = [&](const std::string& signal, const SourceRef& src) {
+    return resolve_signal(scenario, signal, src);
   };
   // Real I/O first: a scenario stimulus on the same bit overrides it (later sources win).
   for (const IoLink& link : scenario.io_links)
@@ -173,7 +179,7 @@ std::optional<ConfigError> Machine::attach_io(const Scenario& scenario, const Cl
                          fmt::format("'{}' is a {} ({}): the scenario drives inputs (and device data bits) only",
                                      st.signal, controllers::to_string(bit->area), controllers::format_address(*bit))};
     }
-    add_signal(st.signal, *bit);
+    report_signal(st.signal, *bit);
     std::unique_ptr<controllers::IoSource> src;
     const Duration width = st.kind == IoStimulus::Kind::pulse && st.width == Duration::zero() ? cycle : st.width;
     switch (st.kind) {
@@ -206,69 +212,65 @@ std::optional<ConfigError> Machine::attach_io(const Scenario& scenario, const Cl
   for (const IoExpectation& e : scenario.io_expectations) {
     auto bit = resolve(e.signal, e.source);
     if (!bit) return bit.error();
-    add_signal(e.signal, *bit);
+    report_signal(e.signal, *bit);
   }
   return std::nullopt;
 }
 
 std::optional<ConfigError> Machine::attach_io_link(const Scenario& scenario, const IoLink& link, const Clock& clock) {
-  auto& io = controller_->io();
-  // Each signal resolves to a bit of the allowed areas; it is then reported like io: signals.
-  const auto resolve = [&](const IoLinkBit& b, bool input) -> std::expected<controllers::BitAddress, ConfigError> {
-    const auto fail = [&](std::string message) {
-      return std::unexpected(ConfigError{scenario.file, b.source.line, 0, b.source.path, std::move(message)});
-    };
-    auto a = controller_->resolve_bit(b.signal);
-    if (!a) return fail(a.error());
-    if (!io.contains(*a))
-      return fail(fmt::format("'{}' is outside the {} controller's I/O image", b.signal, controller_->device()));
+  // Each signal resolves to a bit of the areas its direction allows; it is then reported like io: signals.
+  const ResolveLinkBit resolve = [&](const IoLinkBit& b,
+                                     bool input) -> std::expected<controllers::BitAddress, ConfigError> {
+    auto a = resolve_signal(scenario, b.signal, b.source);
+    if (!a) return a;
     using controllers::IoArea;
     const bool ok = input ? a->area == IoArea::input || a->area == IoArea::data
                           : a->area == IoArea::output || a->area == IoArea::marker;
     if (!ok) {
-      return fail(fmt::format("'{}' is a {} bit ({}): a link's {} are {} bits", b.signal,
-                              controllers::to_string(a->area), controllers::format_address(*a),
-                              input ? "inputs" : "outputs", input ? "input (or device data)" : "output (or marker)"));
+      return std::unexpected(ConfigError{
+          scenario.file, b.source.line, 0, b.source.path,
+          fmt::format("'{}' is a {} bit ({}): a link's {} are {} bits", b.signal, controllers::to_string(a->area),
+                      controllers::format_address(*a), input ? "inputs" : "outputs",
+                      input ? "input (or device data)" : "output (or marker)")});
     }
-    if (std::ranges::none_of(io_signals_, [&](const auto& s) { return s.first == b.signal; }))
-      io_signals_.emplace_back(b.signal, *a);
-    return *a;
+    report_signal(b.signal, *a);
+    return a;
   };
+  if (const auto* d = std::get_if<DriveLinkDevice>(&link.device)) return make_drive_link(scenario, link, *d, resolve);
+  if (const auto* g = std::get_if<GpioLinkDevice>(&link.device))
+    return make_gpio_link(scenario, link, *g, clock, resolve);
+  if (const auto* m = std::get_if<ModbusLinkDevice>(&link.device)) return make_modbus_link(scenario, link, *m, resolve);
+  return std::nullopt;
+}
+
+std::optional<ConfigError> Machine::make_gpio_link(const Scenario& scenario, const IoLink& link,
+                                                   const GpioLinkDevice& device, const Clock& clock,
+                                                   const ResolveLinkBit& resolve) {
+  controllers::GpioLinkConfig config;
+  config.chip = device.chip;
+  config.consumer = device.consumer;
   const auto lines = [&](const std::vector<IoLinkBit>& bits, bool input,
                          std::vector<controllers::GpioLinkLine>& out) -> std::optional<ConfigError> {
     for (const IoLinkBit& b : bits) {
       auto a = resolve(b, input);
       if (!a) return a.error();
       const auto& g = std::get<GpioLinkBit>(b.where);
-      controllers::GpioLinkLine l;
-      l.signal = b.signal;
-      l.offset = g.offset;
-      l.name = g.name;
-      l.bit = *a;
-      l.active_low = g.active_low;
-      l.bias = g.bias.empty() ? gpio::Bias::as_is : gpio::parse_bias(g.bias).value_or(gpio::Bias::as_is);
-      l.mock = g.mock;
-      out.push_back(std::move(l));
+      out.push_back(
+          {b.signal, g.offset, g.name, *a, g.active_low, gpio::parse_bias(g.bias).value_or(gpio::Bias::as_is), g.mock});
     }
     return std::nullopt;
   };
-  if (const auto* d = std::get_if<DriveLinkDevice>(&link.device)) return make_drive_link(scenario, link, *d, resolve);
-  if (const auto* g = std::get_if<GpioLinkDevice>(&link.device)) {
-    controllers::GpioLinkConfig config;
-    config.chip = g->chip;
-    config.consumer = g->consumer;
-    if (auto e = lines(link.inputs, true, config.inputs)) return e;
-    if (auto e = lines(link.outputs, false, config.outputs)) return e;
-    auto opened = controllers::GpioLink::open(std::move(config), clock);
-    if (!opened) {
-      return ConfigError{scenario.file, link.source.line, 0, link.source.path + ".gpio",
-                         fmt::format("cannot open the GPIO lines: {}", opened.error())};
-    }
-    if (auto* src = (*opened)->source()) io.attach(*src);
-    if (auto* sink = (*opened)->sink()) io.attach(*sink);
-    gpio_links_.push_back(GpioLinkEntry{link.source.path, std::move(*opened)});
+  if (auto e = lines(link.inputs, true, config.inputs)) return e;
+  if (auto e = lines(link.outputs, false, config.outputs)) return e;
+  auto opened = controllers::GpioLink::open(std::move(config), clock);
+  if (!opened) {
+    return ConfigError{scenario.file, link.source.line, 0, link.source.path + ".gpio",
+                       fmt::format("cannot open the GPIO lines: {}", opened.error())};
   }
-  if (const auto* m = std::get_if<ModbusLinkDevice>(&link.device)) return make_modbus_link(scenario, link, *m, resolve);
+  auto& io = controller_->io();
+  if (auto* src = (*opened)->source()) io.attach(*src);
+  if (auto* sink = (*opened)->sink()) io.attach(*sink);
+  gpio_links_.push_back(GpioLinkEntry{link.source.path, std::move(*opened)});
   return std::nullopt;
 }
 

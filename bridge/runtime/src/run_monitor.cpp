@@ -203,20 +203,16 @@ void RunMonitor::observe(Duration t) noexcept {
   }
   // An I/O link outage (the terminal stopped answering, refused a request, or its data went
   // stale) is a fault event of the link, once per outage.
-  const auto& links = machine_.modbus_links();
-  for (std::size_t i = 0; i < links.size() && i < link_outages_seen_.size(); ++i) {
-    const auto& l = *links[i].link;
-    if (l.fault_count() == link_outages_seen_[i]) continue;
-    link_outages_seen_[i] = l.fault_count();
-    faults_.push_back(FaultEvent{t, links[i].name, "io_link", l.fault()});
-  }
-  const auto& gpio = machine_.gpio_links();
-  for (std::size_t i = 0; i < gpio.size() && i < gpio_outages_seen_.size(); ++i) {
-    const auto& l = *gpio[i].link;
-    if (l.fault_count() == gpio_outages_seen_[i]) continue;
-    gpio_outages_seen_[i] = l.fault_count();
-    faults_.push_back(FaultEvent{t, gpio[i].name, "io_link", l.fault()});
-  }
+  const auto outages = [&](const auto& links, std::vector<std::uint64_t>& seen) {
+    for (std::size_t i = 0; i < links.size() && i < seen.size(); ++i) {
+      const auto& l = *links[i].link;
+      if (l.fault_count() == seen[i]) continue;
+      seen[i] = l.fault_count();
+      faults_.push_back(FaultEvent{t, links[i].name, "io_link", l.fault()});
+    }
+  };
+  outages(machine_.modbus_links(), link_outages_seen_);
+  outages(machine_.gpio_links(), gpio_outages_seen_);
   io_.observe(t);
   for (auto& s : states_) {
     const auto& st = machine_.axes()[s.axis].axis->status();

@@ -378,9 +378,8 @@ class Loader {
     if (auto a = f.child("active_low"); a.present()) b.active_low = a.as_bool();
     if (auto bias = f.child("bias"); bias.present()) {
       if (!input) bias.fail("'bias' applies to input lines");
-      static constexpr std::array<std::string_view, 4> names{"as-is", "disabled", "pull-up", "pull-down"};
-      const std::size_t i = bias.as_enum({"as-is", "disabled", "pull-up", "pull-down"});
-      b.bias = i == 0 ? std::string{} : std::string(names[i]);
+      (void)bias.as_enum({"as-is", "disabled", "pull-up", "pull-down"});  // the names gpio::parse_bias reads
+      b.bias = bias.as_string("a bias");
     }
     if (auto m = f.child("mock"); m.present()) {
       if (!input || !mock_chip) m.fail("'mock' scripts an input line of 'chip: mock'");

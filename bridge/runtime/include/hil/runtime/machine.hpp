@@ -128,6 +128,16 @@ class Machine {
                                                             const ResolveLinkBit& resolve);
   /// `- drive: AXIS`: DriveInputs / DriveOutputs on the axis, after checking the axis exists and its
   /// drive has the digital inputs / output bits the link uses.
+  /// `- gpio:`: the chip's (or mock) lines through a controllers::GpioLink.
+  [[nodiscard]] std::optional<ConfigError> make_gpio_link(const Scenario& scenario, const IoLink& link,
+                                                          const GpioLinkDevice& device, const Clock& clock,
+                                                          const ResolveLinkBit& resolve);
+  /// A signal name or device address as a bit of the controller's image; errors name `src`.
+  [[nodiscard]] std::expected<controllers::BitAddress, ConfigError> resolve_signal(const Scenario& scenario,
+                                                                                   const std::string& signal,
+                                                                                   const SourceRef& src) const;
+  /// Adds `name` to io_signals() (the reported signals) unless it is there already.
+  void report_signal(const std::string& name, controllers::BitAddress a);
   [[nodiscard]] std::optional<ConfigError> make_drive_link(const Scenario& scenario, const IoLink& link,
                                                            const DriveLinkDevice& device,
                                                            const ResolveLinkBit& resolve);

@@ -241,7 +241,7 @@ struct GpioLinkBit {
   std::optional<unsigned> offset;  ///< chip offset, or
   std::string name;                ///< a line name (gpioinfo)
   bool active_low = false;         ///< image bit = !line level (inputs), line = !bit (outputs)
-  std::string bias;                ///< inputs: as-is (empty), disabled, pull-up, pull-down
+  std::string bias;                ///< inputs: as-is (also when empty), disabled, pull-up, pull-down
   /// `chip: mock` inputs: the line level over scenario time (level before the first entry: 0).
   std::vector<std::pair<Duration, bool>> mock;
 };
