@@ -8,8 +8,13 @@ add_library(hil_warnings INTERFACE)
 target_compile_options(hil_warnings INTERFACE -Wall -Wextra -Wpedantic -Wshadow -Wconversion
   -Wno-sign-conversion $<$<BOOL:${HIL_WERROR}>:-Werror>)
 if(HIL_SANITIZE)
+  # -Wno-stringop-overflow: with ASan's instrumentation g++ 12 loses the bounds of libstdc++'s
+  # std::fill inside std::vector::resize at -O1 and above and reports a memset of 2^64 - 8 bytes
+  # on a path that cannot run (first seen on a shrinking resize in sdo_server.cpp, now an erase).
+  # The plain -O2 build (HIL_CI_FULL=1, the demo) keeps the warning; ASan checks every access of
+  # this build at run time.
   target_compile_options(hil_warnings INTERFACE -fsanitize=address,undefined -fno-omit-frame-pointer
-    -fno-sanitize-recover=undefined)
+    -fno-sanitize-recover=undefined -Wno-stringop-overflow)
   target_link_options(hil_warnings INTERFACE -fsanitize=address,undefined)
 endif()
 if(HIL_SANITIZE_THREAD)

@@ -21,18 +21,23 @@ for f in bin/hilbridge share/hilbridge/examples/demo.yaml share/hilbridge/exampl
   [[ -e $p/$f ]] || { echo "missing in the installed tree: $f"; exit 1; }
 done
 
+# An ASan + UBSan build (CI's, preset `asan`) installs instrumented static libraries: a consumer
+# links them with the sanitizer runtime, as any user of that tree would have to.
+san=()
+if grep -q '^HIL_SANITIZE:BOOL=ON' "$build/CMakeCache.txt"; then san=(-fsanitize=address,undefined); fi
+
 step "consumer project: find_package(hilbridge)"
 generator=()
 if command -v ninja >/dev/null; then generator=(-G Ninja); fi
 cmake -S "$src/tests/install/consumer" -B "$work/consumer" "${generator[@]}" -DCMAKE_PREFIX_PATH="$p" \
-  -DCMAKE_BUILD_TYPE=Release >/dev/null
+  -DCMAKE_BUILD_TYPE=Release -DCMAKE_EXE_LINKER_FLAGS="${san[*]}" >/dev/null
 cmake --build "$work/consumer" >/dev/null
 "$work/consumer/consumer" "$p/share/hilbridge"
 
 step "consumer through pkg-config"
 export PKG_CONFIG_PATH=$p/lib/pkgconfig
 # shellcheck disable=SC2046
-g++ $(pkg-config --cflags hilbridge) "$src/tests/install/consumer/main.cpp" -o "$work/consumer_pc" \
+g++ "${san[@]}" $(pkg-config --cflags hilbridge) "$src/tests/install/consumer/main.cpp" -o "$work/consumer_pc" \
   $(pkg-config --libs hilbridge)
 "$work/consumer_pc" "$p/share/hilbridge"
 

@@ -292,7 +292,7 @@ void SdoServer::on_block_download_end(const can::Frame& f, TimePoint now) {
   if ((b0 & 0xE3) != 0xC1) return abort(SdoAbort::command_specifier, now);
   const std::size_t unused = (b0 >> 2) & 0x07;
   if (unused > buffer_.size()) return abort(SdoAbort::length_too_low, now);
-  buffer_.resize(buffer_.size() - unused);
+  buffer_.erase(buffer_.end() - static_cast<std::ptrdiff_t>(unused), buffer_.end());  // shrinks, never fills
   if (size_indicated_ && buffer_.size() != size_)
     return abort(buffer_.size() > size_ ? SdoAbort::length_too_high : SdoAbort::length_too_low, now);
   if (client_crc_ && options_.block_crc && crc16_ccitt(buffer_) != get_le16(&f.data[1]))
