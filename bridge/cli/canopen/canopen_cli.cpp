@@ -12,6 +12,7 @@
 
 #include "hil/canopen/nmt.hpp"
 #include "hil/canopen/sdo_client.hpp"
+#include "hil/cia402/canopen_transport.hpp"
 #include "hil/cli/context.hpp"
 #include "hil/cli/duration_option.hpp"
 #include "hil/cli/json_output.hpp"
@@ -23,7 +24,6 @@ namespace hil::cli {
 namespace canopen_cli {
 void register_emulate_cia402(Context& ctx);
 void register_eds(Context& ctx);
-void register_canopen_transport(Context& ctx);
 }  // namespace canopen_cli
 
 namespace {
@@ -350,7 +350,7 @@ void register_canopen(Context& ctx) {
   register_scan(ctx);
   canopen_cli::register_emulate_cia402(ctx);
   canopen_cli::register_eds(ctx);
-  canopen_cli::register_canopen_transport(ctx);
+  ctx.transports.add("canopen", [] { return cia402::make_canopen_transport(); });
 }
 
 }  // namespace hil::cli

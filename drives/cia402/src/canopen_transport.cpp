@@ -1,8 +1,6 @@
 // SPDX-License-Identifier: MIT
-// The `canopen` transport for `hilbridge run`: CiA 402 axes behind one CANopen master per bus.
-// Without `bus:` (or with `bus: virtual:NAME`) the nodes are simulated CiA 402 drives on an
-// in-process virtual bus, deterministic on the run's clock; with `bus: vcan0` / `can0` /
-// `socketcand://...` the master talks to real nodes (real-time runs only). SYNC at the cycle period.
+#include "hil/cia402/canopen_transport.hpp"
+
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -20,14 +18,13 @@
 #include "hil/canopen/eds.hpp"
 #include "hil/cia402/cia402_drive.hpp"
 #include "hil/cia402/layout.hpp"
-#include "hil/cli/context.hpp"
 #include "hil/config/yaml_config.hpp"
 #include "hil/core/fault_injection.hpp"
 #include "hil/mocks/cia402_node.hpp"
 #include "hil/mocks/key_range.hpp"
 #include "hil/mocks/switches.hpp"
 
-namespace hil::cli::canopen_cli {
+namespace hil::cia402 {
 namespace {
 
 namespace fs = std::filesystem;
@@ -491,8 +488,8 @@ class CanopenTransport final : public TransportFactory {
 
 }  // namespace
 
-void register_canopen_transport(Context& ctx) {
-  ctx.transports.add("canopen", [] { return std::make_unique<CanopenTransport>(); });
+std::unique_ptr<TransportFactory> make_canopen_transport() {
+  return std::make_unique<CanopenTransport>();
 }
 
-}  // namespace hil::cli::canopen_cli
+}  // namespace hil::cia402
