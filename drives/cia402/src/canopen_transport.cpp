@@ -20,6 +20,7 @@
 #include "hil/cia402/layout.hpp"
 #include "hil/config/yaml_config.hpp"
 #include "hil/core/fault_injection.hpp"
+#include "hil/core/forwarding_drive.hpp"
 #include "hil/mocks/cia402_node.hpp"
 #include "hil/mocks/key_range.hpp"
 #include "hil/mocks/switches.hpp"
@@ -30,19 +31,13 @@ namespace {
 namespace fs = std::filesystem;
 
 /// An axis whose node is simulated in this process: the Drive plus fault injection on the node.
-class InProcessAxis final : public Drive, public FaultInjectable {
+class InProcessAxis final : public ForwardingDrive, public FaultInjectable {
  public:
   /// `master_node` != 0: the master produces a heartbeat the node watches, and the fault
   /// `master_heartbeat_loss` drops it on the bus (the node faults with 0x8130 after its consumer time).
   InProcessAxis(std::unique_ptr<cia402::Cia402Drive> drive, mocks::Cia402Node& node, const Clock& clock,
                 can::VirtualBus& bus, canopen::NodeId master_node)
-      : drive_(std::move(drive)), node_(node), clock_(clock), bus_(bus), master_node_(master_node) {}
-  std::string_view name() const noexcept override { return drive_->name(); }
-  DriveCapabilities capabilities() const noexcept override { return drive_->capabilities(); }
-  void read(const CycleTime& c) override { drive_->read(c); }
-  void write(const CycleTime& c, const DriveCommand& cmd) override { drive_->write(c, cmd); }
-  const DriveFeedback& feedback() const noexcept override { return drive_->feedback(); }
-  bool request(DriveRequest r) override { return drive_->request(r); }
+      : ForwardingDrive(std::move(drive)), node_(node), clock_(clock), bus_(bus), master_node_(master_node) {}
   std::vector<std::string> injectable_faults() const override {
     auto names = mocks::Cia402Node::fault_names();
     // SDO faults act on SDO transfers; the run's exchange is PDOs only once the node has booted,
@@ -66,7 +61,6 @@ class InProcessAxis final : public Drive, public FaultInjectable {
   }
 
  private:
-  std::unique_ptr<cia402::Cia402Drive> drive_;
   mocks::Cia402Node& node_;
   const Clock& clock_;
   can::VirtualBus& bus_;

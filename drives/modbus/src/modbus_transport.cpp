@@ -10,6 +10,7 @@
 #include "hil/config/yaml_config.hpp"
 #include "hil/core/data_dir.hpp"
 #include "hil/core/fault_injection.hpp"
+#include "hil/core/forwarding_drive.hpp"
 #include "hil/drives/modbus_drive.hpp"
 #include "hil/mocks/modbus_server.hpp"
 #include "hil/mocks/sim_drive.hpp"
@@ -22,16 +23,10 @@ namespace fs = std::filesystem;
 
 // An axis whose far end is our in-process server: the Modbus drive plus fault injection into
 // the server (plant faults and link faults). Motion thread only.
-class InProcessModbusDrive final : public Drive, public FaultInjectable {
+class InProcessModbusDrive final : public ForwardingDrive, public FaultInjectable {
  public:
   InProcessModbusDrive(std::unique_ptr<ModbusDrive> drive, mocks::ModbusDriveServer& server)
-      : drive_(std::move(drive)), server_(server) {}
-  [[nodiscard]] std::string_view name() const noexcept override { return drive_->name(); }
-  [[nodiscard]] DriveCapabilities capabilities() const noexcept override { return drive_->capabilities(); }
-  void read(const CycleTime& c) override { drive_->read(c); }
-  void write(const CycleTime& c, const DriveCommand& cmd) override { drive_->write(c, cmd); }
-  [[nodiscard]] const DriveFeedback& feedback() const noexcept override { return drive_->feedback(); }
-  bool request(DriveRequest r) override { return drive_->request(r); }
+      : ForwardingDrive(std::move(drive)), server_(server) {}
 
   [[nodiscard]] std::vector<std::string> injectable_faults() const override {
     return {"encoder", "not_ready", "following_blowup", "server_down", "slow_response", "busy"};
@@ -58,10 +53,9 @@ class InProcessModbusDrive final : public Drive, public FaultInjectable {
     return true;
   }
   void set_timeout(Duration t) { timeout_ = t; }
-  ModbusDrive& drive() { return *drive_; }
+  ModbusDrive& drive() { return static_cast<ModbusDrive&>(inner()); }
 
  private:
-  std::unique_ptr<ModbusDrive> drive_;
   mocks::ModbusDriveServer& server_;
   Duration timeout_{std::chrono::milliseconds(100)};
 };
