@@ -152,6 +152,32 @@ def check_durations(hb):
         pass
     check("deprecated" not in p.err, f"emulate ip247 --cycle 2ms: {p.err}")
 
+    # stepdir: --pulse / --dir-setup / --dir-hold with units (ns is in the grammar); the old
+    # unit-in-the-name options are hidden aliases that warn and give the same plan.
+    plan = ["stepdir", "plan", "--distance", "500", "--summary", "--verify"]
+    _, new_out, _ = expect_ok_quiet(hb, plan + ["--pulse", "30us", "--dir-setup", "200ns", "--dir-hold", "5us"],
+                                    "stepdir plan --pulse 30us --dir-setup 200ns --dir-hold 5us")
+    check("verify: ok" in new_out, f"stepdir plan with units verifies: {new_out}")
+    expect_warning(hb, plan + ["--pulse-us", "30", "--dir-setup", "200ns", "--dir-hold", "5us"],
+                   "--pulse-us is deprecated; write --pulse 30us", "stepdir --pulse-us (old name)")
+    expect_warning(hb, plan + ["--pulse", "30us", "--dir-setup-ns", "200", "--dir-hold", "5us"],
+                   "--dir-setup-ns is deprecated; write --dir-setup 200ns", "stepdir --dir-setup-ns (old name)")
+    expect_warning(hb, plan + ["--pulse", "30us", "--dir-setup", "200ns", "--dir-hold-ns", "5000"],
+                   "--dir-hold-ns is deprecated; write --dir-hold 5000ns", "stepdir --dir-hold-ns (old name)")
+    rc, old_out, err = run(hb, *plan, "--pulse-us", "30", "--dir-setup-ns", "200", "--dir-hold-ns", "5000")
+    check(rc == 0 and old_out == new_out, f"old and new stepdir spellings plan the same move: {old_out} {err}")
+    expect_warning(hb, plan + ["--pulse", "30"], "write --pulse 30us", "stepdir --pulse bare number = us")
+    expect_warning(hb, plan + ["--dir-setup", "200"], "write --dir-setup 200ns", "stepdir --dir-setup bare = ns")
+    expect_usage(hb, plan + ["--pulse", "2.5us"], ["--pulse 2500ns", "whole microseconds"], "stepdir --pulse 2.5us")
+    expect_usage(hb, plan + ["--pulse", "40us"], ["IP247 MD error"], "stepdir --pulse beyond the machine data")
+    expect_usage(hb, plan + ["--dir-setup", "2s"], ["--dir-setup", "2s is out of range", "0s .. 1s"],
+                 "stepdir --dir-setup 2s")
+    expect_usage(hb, plan + ["--dir-hold", "5 parsecs"], ["--dir-hold", "not a duration", "ns, us, ms, s or min"],
+                 "stepdir --dir-hold with an unknown unit")
+    rc, out, _ = run(hb, "stepdir", "plan", "--help")
+    check("--pulse" in out and "--dir-setup" in out and "--pulse-us" not in out and "-ns" not in out,
+          f"stepdir plan --help: {out}")
+
     # --help shows the new spellings only
     rc, out, _ = run(hb, "can", "send", "--help")
     check("--interval" in out and "--interval-ms" not in out, f"can send --help: {out}")
