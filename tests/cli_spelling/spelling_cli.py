@@ -7,6 +7,7 @@ expected. `exit_codes`: every command, found from the --help tree, exits 2 on an
 (CLI11's parse errors included) and on a wrong value, 1 when the checked thing failed (a bus, a
 server or a device that cannot be reached), 0 on success (docs/cli.md, "Exit codes").
 Usage: /usr/bin/python3 spelling_cli.py HILBRIDGE durations|exit_codes (run from the source tree's root)."""
+import json
 import os
 import re
 import subprocess
@@ -297,6 +298,30 @@ def check_types(hb):
     check(all(t in out for t in ("u8", "u16", "u32", "i8", "i16", "i32", "x16", "x32")), f"sdo --help types: {out}")
     expect_usage(hb, ["modbus", "read", "127.0.0.1:1502", "1", "0", "--type", "f32"],
                  ["--type 'f32'", "u16, i16, u32, i32 or hex"], "modbus --type f32")
+
+    # sdo: hex as in modbus and the profiles, its width the object's (read: the size uploaded;
+    # write: the digits given), the same value as the x type of that width.
+    check("hex" in out, f"sdo --help names hex: {out}")
+    with hub(hb) as h:
+        bus = f"socketcand://127.0.0.1:{h.m.group(1)}/can0"
+        with Proc([hb, "emulate", "cia402", "--bus", bus, "--node", "5", "--duration", "30s"], r"node 5 up"):
+            sdo = ["sdo", "read", "--bus", bus, "5"]
+            _, out, _ = expect_ok_quiet(hb, sdo + ["0x1018:1", "--type", "hex"], "sdo read --type hex")
+            check(out.strip() == "0x00000A11", f"sdo hex of a u32 = x32: {out}")
+            _, x32, _ = run(hb, *sdo, "0x1018:1", "--type", "x32")
+            check(out == x32, f"sdo hex = x32 for a 32-bit object: {out} {x32}")
+            _, out, _ = expect_ok_quiet(hb, sdo + ["0x6060:0", "--type", "hex"], "sdo read --type hex of an i8")
+            check(re.fullmatch(r"0x[0-9A-F]{2}", out.strip()) is not None, f"sdo hex of an 8-bit object: {out}")
+            _, out, _ = expect_ok_quiet(hb, sdo + ["0x1018:1", "--type", "hex", "--json"], "sdo read --type hex --json")
+            j = json.loads(out)
+            check(j.get("value") == "0x00000A11" and j.get("type") == "hex", f"sdo hex --json: {out}")
+            expect_ok_quiet(hb, ["sdo", "write", "--bus", bus, "5", "0x607A:0", "0x0001E240", "--type", "hex"],
+                            "sdo write --type hex (32 bits from 8 digits)")
+            _, out, _ = run(hb, *sdo, "0x607A:0", "--type", "i32")
+            check(out.strip() == "123456", f"hex write read back as i32: {out}")
+            expect_usage(hb, ["sdo", "write", "--bus", bus, "5", "0x607A:0", "0x1E240", "--type", "hex"],
+                         ["0x1E240", "takes its width from the digits", "x8..x64"], "sdo write --type hex, 5 digits")
+
 
 
 def check_endpoints(hb):
