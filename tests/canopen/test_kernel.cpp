@@ -33,13 +33,14 @@ TEST(CanopenKernel, MasterAndNodeInSeparateProcessesOverVcan0) {
   ASSERT_TRUE(node.started());
   ASSERT_TRUE(node.wait_for_line("node 5 up", std::chrono::seconds(30))) << node.output();
 
-  auto [rc, out] = cli({"sdo", "read", "--bus", "vcan0", "5", "0x1018:2", "--type", "x32", "--timeout", "2s"});
+  auto [rc, out] =
+      cli({"canopen", "sdo", "read", "--bus", "vcan0", "5", "0x1018:2", "--type", "x32", "--timeout", "2s"});
   EXPECT_EQ(rc, 0) << out;
   EXPECT_NE(out.find("0x00000402"), std::string::npos) << out;
   std::tie(rc, out) =
-      cli({"sdo", "read", "--bus", "vcan0", "5", "0x1008:0", "--type", "vs", "--block", "--timeout", "2s"});
+      cli({"canopen", "sdo", "read", "--bus", "vcan0", "5", "0x1008:0", "--type", "vs", "--block", "--timeout", "2s"});
   EXPECT_NE(out.find("hilbridge simulated CiA 402 drive"), std::string::npos) << out;
-  std::tie(rc, out) = cli({"scan", "--bus", "vcan0", "--timeout", "1s"});
+  std::tie(rc, out) = cli({"canopen", "scan", "--bus", "vcan0", "--timeout", "1s"});
   EXPECT_NE(out.find("   5  0x00020192   0x00000A11"), std::string::npos) << out;
   std::tie(rc, out) = cli({"run", HIL_SCENARIO}, std::chrono::seconds(120));
   EXPECT_EQ(rc, 0) << out;

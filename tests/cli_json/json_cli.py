@@ -109,7 +109,7 @@ def check_scan(hb):
     with hub(hb) as h:
         bus = f"socketcand://127.0.0.1:{h.m.group(1)}/can0"
         with Proc([hb, "emulate", "cia402", "--bus", bus, "--node", "5", "--node", "9"], r"node \d+ up"):
-            rc, out, err = run(hb, "scan", "--bus", bus, "--timeout", "200ms", "--json")
+            rc, out, err = run(hb, "canopen", "scan", "--bus", bus, "--timeout", "200ms", "--json")
             c.check(rc == 0, f"scan --json: exit {rc}: {err}")
             j = json_tool(out, "scan --json")
             nodes = {n["node"]: n for n in j.get("nodes", [])}
@@ -117,27 +117,27 @@ def check_scan(hb):
             n5 = nodes.get(5, {})
             c.check(n5.get("device_type") == 0x20192 and n5.get("vendor_id") == 0xA11 and
                     n5.get("product_code") == 0x402 and "CiA 402" in n5.get("name", ""), f"node 5 identity: {n5}")
-    expect_error(hb, ["scan", "--bus", "socketcand://127.0.0.1:1/can0", "--json"], 1, "scan unreachable bus")
+    expect_error(hb, ["canopen", "scan", "--bus", "socketcand://127.0.0.1:1/can0", "--json"], 1, "scan unreachable bus")
 
 
 def check_sdo_read(hb):
     with hub(hb) as h:
         bus = f"socketcand://127.0.0.1:{h.m.group(1)}/can0"
         with Proc([hb, "emulate", "cia402", "--bus", bus, "--node", "5"], r"node 5 up"):
-            rc, out, err = run(hb, "sdo", "read", "--bus", bus, "5", "0x1018:1", "--type", "u32", "--json")
+            rc, out, err = run(hb, "canopen", "sdo", "read", "--bus", bus, "5", "0x1018:1", "--type", "u32", "--json")
             j = json_tool(out, "sdo read --json")
             c.check(rc == 0 and j.get("value") == 0xA11 and j.get("data") == "110a0000" and j.get("size") == 4 and
                     j.get("index") == "0x1018" and j.get("subindex") == 1, f"sdo read u32: {rc} {out} {err}")
-            rc, out, _ = run(hb, "sdo", "read", "--bus", bus, "5", "0x1008:0", "--type", "vs", "--json")
+            rc, out, _ = run(hb, "canopen", "sdo", "read", "--bus", bus, "5", "0x1008:0", "--type", "vs", "--json")
             j = json_tool(out, "sdo read vs")
             c.check(rc == 0 and "CiA 402" in str(j.get("value")), f"sdo read vs: {out}")
-            rc, out, _ = run(hb, "sdo", "read", "--bus", bus, "5", "0x1000:0", "--json")
+            rc, out, _ = run(hb, "canopen", "sdo", "read", "--bus", bus, "5", "0x1000:0", "--json")
             j = json_tool(out, "sdo read untyped")
             c.check(rc == 0 and j.get("type") is None and j.get("value") == 0x20192, f"untyped: {out}")
-            j = expect_error(hb, ["sdo", "read", "--bus", bus, "5", "0x1018:9", "--json"], 1, "sdo abort")
+            j = expect_error(hb, ["canopen", "sdo", "read", "--bus", bus, "5", "0x1018:9", "--json"], 1, "sdo abort")
             c.check(j.get("abort_code") == "0x06090011", f"abort code member: {j}")
-            expect_error(hb, ["sdo", "read", "--bus", bus, "5", "zz:1", "--json"], 2, "sdo bad object")
-    expect_error(hb, ["sdo", "read", "--bus", "vcan0", "5", "--json"], 2, "sdo usage error")
+            expect_error(hb, ["canopen", "sdo", "read", "--bus", bus, "5", "zz:1", "--json"], 2, "sdo bad object")
+    expect_error(hb, ["canopen", "sdo", "read", "--bus", "vcan0", "5", "--json"], 2, "sdo usage error")
 
 
 def check_modbus_read(hb):

@@ -6,7 +6,10 @@ keep their old name as a hidden alias that warns; a bad value exits 2 naming the
 expected. `exit_codes`: every command, found from the --help tree, exits 2 on an unknown option
 (CLI11's parse errors included) and on a wrong value, 1 when the checked thing failed (a bus, a
 server or a device that cannot be reached), 0 on success (docs/cli.md, "Exit codes").
-Usage: /usr/bin/python3 spelling_cli.py HILBRIDGE durations|exit_codes (run from the source tree's root)."""
+`groups`: one grouping rule, the CANopen commands under `canopen`, the old top-level names warn.
+Usage: /usr/bin/python3 spelling_cli.py HILBRIDGE durations|exit_codes|types|endpoints|groups (run from the
+source tree's root)."""
+import json
 import os
 import re
 import subprocess
@@ -110,14 +113,15 @@ def check_durations(hb):
         expect_ok_quiet(hb, ["can", "send", "--bus", bus, "--interval", "5ms", "701#05", "702#05"], "can send --interval")
         expect_warning(hb, ["can", "send", "--bus", bus, "--interval-ms", "5", "701#05", "702#05"],
                        "--interval-ms is deprecated; write --interval 5ms", "can send --interval-ms (old name)")
-        expect_ok_quiet(hb, ["scan", "--bus", bus, "--timeout", "100ms"], "scan --timeout 100ms")
-        expect_warning(hb, ["scan", "--bus", bus, "--timeout", "100"], "write --timeout 100ms", "scan bare ms")
-        expect_usage(hb, ["sdo", "read", "--bus", bus, "5", "0x1000:0", "--timeout", "11min"],
+        expect_ok_quiet(hb, ["canopen", "scan", "--bus", bus, "--timeout", "100ms"], "scan --timeout 100ms")
+        expect_warning(hb, ["canopen", "scan", "--bus", bus, "--timeout", "100"], "write --timeout 100ms",
+                       "scan bare ms")
+        expect_usage(hb, ["canopen", "sdo", "read", "--bus", bus, "5", "0x1000:0", "--timeout", "11min"],
                      ["--timeout", "11min is out of range", "1ms .. 10min"], "sdo --timeout too long")
         with Proc([hb, "emulate", "cia402", "--bus", bus, "--node", "5", "--duration", "20s"], r"node 5 up"):
-            rc, out, err = expect_ok_quiet(hb, ["sdo", "read", "--bus", bus, "5", "0x1000:0", "--timeout", "2s"],
-                                           "sdo read --timeout 2s")
-            expect_warning(hb, ["sdo", "read", "--bus", bus, "5", "0x1000:0", "--timeout", "2000"],
+            rc, out, err = expect_ok_quiet(hb, ["canopen", "sdo", "read", "--bus", bus, "5", "0x1000:0", "--timeout",
+                                                "2s"], "sdo read --timeout 2s")
+            expect_warning(hb, ["canopen", "sdo", "read", "--bus", bus, "5", "0x1000:0", "--timeout", "2000"],
                            "write --timeout 2000ms", "sdo read bare ms")
         rc, _, err = run(hb, "emulate", "cia402", "--bus", bus, "--node", "6", "--duration", "200ms")
         check(rc == 0, f"emulate cia402 --duration 200ms ends by itself: {rc} {err}")
@@ -152,6 +156,32 @@ def check_durations(hb):
         pass
     check("deprecated" not in p.err, f"emulate ip247 --cycle 2ms: {p.err}")
 
+    # stepdir: --pulse / --dir-setup / --dir-hold with units (ns is in the grammar); the old
+    # unit-in-the-name options are hidden aliases that warn and give the same plan.
+    plan = ["stepdir", "plan", "--distance", "500", "--summary", "--verify"]
+    _, new_out, _ = expect_ok_quiet(hb, plan + ["--pulse", "30us", "--dir-setup", "200ns", "--dir-hold", "5us"],
+                                    "stepdir plan --pulse 30us --dir-setup 200ns --dir-hold 5us")
+    check("verify: ok" in new_out, f"stepdir plan with units verifies: {new_out}")
+    expect_warning(hb, plan + ["--pulse-us", "30", "--dir-setup", "200ns", "--dir-hold", "5us"],
+                   "--pulse-us is deprecated; write --pulse 30us", "stepdir --pulse-us (old name)")
+    expect_warning(hb, plan + ["--pulse", "30us", "--dir-setup-ns", "200", "--dir-hold", "5us"],
+                   "--dir-setup-ns is deprecated; write --dir-setup 200ns", "stepdir --dir-setup-ns (old name)")
+    expect_warning(hb, plan + ["--pulse", "30us", "--dir-setup", "200ns", "--dir-hold-ns", "5000"],
+                   "--dir-hold-ns is deprecated; write --dir-hold 5000ns", "stepdir --dir-hold-ns (old name)")
+    rc, old_out, err = run(hb, *plan, "--pulse-us", "30", "--dir-setup-ns", "200", "--dir-hold-ns", "5000")
+    check(rc == 0 and old_out == new_out, f"old and new stepdir spellings plan the same move: {old_out} {err}")
+    expect_warning(hb, plan + ["--pulse", "30"], "write --pulse 30us", "stepdir --pulse bare number = us")
+    expect_warning(hb, plan + ["--dir-setup", "200"], "write --dir-setup 200ns", "stepdir --dir-setup bare = ns")
+    expect_usage(hb, plan + ["--pulse", "2.5us"], ["--pulse 2500ns", "whole microseconds"], "stepdir --pulse 2.5us")
+    expect_usage(hb, plan + ["--pulse", "40us"], ["IP247 MD error"], "stepdir --pulse beyond the machine data")
+    expect_usage(hb, plan + ["--dir-setup", "2s"], ["--dir-setup", "2s is out of range", "0s .. 1s"],
+                 "stepdir --dir-setup 2s")
+    expect_usage(hb, plan + ["--dir-hold", "5 parsecs"], ["--dir-hold", "not a duration", "ns, us, ms, s or min"],
+                 "stepdir --dir-hold with an unknown unit")
+    rc, out, _ = run(hb, "stepdir", "plan", "--help")
+    check("--pulse" in out and "--dir-setup" in out and "--pulse-us" not in out and "-ns" not in out,
+          f"stepdir plan --help: {out}")
+
     # --help shows the new spellings only
     rc, out, _ = run(hb, "can", "send", "--help")
     check("--interval" in out and "--interval-ms" not in out, f"can send --help: {out}")
@@ -182,16 +212,18 @@ def check_exit_codes(hb):
     leaves = leaf_commands(hb)
     names = {" ".join(p) for p in leaves}
     # The tree is found, not listed: a new command is covered without touching this test.
-    for must in ("sdo read", "modbus write", "can dump", "emulate clm14", "profile calc ip247", "upload", "download",
-                 "run", "test", "latency", "stepdir plan", "eds check", "nmt", "scan"):
+    for must in ("canopen sdo read", "modbus write", "can dump", "emulate clm14", "profile calc ip247", "upload",
+                 "download", "run", "test", "latency", "stepdir plan", "canopen eds check", "canopen nmt",
+                 "canopen scan"):
         check(must in names, f"{must!r} found in the --help tree: {sorted(names)}")
     for path in leaves:
         rc, out, err = run(hb, *path, "--no-such-option")
         check(rc == 2, f"{' '.join(path)} --no-such-option: exit {rc}, expected 2: {err.strip()[:200]}")
         check("Run with --help" in err, f"{' '.join(path)}: a usage message on stderr: {err.strip()[:200]}")
     # A group without its subcommand is a usage error too.
-    for group in ("emulate", "can", "sdo", "modbus", "profile", "stepdir", "eds"):
-        rc, _, err = run(hb, group)
+    for group in ("emulate", "can", "canopen", "canopen sdo", "canopen eds", "sdo", "modbus", "profile", "stepdir",
+                  "eds"):
+        rc, _, err = run(hb, *group.split())
         check(rc == 2, f"{group} without a subcommand: exit {rc}, expected 2: {err.strip()[:200]}")
 
     # Wrong values, found by the command itself (after CLI11): 2, and nothing is sent.
@@ -204,13 +236,13 @@ def check_exit_codes(hb):
         ["can", "send", "--bus", "vcan0", "701#XYZ"],
         ["can", "dump", "--bus", "nota://bus"],
         ["can", "hub", "--listen", "nonsense"],
-        ["sdo", "read", "--bus", "vcan0", "5", "not-an-object"],
-        ["sdo", "write", "--bus", "vcan0", "5", "0x6060:0", "1", "--type", "no-such-type"],
-        ["nmt", "start", "999", "--bus", "vcan0"],
+        ["canopen", "sdo", "read", "--bus", "vcan0", "5", "not-an-object"],
+        ["canopen", "sdo", "write", "--bus", "vcan0", "5", "0x6060:0", "1", "--type", "no-such-type"],
+        ["canopen", "nmt", "start", "999", "--bus", "vcan0"],
         ["run", "no/such/scenario.yaml"],
         ["profile", "show", "no-such-device"],
         ["profile", "calc", "ip247"],
-        ["eds", "check", "no/such/file.eds"],
+        ["canopen", "eds", "check", "no/such/file.eds"],
         ["emulate", "cia402", "--bus", "vcan0", "--node", "5", "--node", "5"],
         ["emulate", "modbus-drive", "--listen", "nonsense"],
         ["emulate", "modbus-drive", "--profile", "no_such_profile"],
@@ -229,9 +261,9 @@ def check_exit_codes(hb):
         ["modbus", "read", "127.0.0.1:1", "1", "0", "--timeout", "200ms"],
         ["can", "send", "--bus", "socketcand://127.0.0.1:1/can0", "701#05"],
         ["can", "dump", "--bus", "socketcand://127.0.0.1:1/can0", "--duration", "1s"],
-        ["scan", "--bus", "socketcand://127.0.0.1:1/can0"],
-        ["sdo", "read", "--bus", "socketcand://127.0.0.1:1/can0", "5", "0x1000:0"],
-        ["nmt", "start", "5", "--bus", "socketcand://127.0.0.1:1/can0"],
+        ["canopen", "scan", "--bus", "socketcand://127.0.0.1:1/can0"],
+        ["canopen", "sdo", "read", "--bus", "socketcand://127.0.0.1:1/can0", "5", "0x1000:0"],
+        ["canopen", "nmt", "start", "5", "--bus", "socketcand://127.0.0.1:1/can0"],
         ["test", "tests/runtime/data/wrong_expectation.yaml"],
     ]
     for args in failed:
@@ -239,11 +271,11 @@ def check_exit_codes(hb):
         check(rc == 1, f"{' '.join(args)}: exit {rc}, expected 1: {err.strip()[:300]}")
     with hub(hb) as h:
         bus = f"socketcand://127.0.0.1:{h.m.group(1)}/can0"
-        rc, _, err = run(hb, "sdo", "read", "--bus", bus, "5", "0x1000:0", "--timeout", "100ms")
+        rc, _, err = run(hb, "canopen", "sdo", "read", "--bus", bus, "5", "0x1000:0", "--timeout", "100ms")
         check(rc == 1, f"sdo read of a node that does not answer: exit {rc}, expected 1: {err}")
         rc, _, err = run(hb, "can", "send", "--bus", bus, "701#05")
         check(rc == 0, f"can send to a hub: exit {rc}, expected 0: {err}")
-        rc, _, err = run(hb, "scan", "--bus", bus, "--timeout", "100ms")
+        rc, _, err = run(hb, "canopen", "scan", "--bus", bus, "--timeout", "100ms")
         check(rc == 0, f"scan of an empty bus: exit {rc}, expected 0: {err}")
     rc, _, err = run(hb, "test", "examples/tests/point_to_point.yaml")
     check(rc == 0, f"test of a passing scenario: exit {rc}: {err}")
@@ -267,10 +299,33 @@ def check_types(hb):
         check(re.fullmatch(r"10: 0x[0-9A-F]{4}", out.strip()) is not None, f"x16 = hex: {out}")
     rc, out, _ = run(hb, "modbus", "read", "--help")
     check("i16" in out and "i32" in out and "s16" not in out, f"modbus --help names i16/i32: {out}")
-    rc, out, _ = run(hb, "sdo", "read", "--help")
+    rc, out, _ = run(hb, "canopen", "sdo", "read", "--help")
     check(all(t in out for t in ("u8", "u16", "u32", "i8", "i16", "i32", "x16", "x32")), f"sdo --help types: {out}")
     expect_usage(hb, ["modbus", "read", "127.0.0.1:1502", "1", "0", "--type", "f32"],
                  ["--type 'f32'", "u16, i16, u32, i32 or hex"], "modbus --type f32")
+
+    # sdo: hex as in modbus and the profiles, its width the object's (read: the size uploaded;
+    # write: the digits given), the same value as the x type of that width.
+    check("hex" in out, f"sdo --help names hex: {out}")
+    with hub(hb) as h:
+        bus = f"socketcand://127.0.0.1:{h.m.group(1)}/can0"
+        with Proc([hb, "emulate", "cia402", "--bus", bus, "--node", "5", "--duration", "30s"], r"node 5 up"):
+            sdo = ["canopen", "sdo", "read", "--bus", bus, "5"]
+            _, out, _ = expect_ok_quiet(hb, sdo + ["0x1018:1", "--type", "hex"], "sdo read --type hex")
+            check(out.strip() == "0x00000A11", f"sdo hex of a u32 = x32: {out}")
+            _, x32, _ = run(hb, *sdo, "0x1018:1", "--type", "x32")
+            check(out == x32, f"sdo hex = x32 for a 32-bit object: {out} {x32}")
+            _, out, _ = expect_ok_quiet(hb, sdo + ["0x6060:0", "--type", "hex"], "sdo read --type hex of an i8")
+            check(re.fullmatch(r"0x[0-9A-F]{2}", out.strip()) is not None, f"sdo hex of an 8-bit object: {out}")
+            _, out, _ = expect_ok_quiet(hb, sdo + ["0x1018:1", "--type", "hex", "--json"], "sdo read --type hex --json")
+            j = json.loads(out)
+            check(j.get("value") == "0x00000A11" and j.get("type") == "hex", f"sdo hex --json: {out}")
+            expect_ok_quiet(hb, ["canopen", "sdo", "write", "--bus", bus, "5", "0x607A:0", "0x0001E240", "--type", "hex"],
+                            "sdo write --type hex (32 bits from 8 digits)")
+            _, out, _ = run(hb, *sdo, "0x607A:0", "--type", "i32")
+            check(out.strip() == "123456", f"hex write read back as i32: {out}")
+            expect_usage(hb, ["canopen", "sdo", "write", "--bus", bus, "5", "0x607A:0", "0x1E240", "--type", "hex"],
+                         ["0x1E240", "takes its width from the digits", "x8..x64"], "sdo write --type hex, 5 digits")
 
 
 def check_endpoints(hb):
@@ -303,10 +358,50 @@ def check_endpoints(hb):
         emu.wait(timeout=10)
 
 
+def check_groups(hb):
+    # One grouping rule (docs/cli.md, "Command groups"): a command that speaks one protocol lives in
+    # its group; the CANopen services and EDS tools are `canopen sdo|nmt|scan|eds`. The old top-level
+    # names are hidden aliases that work as before and warn once, naming the new spelling.
+    top = subcommands(hb, [])
+    check("canopen" in top and not {"sdo", "nmt", "scan", "eds"} & set(top), f"hilbridge --help groups: {top}")
+    check(set(subcommands(hb, ["canopen"])) == {"sdo", "nmt", "scan", "eds"}, "canopen sdo|nmt|scan|eds")
+    for group, protocol_commands in (("can", {"dump", "send"}), ("modbus", {"read", "write"}),
+                                     ("stepdir", {"plan", "verify"})):
+        subs = set(subcommands(hb, [group]))
+        check(protocol_commands <= subs, f"{group} groups its protocol's commands: {subs}")
+    eds = "profiles/canopen/hil_cia402_drive.eds"
+    _, new_out, _ = expect_ok_quiet(hb, ["canopen", "eds", "check", eds], "canopen eds check")
+    _, old_out, _ = expect_warning(hb, ["eds", "check", eds], "hilbridge eds is deprecated; write hilbridge canopen eds",
+                                   "eds check (old top-level name)")
+    check(old_out == new_out and new_out, f"eds check: the old name does the same: {old_out!r}")
+    with hub(hb) as h:
+        bus = f"socketcand://127.0.0.1:{h.m.group(1)}/can0"
+        with Proc([hb, "emulate", "cia402", "--bus", bus, "--node", "5", "--duration", "30s"], r"node 5 up"):
+            read = ["sdo", "read", "--bus", bus, "5", "0x1018:1", "--type", "x32"]
+            _, new_out, _ = expect_ok_quiet(hb, ["canopen", *read], "canopen sdo read")
+            _, old_out, _ = expect_warning(hb, read, "hilbridge sdo is deprecated; write hilbridge canopen sdo",
+                                           "sdo read (old top-level name)")
+            check(old_out == new_out == "0x00000A11\n", f"sdo read: the old name does the same: {old_out!r}")
+            expect_warning(hb, ["sdo", "write", "--bus", bus, "5", "0x607A:0", "7", "--type", "i32"],
+                           "write hilbridge canopen sdo", "sdo write (old top-level name)")
+            _, new_out, _ = expect_ok_quiet(hb, ["canopen", "scan", "--bus", bus, "--timeout", "200ms"], "canopen scan")
+            _, old_out, _ = expect_warning(hb, ["scan", "--bus", bus, "--timeout", "200ms"],
+                                           "hilbridge scan is deprecated; write hilbridge canopen scan",
+                                           "scan (old top-level name)")
+            check(old_out == new_out and "0x00000A11" in new_out, f"scan: the old name does the same: {old_out!r}")
+            expect_ok_quiet(hb, ["canopen", "nmt", "preop", "--bus", bus, "5"], "canopen nmt")
+            expect_warning(hb, ["nmt", "start", "--bus", bus, "5"],
+                           "hilbridge nmt is deprecated; write hilbridge canopen nmt", "nmt (old top-level name)")
+    # Usage errors stay usage errors under either name.
+    for args in (["sdo", "read", "--bus", "vcan0", "5", "not-an-object"], ["nmt", "start", "999", "--bus", "vcan0"]):
+        rc, _, err = run(hb, *args)
+        check(rc == 2 and "deprecated" in err, f"{' '.join(args)}: exit {rc}, expected 2 and the warning: {err}")
+
+
 def main():
     hb, part = sys.argv[1], sys.argv[2]
     {"durations": check_durations, "exit_codes": check_exit_codes, "types": check_types,
-     "endpoints": check_endpoints}[part](hb)
+     "endpoints": check_endpoints, "groups": check_groups}[part](hb)
     print(f"{c_passed} passed, {c_failed} failed")
     sys.exit(1 if c_failed or not c_passed else 0)
 

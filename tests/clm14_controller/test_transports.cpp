@@ -6,19 +6,13 @@
 
 #include <fmt/format.h>
 
-#include "hil/cli/context.hpp"
+#include "hil/cia402/canopen_transport.hpp"
 #include "hil/drives/modbus_transport.hpp"
 #include "hil/drives/stepdir/transport_factory.hpp"
+#include "hil/mocks/sim_transport.hpp"
 #include "hil/runtime/machine.hpp"
 #include "hil/runtime/scenario_loader.hpp"
 #include "rig.hpp"
-
-namespace hil::cli {
-void register_sim(Context& ctx);
-namespace canopen_cli {
-void register_canopen_transport(Context& ctx);
-}  // namespace canopen_cli
-}  // namespace hil::cli
 
 namespace hil::controllers::clm14 {
 namespace {
@@ -58,12 +52,10 @@ struct Trace {
 };
 
 Trace run_on(const Case& c) {
+  // The factories `hilbridge` registers, from their drives' libraries.
   TransportRegistry registry;
-  CLI::App app;
-  CLI::App* emulate = app.add_subcommand("emulate");
-  cli::Context ctx{app, *emulate, registry, 0};
-  cli::register_sim(ctx);
-  cli::canopen_cli::register_canopen_transport(ctx);
+  registry.add("sim", [] { return mocks::make_sim_transport(); });
+  registry.add("canopen", [] { return cia402::make_canopen_transport(); });
   registry.add("modbus", [] { return drives::make_modbus_transport(); });
   registry.add("stepdir", [] { return std::make_unique<drives::stepdir::StepDirTransportFactory>(); });
   auto scenario = runtime::parse_scenario(machine_yaml(c), c.name + ".yaml");

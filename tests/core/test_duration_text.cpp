@@ -18,12 +18,16 @@ TEST(DurationText, UnitsAsScenarioFilesWriteThem) {
   EXPECT_EQ(parse_duration_text("0.1ms"), 100us);
   EXPECT_EQ(parse_duration_text("100us"), 100000ns);  // rounded, not 99999ns
   EXPECT_EQ(parse_duration_text("0s"), 0ns);
+  EXPECT_EQ(parse_duration_text("200ns"), 200ns);
+  EXPECT_EQ(parse_duration_text("5000 ns"), 5us);
+  EXPECT_EQ(parse_duration_text("0.2us"), 200ns);
 }
 
 TEST(DurationText, BareNumberIsReadInTheGivenUnit) {
   EXPECT_EQ(parse_duration_text("1.5"), 1500ms);  // scenario files: seconds
   EXPECT_EQ(parse_duration_text("500", "ms"), 500ms);
   EXPECT_EQ(parse_duration_text("30", "us"), 30us);
+  EXPECT_EQ(parse_duration_text("200", "ns"), 200ns);
   EXPECT_EQ(parse_duration_text("2s", "ms"), 2s);  // a unit always wins over the bare unit
   // Ten days is the limit in the bare unit too: 1e6 ms is fine, 1e6 s is not.
   EXPECT_EQ(parse_duration_text("1000000", "ms"), 1000s);

@@ -3,7 +3,8 @@
 // (it follows no command) until a fault reset is requested, even after the cause has gone; the
 // reset never re-enables a CiA 402 drive by itself (enable is a separate request). One test,
 // parameterised over the simulated drive, CANopen (simulated CiA 402 node on the virtual bus),
-// Modbus/TCP (simulated drive server over loopback) and step/dir (mock GPIO lines).
+// Modbus/TCP (simulated drive server over loopback) and step/dir (mock GPIO lines), each built by
+// its transport's real factory from a drive block, as `hilbridge run` builds it.
 #include <gtest/gtest.h>
 
 #include <cstdlib>
@@ -11,19 +12,15 @@
 #include <memory>
 #include <string>
 
-#include "hil/can/virtual_bus.hpp"
-#include "hil/canopen/eds.hpp"
-#include "hil/cia402/cia402_drive.hpp"
-#include "hil/cia402/layout.hpp"
-#include "hil/config/yaml_config.hpp"
+#include <yaml-cpp/yaml.h>
+
+#include "hil/cia402/canopen_transport.hpp"
 #include "hil/core/clock.hpp"
-#include "hil/drives/modbus_drive.hpp"
-#include "hil/drives/stepdir/stepdir_drive.hpp"
+#include "hil/core/fault_injection.hpp"
+#include "hil/core/transport.hpp"
+#include "hil/drives/modbus_transport.hpp"
 #include "hil/drives/stepdir/transport_factory.hpp"
-#include "hil/mocks/cia402_node.hpp"
-#include "hil/mocks/modbus_server.hpp"
 #include "hil/mocks/sim_drive.hpp"
-#include "hil/modbus/profile.hpp"
 
 using namespace std::chrono_literals;
 using hil::DriveRequest;
@@ -69,110 +66,41 @@ class SimRig final : public Rig {
   hil::mocks::SimDrive drive_;
 };
 
-class CanopenRig final : public Rig {
+/// A drive built by the transport's real factory (the one `hilbridge run` registers) from a
+/// drive block; the factory's bus work runs around each cycle, and the fault is injected through
+/// the drive's FaultInjectable into its far end (the simulated node, the drive server, the lines).
+class FactoryRig final : public Rig {
  public:
-  CanopenRig() {
-    hil::canopen::MasterOptions mo;
-    mo.sync_period = 1ms;
-    mo.sdo.timeout = 20ms;
-    mo.boot_timeout = 100ms;
-    network_ = std::make_unique<hil::cia402::Network>(*master_channel_, mo);
-    hil::mocks::Cia402NodeOptions no;
-    no.node = 1;
-    node_ = std::make_unique<hil::mocks::Cia402Node>(*node_channel_, no);
-    auto eds = hil::canopen::parse_eds(hil::mocks::cia402_node_eds(), "eds", 1);
-    EXPECT_TRUE(eds);
-    hil::cia402::AxisOptions axis;
-    axis.node = 1;
-    network_->master().add_node(hil::cia402::make_axis_node_config(*eds, axis));
-    drive_ = std::make_unique<hil::cia402::Cia402Drive>(*network_, 1, hil::cia402::DriveOptions{});
-    node_->start(clock_.now());
-    network_->start(clock_.now());
-    bus_.deliver(clock_.now());
-  }
-  void cycle(std::int64_t position) override {
-    clock_.advance(1ms);
-    const hil::CycleTime t{clock_.now(), 1ms};
-    network_->step(t.now);
-    bus_.deliver(t.now);
-    drive_->read(t);
-    drive_->write(t, hil::DriveCommand{hil::CommandMode::position, position, 0.0, 0.0});
-    node_->step(t.now);
-    bus_.deliver(t.now);
-  }
-  hil::Drive& drive() override { return *drive_; }
-  void set_cause(bool on) override { ASSERT_TRUE(node_->inject_fault("overcurrent", on, clock_.now())); }
-
- private:
-  hil::VirtualClock clock_;
-  hil::can::VirtualBus bus_{clock_, "vbus"};
-  std::unique_ptr<hil::can::VirtualChannel> master_channel_ = bus_.attach("master");
-  std::unique_ptr<hil::can::VirtualChannel> node_channel_ = bus_.attach("node1");
-  std::unique_ptr<hil::cia402::Network> network_;
-  std::unique_ptr<hil::mocks::Cia402Node> node_;
-  std::unique_ptr<hil::cia402::Cia402Drive> drive_;
-};
-
-class ModbusRig final : public Rig {
- public:
-  ModbusRig() {
-    auto profile = hil::modbus::load_profile("profiles/modbus/cia402.yaml");
-    EXPECT_TRUE(profile) << (profile ? "" : profile.error().describe());
-    server_ = std::make_unique<hil::mocks::ModbusDriveServer>(hil::mocks::DriveDevice(*profile),
-                                                              hil::mocks::ModbusServerConfig{});
-    EXPECT_FALSE(server_->start());
-    hil::drives::ModbusDriveConfig c;
-    c.name = "x";
-    c.host = "127.0.0.1";
-    c.port = server_->port();
-    c.profile = *profile;
-    c.lockstep = true;
-    drive_ = std::make_unique<hil::drives::ModbusDrive>(c, clock_);
-  }
-  void cycle(std::int64_t position) override {
-    clock_.advance(1ms);
-    server_->step(1ms);
-    EXPECT_TRUE(drive_->exchange_sync(clock_.now()));
-    const hil::CycleTime t{clock_.now(), 1ms};
-    drive_->read(t);
-    drive_->write(t, hil::DriveCommand{hil::CommandMode::position, position, 0.0, 0.0});
-  }
-  hil::Drive& drive() override { return *drive_; }
-  void set_cause(bool on) override { server_->inject(hil::PlantFault::encoder, on); }
-
- private:
-  hil::VirtualClock clock_;
-  std::unique_ptr<hil::mocks::ModbusDriveServer> server_;
-  std::unique_ptr<hil::drives::ModbusDrive> drive_;
-};
-
-class StepDirRig final : public Rig {
- public:
-  StepDirRig() {
-    auto d = factory_.make_drive("x",
-                                 YAML::Load("{transport: stepdir, fmax_hz: 20000, fss_hz: 500, "
-                                            "accel_hz_per_s: 200000, pulse_us: 10}"),
-                                 env_);
+  FactoryRig(std::unique_ptr<hil::TransportFactory> factory, const char* block, std::string fault,
+             bool reset_disables = true)
+      : factory_(std::move(factory)), fault_(std::move(fault)), reset_disables_(reset_disables) {
+    auto d = factory_->make_drive("x", YAML::Load(block), env_);
     EXPECT_TRUE(d) << (d ? "" : d.error().describe());
     if (d) drive_ = std::move(*d);
   }
   void cycle(std::int64_t position) override {
+    clock_.advance(1ms);
     const hil::CycleTime t{clock_.now(), 1ms};
+    factory_->begin_cycle(t);
     drive_->read(t);
     drive_->write(t, hil::DriveCommand{hil::CommandMode::position, position, 0.0, 0.0});
-    clock_.advance(1ms);
+    factory_->end_cycle(t);
   }
   hil::Drive& drive() override { return *drive_; }
   void set_cause(bool on) override {
-    ASSERT_TRUE(dynamic_cast<hil::FaultInjectable&>(*drive_).inject_fault("not_ready", on));
+    auto* faults = dynamic_cast<hil::FaultInjectable*>(drive_.get());
+    ASSERT_NE(faults, nullptr);
+    ASSERT_TRUE(faults->inject_fault(fault_, on));
   }
-  bool reset_disables() const override { return false; }
+  bool reset_disables() const override { return reset_disables_; }
 
  private:
   hil::VirtualClock clock_;
   hil::RunEnvironment env_{clock_, true, nullptr, "", 1ms, false, {}};
-  hil::drives::stepdir::StepDirTransportFactory factory_;
+  std::unique_ptr<hil::TransportFactory> factory_;
   hil::DrivePtr drive_;
+  std::string fault_;
+  bool reset_disables_;
 };
 
 struct Transport {
@@ -232,11 +160,27 @@ TEST_P(FaultLatch, AFaultStaysLatchedAndTheDriveDisabledUntilReset) {
       << "after reset and enable the drive follows again";
 }
 
-INSTANTIATE_TEST_SUITE_P(EveryTransport, FaultLatch,
-                         ::testing::Values(Transport{"sim", [] { return std::make_unique<SimRig>(); }},
-                                           Transport{"canopen", [] { return std::make_unique<CanopenRig>(); }},
-                                           Transport{"modbus", [] { return std::make_unique<ModbusRig>(); }},
-                                           Transport{"stepdir", [] { return std::make_unique<StepDirRig>(); }}),
-                         [](const ::testing::TestParamInfo<Transport>& param_info) {
-                           return std::string(param_info.param.name);
-                         });
+INSTANTIATE_TEST_SUITE_P(
+    EveryTransport, FaultLatch,
+    ::testing::Values(Transport{"sim", [] { return std::make_unique<SimRig>(); }},
+                      Transport{"canopen",
+                                [] {
+                                  return std::make_unique<FactoryRig>(hil::cia402::make_canopen_transport(),
+                                                                      "{transport: canopen, node: 1}", "overcurrent");
+                                }},
+                      Transport{"modbus",
+                                [] {
+                                  return std::make_unique<FactoryRig>(hil::drives::make_modbus_transport(),
+                                                                      "{transport: modbus, profile: cia402}",
+                                                                      "encoder");
+                                }},
+                      Transport{"stepdir",
+                                [] {
+                                  // IP247: the reset acknowledges the error only.
+                                  return std::make_unique<FactoryRig>(
+                                      std::make_unique<hil::drives::stepdir::StepDirTransportFactory>(),
+                                      "{transport: stepdir, fmax_hz: 20000, fss_hz: 500, "
+                                      "accel_hz_per_s: 200000, pulse_us: 10}",
+                                      "not_ready", false);
+                                }}),
+    [](const ::testing::TestParamInfo<Transport>& param_info) { return std::string(param_info.param.name); });

@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "hil/core/forwarding_drive.hpp"
 #include "hil/core/transport.hpp"
 #include "hil/mocks/sim_drive.hpp"
 #include "hil/mocks/sim_transport.hpp"
@@ -13,31 +14,22 @@
 namespace hil::testing {
 
 /// Wraps a SimDrive and logs read/write, so tests see the order of a cycle.
-class LoggingDrive final : public Drive, public FaultInjectable {
+class LoggingDrive final : public ForwardingDrive, public FaultInjectable {
  public:
   LoggingDrive(DrivePtr inner, std::string axis, std::vector<std::string>& log)
-      : inner_(std::move(inner)), axis_(std::move(axis)), log_(log) {}
-  std::string_view name() const noexcept override { return inner_->name(); }
-  DriveCapabilities capabilities() const noexcept override { return inner_->capabilities(); }
+      : ForwardingDrive(std::move(inner)), axis_(std::move(axis)), log_(log) {}
   void read(const CycleTime& c) override {
     log_.push_back("read " + axis_);
-    inner_->read(c);
+    ForwardingDrive::read(c);
   }
   void write(const CycleTime& c, const DriveCommand& cmd) override {
     log_.push_back("write " + axis_);
-    inner_->write(c, cmd);
+    ForwardingDrive::write(c, cmd);
   }
-  const DriveFeedback& feedback() const noexcept override { return inner_->feedback(); }
-  bool request(DriveRequest r) override { return inner_->request(r); }
-  std::vector<std::string> injectable_faults() const override {
-    return dynamic_cast<FaultInjectable&>(*inner_).injectable_faults();
-  }
-  bool inject_fault(std::string_view n, bool a) override {
-    return dynamic_cast<FaultInjectable&>(*inner_).inject_fault(n, a);
-  }
+  std::vector<std::string> injectable_faults() const override { return inner_faults()->injectable_faults(); }
+  bool inject_fault(std::string_view n, bool a) override { return inner_faults()->inject_fault(n, a); }
 
  private:
-  DrivePtr inner_;
   std::string axis_;
   std::vector<std::string>& log_;
 };

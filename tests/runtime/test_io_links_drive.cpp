@@ -7,19 +7,14 @@
 // every wiring mistake is a configuration error naming file, line and key.
 #include <gtest/gtest.h>
 
-#include <CLI/CLI.hpp>
 #include <fstream>
 #include <sstream>
 
-#include "hil/cli/context.hpp"
+#include "hil/cia402/canopen_transport.hpp"
 #include "hil/runtime/runner.hpp"
 #include "hil/runtime/scenario_loader.hpp"
 #include "hil/runtime/trace_csv.hpp"
 #include "sim_registry.hpp"
-
-namespace hil::cli::canopen_cli {
-void register_canopen_transport(Context& ctx);
-}  // namespace hil::cli::canopen_cli
 
 namespace hil::runtime {
 namespace {
@@ -27,10 +22,7 @@ namespace {
 /// The transports `hilbridge` registers that this test uses: `canopen` and `sim`.
 TransportRegistry registry() {
   TransportRegistry r = hil::testing::sim_registry();
-  CLI::App app;
-  CLI::App* emulate = app.add_subcommand("emulate");
-  cli::Context ctx{app, *emulate, r, 0};
-  cli::canopen_cli::register_canopen_transport(ctx);
+  r.add("canopen", [] { return cia402::make_canopen_transport(); });
   return r;
 }
 

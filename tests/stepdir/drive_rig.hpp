@@ -26,7 +26,7 @@ struct DriveRig {
       return;
     }
     drive = std::move(*d);
-    sd = dynamic_cast<hil::drives::stepdir::StepDirDrive*>(drive.get());
+    sd = factory.axes().back()->drive;  // the StepDirDrive inside the drive handed out
   }
   hil::drives::stepdir::StepDirTransportFactory::Axis& axis() { return *factory.axes().front(); }
   void cycle(std::int64_t position) {

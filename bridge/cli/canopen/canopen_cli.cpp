@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
-// CLI module `canopen`: `hilbridge sdo read|write`, `hilbridge nmt ...`, `hilbridge scan`,
-// `hilbridge emulate cia402`, and the `canopen` transport for `hilbridge run`.
+// CLI module `canopen`: the `hilbridge canopen` group (`sdo read|write`, `nmt ...`, `scan`,
+// `eds check|show`; docs/cli.md "Command groups"; the old top-level names are hidden aliases
+// that warn), `hilbridge emulate cia402`, and the `canopen` transport for `hilbridge run`.
 #include <cstdio>
 #include <map>
 #include <memory>
@@ -12,6 +13,7 @@
 
 #include "hil/canopen/nmt.hpp"
 #include "hil/canopen/sdo_client.hpp"
+#include "hil/cia402/canopen_transport.hpp"
 #include "hil/cli/context.hpp"
 #include "hil/cli/duration_option.hpp"
 #include "hil/cli/json_output.hpp"
@@ -22,8 +24,7 @@
 namespace hil::cli {
 namespace canopen_cli {
 void register_emulate_cia402(Context& ctx);
-void register_eds(Context& ctx);
-void register_canopen_transport(Context& ctx);
+CLI::App* register_eds(Context& ctx, CLI::App& parent);
 }  // namespace canopen_cli
 
 namespace {
@@ -148,8 +149,8 @@ int run_sdo(const SdoArgs& a, bool upload) {
   return 0;
 }
 
-void register_sdo(Context& ctx) {
-  auto* sdo = ctx.app.add_subcommand("sdo", "Read or write one object of a CANopen node with SDO (CiA 301)");
+CLI::App* register_sdo(Context& ctx, CLI::App& parent) {
+  auto* sdo = parent.add_subcommand("sdo", "Read or write one object of a CANopen node with SDO (CiA 301)");
   sdo->require_subcommand(1);
   for (const bool upload : {true, false}) {
     auto a = std::make_shared<SdoArgs>();
@@ -171,29 +172,30 @@ void register_sdo(Context& ctx) {
       c->add_flag("--json", a->json,
                   "Print one JSON object on stdout (value, raw bytes, text; docs/json.md); errors as "
                   "{\"error\": ...} with the abort code");
-    c->footer(upload ? "Examples:\n  hilbridge sdo read --bus vcan0 5 0x1018:1 --type x32\n"
-                       "  hilbridge sdo read --bus socketcand://127.0.0.1:29536/can0 5 0x1008:0 --type vs\n"
+    c->footer(upload ? "Examples:\n  hilbridge canopen sdo read --bus vcan0 5 0x1018:1 --type x32\n"
+                       "  hilbridge canopen sdo read --bus socketcand://127.0.0.1:29536/can0 5 0x1008:0 --type vs\n"
                        "Exit status: 0 ok, 1 abort/timeout (the CiA 301 abort code is printed), 2 usage."
-                     : "Examples:\n  hilbridge sdo write --bus vcan0 5 0x1017:0 100 --type u16\n"
-                       "  hilbridge sdo write --bus vcan0 5 0x6060:0 8 --type i8\n"
+                     : "Examples:\n  hilbridge canopen sdo write --bus vcan0 5 0x1017:0 100 --type u16\n"
+                       "  hilbridge canopen sdo write --bus vcan0 5 0x6060:0 8 --type i8\n"
                        "Exit status: 0 ok, 1 abort/timeout (the CiA 301 abort code is printed), 2 usage.");
     c->callback([&ctx, a, upload] { ctx.exit_code = run_sdo(*a, upload); });
   }
+  return sdo;
 }
 
-void register_nmt(Context& ctx) {
+CLI::App* register_nmt(Context& ctx, CLI::App& parent) {
   struct NmtArgs {
     std::string command, bus, node;
   };
   auto a = std::make_shared<NmtArgs>();
-  auto* c = ctx.app.add_subcommand("nmt", "Send an NMT node-control command (CiA 301 §7.2.8.3.1)");
+  auto* c = parent.add_subcommand("nmt", "Send an NMT node-control command (CiA 301 §7.2.8.3.1)");
   c->add_option("command", a->command, "start | stop | preop | reset | reset-comm")
       ->required()
       ->check(CLI::IsMember({"start", "stop", "preop", "reset", "reset-comm"}));
   c->add_option("target", a->node, "Node-ID 1..127, or `all`")->required();
   c->add_option("--bus", a->bus, k_bus_help)->required();
   c->footer(
-      "Examples:\n  hilbridge nmt start --bus vcan0 all\n  hilbridge nmt reset-comm --bus vcan0 5\n"
+      "Examples:\n  hilbridge canopen nmt start --bus vcan0 all\n  hilbridge canopen nmt reset-comm --bus vcan0 5\n"
       "`reset` is NMT reset node (0x81), `reset-comm` reset communication (0x82).");
   c->callback([&ctx, a] {
     co::NodeId node = 0;
@@ -232,17 +234,18 @@ void register_nmt(Context& ctx) {
     s.run([] { return false; }, {}, std::chrono::milliseconds(20));  // let the frame leave
     ctx.exit_code = 0;
   });
+  return c;
 }
 
-void register_scan(Context& ctx) {
+CLI::App* register_scan(Context& ctx, CLI::App& parent) {
   struct ScanArgs {
     std::string bus;
     Duration timeout = std::chrono::milliseconds(300);
     bool json = false;
   };
   auto a = std::make_shared<ScanArgs>();
-  auto* c = ctx.app.add_subcommand(
-      "scan", "Find CANopen nodes (SDO upload of 0x1000 to 1..127) and read their identity 0x1018");
+  auto* c = parent.add_subcommand("scan",
+                                  "Find CANopen nodes (SDO upload of 0x1000 to 1..127) and read their identity 0x1018");
   c->add_option("--bus", a->bus, k_bus_help)->required();
   add_duration_option(*c, "--timeout", a->timeout, "How long to wait for answers, e.g. 1s (default 300ms; 10ms .. 60s)",
                       "ms", {std::chrono::milliseconds(10), std::chrono::seconds(60)});
@@ -251,7 +254,7 @@ void register_scan(Context& ctx) {
               "(docs/json.md)");
   c->footer(
       "Prints one line per node: node-ID, device type, vendor-ID, product code, revision, serial, name.\n"
-      "Example:\n  hilbridge scan --bus vcan0");
+      "Example:\n  hilbridge canopen scan --bus vcan0");
   c->callback([&ctx, a] {
     BusSession s(a->bus, "hilbridge-scan");
     if (!s.ok()) {
@@ -340,17 +343,37 @@ void register_scan(Context& ctx) {
     std::fprintf(stderr, "%d node(s) answered on %s\n", count, a->bus.c_str());
     ctx.exit_code = 0;
   });
+  return c;
+}
+
+/// The old top-level spelling `hilbridge NAME ...` of `hilbridge canopen NAME ...`: hidden from
+/// --help, works as before, and every use warns on stderr naming the new spelling.
+void deprecate_top_level(CLI::App& cmd) {
+  cmd.group("");
+  cmd.preparse_callback([name = cmd.get_name()](std::size_t) {
+    fmt::print(stderr, "hilbridge: warning: hilbridge {0} is deprecated; write hilbridge canopen {0}\n", name);
+  });
 }
 
 }  // namespace
 
 void register_canopen(Context& ctx) {
-  register_sdo(ctx);
-  register_nmt(ctx);
-  register_scan(ctx);
+  // One grouping rule (docs/cli.md, "Command groups"): a command that speaks one protocol lives in
+  // that protocol's group. The CANopen services and the EDS tools: `hilbridge canopen ...`.
+  auto* group = ctx.app.add_subcommand(
+      "canopen",
+      "CANopen tools (CiA 301/306): sdo read|write, nmt, scan, eds check|show (the simulated node: "
+      "`emulate cia402`)");
+  group->require_subcommand(1);
+  register_sdo(ctx, *group);
+  register_nmt(ctx, *group);
+  register_scan(ctx, *group);
+  canopen_cli::register_eds(ctx, *group);
+  for (CLI::App* old : {register_sdo(ctx, ctx.app), register_nmt(ctx, ctx.app), register_scan(ctx, ctx.app),
+                        canopen_cli::register_eds(ctx, ctx.app)})
+    deprecate_top_level(*old);
   canopen_cli::register_emulate_cia402(ctx);
-  canopen_cli::register_eds(ctx);
-  canopen_cli::register_canopen_transport(ctx);
+  ctx.transports.add("canopen", [] { return cia402::make_canopen_transport(); });
 }
 
 }  // namespace hil::cli

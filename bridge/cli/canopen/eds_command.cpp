@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// `hilbridge eds check|show FILE`: what an EDS/DCF declares (identity, objects, PDO capabilities,
+// `hilbridge canopen eds check|show FILE`: what an EDS/DCF declares (identity, objects, PDO capabilities,
 // CiA 402 modes), the parser's warnings, and what hilbridge's master will do with it on an axis
 // in each setup (PDO layout, SDO-polled / SDO-written objects, what is missing).
 #include <cstdio>
@@ -230,8 +230,8 @@ int run_eds(const EdsArgs& a, bool show) {
 
 }  // namespace
 
-void register_eds(Context& ctx) {
-  auto* eds = ctx.app.add_subcommand("eds", "Check or show an EDS/DCF file and what hilbridge's master does with it");
+CLI::App* register_eds(Context& ctx, CLI::App& parent) {
+  auto* eds = parent.add_subcommand("eds", "Check or show an EDS/DCF file and what hilbridge's master does with it");
   eds->require_subcommand(1);
   for (const bool show : {false, true}) {
     auto a = std::make_shared<EdsArgs>();
@@ -248,10 +248,11 @@ void register_eds(Context& ctx) {
         "Exit status: 0 the file parses and can drive a CiA 402 axis (in the given mode, or in one of them),\n"
         "1 the file is rejected or no setup is usable (the reasons are printed), 2 the file cannot be opened.\n"
         "Examples:\n"
-        "  hilbridge eds check drive.eds\n"
-        "  hilbridge eds show axis.dcf --mode pp --json");
+        "  hilbridge canopen eds check drive.eds\n"
+        "  hilbridge canopen eds show axis.dcf --mode pp --json");
     c->callback([&ctx, a, show] { ctx.exit_code = run_eds(*a, show); });
   }
+  return eds;
 }
 
 }  // namespace hil::cli::canopen_cli

@@ -145,7 +145,7 @@ void register_emulate_cia402(Context& ctx) {
       "  hilbridge emulate cia402 --bus vcan0 --node 5\n"
       "  hilbridge emulate cia402 --bus socketcand://127.0.0.1:29536/can0 --node 3 --eds my_drive.eds\n"
       "  hilbridge emulate cia402 --bus socketcand://127.0.0.1:29536/can0 --node 1 --node 2\n"
-      "  hilbridge sdo write --bus vcan0 5 0x2100:0 0x2310 --type u16   # inject over-current");
+      "  hilbridge canopen sdo write --bus vcan0 5 0x2100:0 0x2310 --type u16   # inject over-current");
   c->callback([&ctx, a] { ctx.exit_code = run_emulate(*a); });
 }
 

@@ -23,6 +23,26 @@ constexpr TypeInfo k_types[] = {
     {"x64", 8, 'x'}, {"r32", 4, 'r'}, {"r64", 8, 'r'}, {"vs", 0, 's'},  {"os", 0, 'o'},  {"d", 0, 'o'},
 };
 
+/// `hex` (the name `modbus` and the profiles use): unsigned, shown in hex, its width the object's.
+/// Read: the x type of the uploaded size (1, 2, 4 or 8 bytes; other sizes as hex bytes). Written:
+/// the x type of the digits given (0x and 2, 4, 8 or 16 hex digits).
+constexpr std::string_view k_hex = "hex";
+
+std::string_view hex_type_of_size(std::size_t bytes) {
+  switch (bytes) {
+    case 1:
+      return "x8";
+    case 2:
+      return "x16";
+    case 4:
+      return "x32";
+    case 8:
+      return "x64";
+    default:
+      return "os";
+  }
+}
+
 const TypeInfo* find(std::string_view t) {
   for (const auto& i : k_types)
     if (i.name == t) return &i;
@@ -49,15 +69,26 @@ std::optional<long long> parse_int(std::string_view s) {
 }  // namespace
 
 bool is_value_type(std::string_view type) noexcept {
-  return find(type) != nullptr;
+  return type == k_hex || find(type) != nullptr;
 }
 
 std::string value_types_help() {
-  return "b (boolean), i8 i16 i32 i64, u8 u16 u32 u64, x8 x16 x32 x64 (hex), r32 r64, vs (visible string), "
-         "os / d (octet string / domain as hex)";
+  return "b (boolean), i8 i16 i32 i64, u8 u16 u32 u64, x8 x16 x32 x64 (hex), hex (hex, the object's width: "
+         "written as 0x with 2, 4, 8 or 16 digits), r32 r64, vs (visible string), os / d (octet string / domain as "
+         "hex)";
 }
 
 std::expected<std::vector<std::uint8_t>, std::string> encode_value(std::string_view type, std::string_view text) {
+  if (type == k_hex) {
+    const bool prefixed = text.size() > 2 && text[0] == '0' && (text[1] == 'x' || text[1] == 'X');
+    const std::size_t digits = prefixed ? text.size() - 2 : 0;
+    if (digits != 2 && digits != 4 && digits != 8 && digits != 16)
+      return std::unexpected(
+          fmt::format("'{}': type hex takes its width from the digits: write 0x and 2, 4, 8 or 16 "
+                      "hex digits (e.g. 0x00FF for 16 bits), or give the width with x8..x64",
+                      text));
+    return encode_value(hex_type_of_size(digits / 2), text);
+  }
   const auto* t = find(type);
   if (t == nullptr) return std::unexpected(fmt::format("unknown type '{}'; use one of: {}", type, value_types_help()));
   std::vector<std::uint8_t> out;
@@ -111,6 +142,7 @@ std::expected<std::vector<std::uint8_t>, std::string> encode_value(std::string_v
 }
 
 std::string format_value(std::string_view type, const std::vector<std::uint8_t>& bytes) {
+  if (type == k_hex) return format_value(hex_type_of_size(bytes.size()), bytes);
   std::string hex;
   for (auto b : bytes) hex += fmt::format("{}{:02X}", hex.empty() ? "" : " ", b);
   const auto* t = find(type);

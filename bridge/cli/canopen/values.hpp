@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: MIT
 #pragma once
 // SDO value types of the CLI (CiA 309-3 names: b, i8..i64, u8..u64, x8..x64, r32, r64, vs, os,
-// d): text <-> little-endian bytes. Pure.
+// d, and `hex` as in `modbus` and the profiles: unsigned in hex, the object's width; docs/cli.md):
+// text <-> little-endian bytes. Pure.
 
 #include <cstdint>
 #include <expected>

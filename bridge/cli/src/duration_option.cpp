@@ -12,6 +12,7 @@ namespace hil::cli {
 namespace {
 
 std::string_view unit_word(std::string_view unit) {
+  if (unit == "ns") return "nanoseconds";
   if (unit == "us") return "microseconds";
   if (unit == "ms") return "milliseconds";
   if (unit == "min") return "minutes";
@@ -48,7 +49,7 @@ std::string format_duration(Duration d) {
   if (ns % 1'000'000'000 == 0) return fmt::format("{}s", ns / 1'000'000'000);
   if (ns % 1'000'000 == 0) return fmt::format("{}ms", ns / 1'000'000);
   if (ns % 1'000 == 0) return fmt::format("{}us", ns / 1'000);
-  return fmt::format("{:.9g}s", static_cast<double>(ns) / 1e9);
+  return fmt::format("{}ns", ns);
 }
 
 Duration read_duration_option(std::string_view name, std::string_view text, std::string_view bare_unit,

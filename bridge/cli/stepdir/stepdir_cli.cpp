@@ -11,6 +11,7 @@
 #include <fmt/format.h>
 
 #include "hil/cli/context.hpp"
+#include "hil/cli/duration_option.hpp"
 #include "hil/drives/stepdir/transport_factory.hpp"
 #include "hil/stepdir/edge_log.hpp"
 #include "hil/stepdir/ip247_ramp.hpp"
@@ -24,35 +25,48 @@ using namespace hil::stepdir;
 
 struct TimingOptions {
   double fmax = 5'000, fss = 200, accel = 50'000;
-  int pulse_us = 2;
+  Duration pulse = std::chrono::microseconds(2);
   std::string rounding = "up", polarity = "positive";
-  std::int64_t dir_setup_ns = 5'000, dir_hold_ns = 5'000;
+  Duration dir_setup = std::chrono::microseconds(5), dir_hold = std::chrono::microseconds(5);
 
   void add(CLI::App& app) {
     app.add_option("--fmax", fmax, "Maximum step frequency f_max in Hz (12..100000; IP247 MD n+5)")
         ->capture_default_str();
     app.add_option("--fss", fss, "Start-stop frequency f_ss in Hz (1..10000; MD n+7)")->capture_default_str();
     app.add_option("--accel", accel, "Frequency increase a in Hz/s (= mHz/ms; MD n+9)")->capture_default_str();
-    app.add_option("--pulse-us", pulse_us, "Step pulse duration in us (1..31, output in 2 us steps)")
-        ->capture_default_str();
+    // Durations with units (docs/cli.md); the old unit-in-the-name options are hidden aliases that warn.
+    const DurationRange up_to_1s{Duration{}, std::chrono::seconds(1)};
+    add_duration_option(app, "--pulse", pulse,
+                        "Step pulse duration, whole microseconds 1us..31us (IP247 MD; output in 2 us steps)", "us",
+                        up_to_1s)
+        ->default_str(format_duration(pulse));
+    add_duration_alias(app, "--pulse-us", "--pulse", pulse, "us", up_to_1s);
     app.add_option("--rounding", rounding, "Pulse quantisation: up or down")
         ->check(CLI::IsMember({"up", "down"}))
         ->capture_default_str();
     app.add_option("--polarity", polarity, "Active step edge: positive (idle low) or negative (idle high)")
         ->check(CLI::IsMember({"positive", "negative"}))
         ->capture_default_str();
-    app.add_option("--dir-setup-ns", dir_setup_ns, "Direction setup before the active edge, ns")
-        ->check(CLI::Range(std::int64_t{0}, std::int64_t{1'000'000'000}))
-        ->capture_default_str();
-    app.add_option("--dir-hold-ns", dir_hold_ns, "Direction hold after the trailing edge, ns")
-        ->check(CLI::Range(std::int64_t{0}, std::int64_t{1'000'000'000}))
-        ->capture_default_str();
+    add_duration_option(app, "--dir-setup", dir_setup, "Direction setup before the active edge (0 .. 1s, e.g. 200ns)",
+                        "ns", up_to_1s)
+        ->default_str(format_duration(dir_setup));
+    add_duration_alias(app, "--dir-setup-ns", "--dir-setup", dir_setup, "ns", up_to_1s);
+    add_duration_option(app, "--dir-hold", dir_hold, "Direction hold after the trailing edge (0 .. 1s, e.g. 5us)", "ns",
+                        up_to_1s)
+        ->default_str(format_duration(dir_hold));
+    add_duration_alias(app, "--dir-hold-ns", "--dir-hold", dir_hold, "ns", up_to_1s);
   }
   /// Timing + ramp, or an error message naming the MD error.
   std::expected<std::pair<StepTiming, Ip247Ramp>, std::string> build() const {
-    auto t = make_ip247_timing(pulse_us, rounding == "up" ? PulseRounding::up : PulseRounding::down, fmax,
-                               polarity == "positive" ? Polarity::positive_edge : Polarity::negative_edge, dir_setup_ns,
-                               dir_hold_ns);
+    // The IP247 machine data set the pulse in whole microseconds.
+    if (pulse % std::chrono::microseconds(1) != Duration{})
+      return std::unexpected(fmt::format("--pulse {}: the IP247 step pulse is set in whole microseconds (1us .. 31us)",
+                                         format_duration(pulse)));
+    const auto ns = [](Duration d) { return std::chrono::duration_cast<std::chrono::nanoseconds>(d).count(); };
+    auto t = make_ip247_timing(static_cast<int>(pulse / std::chrono::microseconds(1)),
+                               rounding == "up" ? PulseRounding::up : PulseRounding::down, fmax,
+                               polarity == "positive" ? Polarity::positive_edge : Polarity::negative_edge,
+                               ns(dir_setup), ns(dir_hold));
     if (!t) {
       return std::unexpected(
           fmt::format("IP247 MD error {}: {}", static_cast<int>(t.error()), make_error_code(t.error()).message()));
@@ -89,7 +103,7 @@ void register_stepdir(Context& ctx) {
       "plan",
       "Plan one move with the IP247 profile (jump to f_ss, exponential acceleration f = F(1-e^(-t/tau)) + f_ss,\n"
       "mirrored deceleration) and print its edges as '<time_ns> <line> <level>' lines, or a summary.\n"
-      "Example: hilbridge stepdir plan --distance 2000 --fmax 5000 --fss 200 --accel 50000 --pulse-us 30 --summary");
+      "Example: hilbridge stepdir plan --distance 2000 --fmax 5000 --fss 200 --accel 50000 --pulse 30us --summary");
   opts->add(*plan);
   auto distance = std::make_shared<std::int64_t>(0);
   auto speed = std::make_shared<double>(0.0);

@@ -20,6 +20,7 @@ double unit_seconds(std::string_view unit) {
   if (unit == "s") return 1.0;
   if (unit == "ms") return 1e-3;
   if (unit == "us") return 1e-6;
+  if (unit == "ns") return 1e-9;
   if (unit == "min") return 60.0;
   return 0.0;
 }

@@ -10,6 +10,7 @@
 #include "hil/config/yaml_config.hpp"
 #include "hil/core/data_dir.hpp"
 #include "hil/core/fault_injection.hpp"
+#include "hil/core/forwarding_drive.hpp"
 #include "hil/drives/modbus_drive.hpp"
 #include "hil/mocks/modbus_server.hpp"
 #include "hil/mocks/sim_drive.hpp"
@@ -21,17 +22,12 @@ namespace {
 namespace fs = std::filesystem;
 
 // An axis whose far end is our in-process server: the Modbus drive plus fault injection into
-// the server (plant faults and link faults). Motion thread only.
-class InProcessModbusDrive final : public Drive, public FaultInjectable {
+// the server (plant faults and link faults). Motion thread only. It shares the server with the
+// factory (which steps it): the drive and its worker go first, then the server (ForwardingDrive).
+class InProcessModbusDrive final : public ForwardingDrive, public FaultInjectable {
  public:
-  InProcessModbusDrive(std::unique_ptr<ModbusDrive> drive, mocks::ModbusDriveServer& server)
-      : drive_(std::move(drive)), server_(server) {}
-  [[nodiscard]] std::string_view name() const noexcept override { return drive_->name(); }
-  [[nodiscard]] DriveCapabilities capabilities() const noexcept override { return drive_->capabilities(); }
-  void read(const CycleTime& c) override { drive_->read(c); }
-  void write(const CycleTime& c, const DriveCommand& cmd) override { drive_->write(c, cmd); }
-  [[nodiscard]] const DriveFeedback& feedback() const noexcept override { return drive_->feedback(); }
-  bool request(DriveRequest r) override { return drive_->request(r); }
+  InProcessModbusDrive(std::unique_ptr<ModbusDrive> drive, std::shared_ptr<mocks::ModbusDriveServer> server)
+      : ForwardingDrive(std::move(drive), server), server_(*server) {}
 
   [[nodiscard]] std::vector<std::string> injectable_faults() const override {
     return {"encoder", "not_ready", "following_blowup", "server_down", "slow_response", "busy"};
@@ -58,21 +54,18 @@ class InProcessModbusDrive final : public Drive, public FaultInjectable {
     return true;
   }
   void set_timeout(Duration t) { timeout_ = t; }
-  ModbusDrive& drive() { return *drive_; }
+  ModbusDrive& drive() { return static_cast<ModbusDrive&>(inner()); }
 
  private:
-  std::unique_ptr<ModbusDrive> drive_;
   mocks::ModbusDriveServer& server_;
   Duration timeout_{std::chrono::milliseconds(100)};
 };
 
+// Teardown by ownership (docs/ARCHITECTURE.md, "Teardown"): each in-process server is shared by
+// the factory and its drive and stops in its destructor, after the drive's worker has gone; the
+// factory's pointers to its drives are for the cycle work only and never used in its destructor.
 class ModbusTransport final : public TransportFactory {
  public:
-  ~ModbusTransport() override {
-    drives_.clear();  // drives (workers) go before the servers they talk to
-    for (auto& s : servers_) s->stop();
-  }
-
   std::expected<DrivePtr, ConfigError> make_drive(const std::string& axis_name, const YAML::Node& node,
                                                   RunEnvironment& env) override {
     const yaml::Where where{env.source_file, env.drive_path(axis_name)};
@@ -163,7 +156,7 @@ class ModbusTransport final : public TransportFactory {
     mocks::ModbusServerConfig server_config;
     server_config.handler.unit_id = config.profile.unit_id;
     auto server =
-        std::make_unique<mocks::ModbusDriveServer>(mocks::DriveDevice(config.profile, device_config), server_config);
+        std::make_shared<mocks::ModbusDriveServer>(mocks::DriveDevice(config.profile, device_config), server_config);
     if (auto ec = server->start())
       return std::unexpected(yaml::error_at(
           node, where, fmt::format("cannot start the in-process Modbus drive server: {}", ec.message())));
@@ -171,7 +164,7 @@ class ModbusTransport final : public TransportFactory {
     config.port = server->port();
     const Duration timeout = config.response_timeout;
     auto drive =
-        std::make_unique<InProcessModbusDrive>(std::make_unique<ModbusDrive>(std::move(config), env.clock), *server);
+        std::make_unique<InProcessModbusDrive>(std::make_unique<ModbusDrive>(std::move(config), env.clock), server);
     drive->set_timeout(timeout);
     drives_.push_back(&drive->drive());
     servers_.push_back(std::move(server));
@@ -203,8 +196,8 @@ class ModbusTransport final : public TransportFactory {
   }
 
  private:
-  std::vector<std::unique_ptr<mocks::ModbusDriveServer>> servers_;
-  std::vector<ModbusDrive*> drives_;  // owned by the run's axes
+  std::vector<std::shared_ptr<mocks::ModbusDriveServer>> servers_;  // shared with their drives
+  std::vector<ModbusDrive*> drives_;                                // owned by the run's axes; begin_cycle/finish only
   bool started_ = false;
   TimePoint last_{};
 };

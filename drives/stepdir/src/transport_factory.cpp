@@ -3,11 +3,27 @@
 
 #include <fmt/format.h>
 
+#include "hil/core/forwarding_drive.hpp"
 #include "hil/drives/stepdir/axis.hpp"
 #include "hil/drives/stepdir/stepdir_drive.hpp"
 #include "hil/gpio/linux/gpiod_lines.hpp"
 
 namespace hil::drives::stepdir {
+
+namespace {
+
+/// The drive the factory hands out: the StepDirDrive holding its Axis (lines, sink, writer), so the
+/// drive goes before them; its fault injection passes through.
+class AxisDrive final : public ForwardingDrive, public FaultInjectable {
+ public:
+  using ForwardingDrive::ForwardingDrive;
+  [[nodiscard]] std::vector<std::string> injectable_faults() const override {
+    return inner_faults()->injectable_faults();
+  }
+  bool inject_fault(std::string_view name, bool active) override { return inner_faults()->inject_fault(name, active); }
+};
+
+}  // namespace
 
 using hil::stepdir::Ip247Ramp;
 
@@ -27,7 +43,7 @@ std::expected<DrivePtr, ConfigError> StepDirTransportFactory::make_drive(const s
   if (!cfg) return std::unexpected(cfg.error());
   auto ramp = Ip247Ramp::make(cfg->ramp, cfg->timing.min_period_ns());
   if (!ramp) return std::unexpected(ConfigError{env.source_file, 0, 0, "drive", "ramp table could not be generated"});
-  auto axis = std::make_unique<Axis>(cfg->timing);
+  auto axis = std::make_shared<Axis>(cfg->timing);
   axis->name = axis_name;
   std::vector<gpio::LineSpec> outs{cfg->step, cfg->dir};
   if (cfg->enable) outs.push_back(*cfg->enable);
@@ -84,8 +100,8 @@ std::expected<DrivePtr, ConfigError> StepDirTransportFactory::make_drive(const s
         [a](std::string_view n, bool on) { return a->inject(n, on); });
   }
   axis->drive = drive.get();
-  axes_.push_back(std::move(axis));
-  return drive;
+  axes_.push_back(axis);
+  return std::make_unique<AxisDrive>(std::move(drive), std::move(axis));
 }
 
 TransportReport StepDirTransportFactory::finish(const CycleTime&) {

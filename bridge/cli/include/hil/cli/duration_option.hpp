@@ -22,12 +22,12 @@ struct DurationRange {
   Duration max = std::chrono::hours(24 * 10);
 };
 
-/// "250ms", "2s", "1.5s", "30us", "1min", "0s": the shortest exact spelling of `d` in the units
-/// of the grammar (nanosecond remainders as "0.000123s"-style seconds).
+/// "250ms", "2s", "30us", "200ns", "1min", "0s": `d` in the largest unit of the grammar that
+/// writes it exactly as a whole number.
 [[nodiscard]] std::string format_duration(Duration d);
 
 /// Adds the time option `names` ("--timeout" or "--duration,-d") writing `target`. `bare_unit`
-/// ("s", "ms", "us") is how a number without unit was read before units were required.
+/// ("s", "ms", "us", "ns") is how a number without unit was read before units were required.
 CLI::Option* add_duration_option(CLI::App& cmd, const std::string& names, Duration& target, const std::string& help,
                                  std::string_view bare_unit, DurationRange range = {});
 

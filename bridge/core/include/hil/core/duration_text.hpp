@@ -1,8 +1,9 @@
 // SPDX-License-Identifier: MIT
 #pragma once
 // Durations as people write them, in scenario files and on the command line: "250ms", "2 s",
-// "30us", "1min", "1.5s". One grammar for both (docs/cli.md, docs/scenarios.md): a decimal number,
-// optional blanks, then a unit us | ms | s | min. Pure: no I/O, no allocation.
+// "30us", "200ns", "1min", "1.5s". One grammar for both (docs/cli.md, docs/scenarios.md): a decimal
+// number, optional blanks, then a unit ns | us | ms | s | min (ns for timings below a microsecond,
+// such as a step/dir direction setup time). Pure: no I/O, no allocation.
 
 #include <optional>
 #include <string_view>
@@ -11,8 +12,8 @@
 
 namespace hil {
 
-/// The units a duration may be written in, for messages: "us, ms, s or min".
-inline constexpr std::string_view k_duration_units = "us, ms, s or min";
+/// The units a duration may be written in, for messages: "ns, us, ms, s or min".
+inline constexpr std::string_view k_duration_units = "ns, us, ms, s or min";
 
 /// `text` -> Duration. A number without unit is read in `bare_unit` ("s" in scenario files; the
 /// old unit of a CLI option). nullopt when malformed, an unknown unit, negative, not finite or

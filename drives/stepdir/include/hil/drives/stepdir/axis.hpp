@@ -36,7 +36,7 @@ struct StepDirTransportFactory::Axis {
   SteadyClock steady;
   std::unique_ptr<gpio::AsyncEdgeWriter> writer;
   double late_us = 50.0;
-  StepDirDrive* drive = nullptr;
+  StepDirDrive* drive = nullptr;  ///< not owned: the run's axis holds it (and this Axis); finish() only
   // Mock fault state.
   bool not_ready = false, force_start = false, force_end = false, broken_start = false, broken_end = false,
        cam_stuck = false;

@@ -6,6 +6,10 @@
 // the edges go out through the real-line writer thread. Every axis's edge stream is verified on the
 // fly; finish() reports steps, the first timing violation (run fails with --verify-steps) and the
 // writer's measured timing error.
+//
+// Teardown by ownership (docs/ARCHITECTURE.md, "Teardown"): each axis's lines, sink and writer
+// (Axis) are shared by the factory and by the drive it hands out, which destroys the StepDirDrive
+// before them (hil::ForwardingDrive), whatever order the run destroys its axes and factories in.
 
 #include <memory>
 #include <string>
@@ -25,11 +29,11 @@ class StepDirTransportFactory final : public TransportFactory {
                                                   RunEnvironment& env) override;
   TransportReport finish(const CycleTime& cycle) override;
 
-  struct Axis;  ///< per-axis lines, sink, verifier (defined in the .cpp)
-  [[nodiscard]] const std::vector<std::unique_ptr<Axis>>& axes() const noexcept { return axes_; }
+  struct Axis;  ///< per-axis lines, sink, verifier (defined in axis.hpp)
+  [[nodiscard]] const std::vector<std::shared_ptr<Axis>>& axes() const noexcept { return axes_; }
 
  private:
-  std::vector<std::unique_ptr<Axis>> axes_;
+  std::vector<std::shared_ptr<Axis>> axes_;  ///< shared with the drives (their lines and sink)
   bool verify_ = false;
 };
 

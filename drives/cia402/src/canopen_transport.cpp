@@ -1,8 +1,6 @@
 // SPDX-License-Identifier: MIT
-// The `canopen` transport for `hilbridge run`: CiA 402 axes behind one CANopen master per bus.
-// Without `bus:` (or with `bus: virtual:NAME`) the nodes are simulated CiA 402 drives on an
-// in-process virtual bus, deterministic on the run's clock; with `bus: vcan0` / `can0` /
-// `socketcand://...` the master talks to real nodes (real-time runs only). SYNC at the cycle period.
+#include "hil/cia402/canopen_transport.hpp"
+
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -20,32 +18,31 @@
 #include "hil/canopen/eds.hpp"
 #include "hil/cia402/cia402_drive.hpp"
 #include "hil/cia402/layout.hpp"
-#include "hil/cli/context.hpp"
 #include "hil/config/yaml_config.hpp"
 #include "hil/core/fault_injection.hpp"
+#include "hil/core/forwarding_drive.hpp"
 #include "hil/mocks/cia402_node.hpp"
 #include "hil/mocks/key_range.hpp"
 #include "hil/mocks/switches.hpp"
 
-namespace hil::cli::canopen_cli {
+namespace hil::cia402 {
 namespace {
 
 namespace fs = std::filesystem;
 
 /// An axis whose node is simulated in this process: the Drive plus fault injection on the node.
-class InProcessAxis final : public Drive, public FaultInjectable {
+class InProcessAxis final : public ForwardingDrive, public FaultInjectable {
  public:
   /// `master_node` != 0: the master produces a heartbeat the node watches, and the fault
   /// `master_heartbeat_loss` drops it on the bus (the node faults with 0x8130 after its consumer time).
-  InProcessAxis(std::unique_ptr<cia402::Cia402Drive> drive, mocks::Cia402Node& node, const Clock& clock,
-                can::VirtualBus& bus, canopen::NodeId master_node)
-      : drive_(std::move(drive)), node_(node), clock_(clock), bus_(bus), master_node_(master_node) {}
-  std::string_view name() const noexcept override { return drive_->name(); }
-  DriveCapabilities capabilities() const noexcept override { return drive_->capabilities(); }
-  void read(const CycleTime& c) override { drive_->read(c); }
-  void write(const CycleTime& c, const DriveCommand& cmd) override { drive_->write(c, cmd); }
-  const DriveFeedback& feedback() const noexcept override { return drive_->feedback(); }
-  bool request(DriveRequest r) override { return drive_->request(r); }
+  /// `needs` keeps `node` and `bus` (and the master the drive is attached to) alive.
+  InProcessAxis(std::unique_ptr<cia402::Cia402Drive> drive, std::shared_ptr<void> needs, mocks::Cia402Node& node,
+                const Clock& clock, can::VirtualBus& bus, canopen::NodeId master_node)
+      : ForwardingDrive(std::move(drive), std::move(needs)),
+        node_(node),
+        clock_(clock),
+        bus_(bus),
+        master_node_(master_node) {}
   std::vector<std::string> injectable_faults() const override {
     auto names = mocks::Cia402Node::fault_names();
     // SDO faults act on SDO transfers; the run's exchange is PDOs only once the node has booted,
@@ -69,7 +66,6 @@ class InProcessAxis final : public Drive, public FaultInjectable {
   }
 
  private:
-  std::unique_ptr<cia402::Cia402Drive> drive_;
   mocks::Cia402Node& node_;
   const Clock& clock_;
   can::VirtualBus& bus_;
@@ -85,10 +81,25 @@ struct BusMaster {
   bool operator==(const BusMaster&) const = default;
 };
 
+/// One CAN bus of a run: its master, channels and simulated nodes. Shared (std::shared_ptr) by the
+/// factory and by every drive on it, so it outlives the last of them whatever order a run destroys
+/// its axes and factories in (docs/ARCHITECTURE.md, "Teardown"); it tears itself down in the one
+/// safe order: the nodes, their channels, the master, its channel, then the virtual bus.
 struct Bus {
+  Bus() = default;
+  Bus(const Bus&) = delete;
+  Bus& operator=(const Bus&) = delete;
+  ~Bus() {
+    nodes.clear();
+    node_channels.clear();
+    network.reset();  // after the drives (they detach from it), before its channel
+    master_channel.reset();
+    registry.reset();  // the virtual buses (vbus) the channels were attached to
+  }
   std::string name;
   BusMaster master;
   bool simulated = false;
+  std::shared_ptr<can::VirtualBusRegistry> registry;  ///< owns *vbus; shared by the factory's buses
   can::VirtualBus* vbus = nullptr;
   std::unique_ptr<can::Channel> master_channel;
   std::unique_ptr<cia402::Network> network;
@@ -289,8 +300,9 @@ class CanopenTransport final : public TransportFactory {
 
     const BusMaster wanted{*sdo_timeout, *master_hb,
                            master_hb->count() > 0 ? static_cast<canopen::NodeId>(master_id) : canopen::NodeId{0}};
-    auto& bus = get_bus(url, simulated, wanted, env);
-    if (!bus.network) return std::unexpected(yaml::error_at(node["bus"], where.key("bus"), bus_error_));
+    const auto shared_bus = get_bus(url, simulated, wanted, env);
+    if (!shared_bus) return std::unexpected(yaml::error_at(node["bus"], where.key("bus"), bus_error_));
+    Bus& bus = *shared_bus;
     if (bus.master != wanted) {
       const char* key = bus.master.sdo_timeout != wanted.sdo_timeout ? "sdo_timeout"
                         : bus.master.heartbeat != wanted.heartbeat   ? "master_heartbeat"
@@ -384,9 +396,10 @@ class CanopenTransport final : public TransportFactory {
     dopt.setup = setup;
     if (gain->has_value()) dopt.csv_position_gain_per_s = **gain;
     auto drive = std::make_unique<cia402::Cia402Drive>(*bus.network, static_cast<canopen::NodeId>(nid), dopt);
+    // The drive holds its bus (master, channels, node): it goes before them (ForwardingDrive).
     if (sim != nullptr)
-      return std::make_unique<InProcessAxis>(std::move(drive), *sim, env.clock, *bus.vbus, wanted.node_id);
-    return drive;
+      return std::make_unique<InProcessAxis>(std::move(drive), shared_bus, *sim, env.clock, *bus.vbus, wanted.node_id);
+    return std::make_unique<ForwardingDrive>(std::move(drive), shared_bus);
   }
 
   /// Deliver everything due now. On real time the clock moves while handlers send, so repeat
@@ -398,7 +411,8 @@ class CanopenTransport final : public TransportFactory {
   }
 
   void begin_cycle(const CycleTime& cycle) override {
-    for (auto& [name, bus] : buses_) {
+    for (auto& [name, shared_bus] : buses_) {
+      Bus& bus = *shared_bus;
       if (!bus.started) {
         for (auto& n : bus.nodes) n->start(cycle.now);
         bus.network->start(cycle.now);
@@ -410,7 +424,8 @@ class CanopenTransport final : public TransportFactory {
   }
 
   void end_cycle(const CycleTime& cycle) override {
-    for (auto& [name, bus] : buses_) {
+    for (auto& [name, shared_bus] : buses_) {
+      Bus& bus = *shared_bus;
       for (auto& n : bus.nodes) n->step(cycle.now);
       flush(bus);
     }
@@ -418,7 +433,8 @@ class CanopenTransport final : public TransportFactory {
 
   TransportReport finish(const CycleTime&) override {
     TransportReport r;
-    for (auto& [name, bus] : buses_) {
+    for (auto& [name, shared_bus] : buses_) {
+      const Bus& bus = *shared_bus;
       auto& m = bus.network->master();
       int started = 0;
       for (auto id : m.nodes()) {
@@ -448,13 +464,13 @@ class CanopenTransport final : public TransportFactory {
   }
 
  private:
-  Bus& get_bus(const std::string& url, bool simulated, const BusMaster& master, RunEnvironment& env) {
-    auto it = buses_.find(url);
-    if (it != buses_.end()) return it->second;
-    auto& bus = buses_[url];
-    bus.name = url;
-    bus.simulated = simulated;
-    bus.master = master;
+  /// The bus `url`, opened on first use; nullptr (bus_error_ says why) when it cannot be opened.
+  std::shared_ptr<Bus> get_bus(const std::string& url, bool simulated, const BusMaster& master, RunEnvironment& env) {
+    if (auto it = buses_.find(url); it != buses_.end()) return it->second;
+    auto bus = std::make_shared<Bus>();
+    bus->name = url;
+    bus->simulated = simulated;
+    bus->master = master;
     canopen::MasterOptions mo;
     mo.sync_period = env.period;
     mo.node_id = master.node_id;
@@ -463,36 +479,36 @@ class CanopenTransport final : public TransportFactory {
     mo.sdo.retries = 1;
     mo.boot_timeout = std::chrono::seconds(1);
     clock_ = &env.clock;
-    if (!registry_) registry_ = std::make_unique<can::VirtualBusRegistry>(env.clock);
+    if (!registry_) registry_ = std::make_shared<can::VirtualBusRegistry>(env.clock);
+    bus->registry = registry_;
     if (simulated) {
       auto parsed = can::parse_bus_url(url);
-      bus.vbus = &registry_->get(parsed->name);
-      bus.master_channel = bus.vbus->attach("master");
+      bus->vbus = &registry_->get(parsed->name);
+      bus->master_channel = bus->vbus->attach("master");
     } else {
       auto ch = can::make_channel(
           url, can::ChannelRequest{env.io->get_executor(), env.clock, registry_.get(), "hilbridge-master"});
       if (!ch) {
         bus_error_ = fmt::format("cannot open CAN bus '{}': {}", url, ch.error().message);
-        buses_.erase(url);
-        static Bus empty;
-        return empty;
+        return nullptr;
       }
-      bus.master_channel = std::move(*ch);
+      bus->master_channel = std::move(*ch);
     }
-    bus.network = std::make_unique<cia402::Network>(*bus.master_channel, mo);
+    bus->network = std::make_unique<cia402::Network>(*bus->master_channel, mo);
+    buses_[url] = bus;
     return bus;
   }
 
   const Clock* clock_ = nullptr;
-  std::unique_ptr<can::VirtualBusRegistry> registry_;
-  std::map<std::string, Bus> buses_;
+  std::shared_ptr<can::VirtualBusRegistry> registry_;  ///< shared with every Bus (their vbus)
+  std::map<std::string, std::shared_ptr<Bus>> buses_;  ///< shared with the drives on each bus
   std::string bus_error_;
 };
 
 }  // namespace
 
-void register_canopen_transport(Context& ctx) {
-  ctx.transports.add("canopen", [] { return std::make_unique<CanopenTransport>(); });
+std::unique_ptr<TransportFactory> make_canopen_transport() {
+  return std::make_unique<CanopenTransport>();
 }
 
-}  // namespace hil::cli::canopen_cli
+}  // namespace hil::cia402
