@@ -289,9 +289,9 @@ void register_amkasyn(ControllerRegistry& registry) {
       auto& c = a.config;
       c.name = name;
       c.inc_per_unit = motion::Ratio{1, 1};
-      // [decision] The SF data define no drive dynamics: max_rpm, a 0.1 s ramp, one revolution
+      // [decision] The SF data define no drive dynamics: max_rpm, a 0.1 s ramp without jerk limit, one revolution
       // of following error, in position = on the increment (docs/amkasyn.md).
-      c.limits = {velocity, velocity * 10.0, velocity * 200.0};
+      c.limits = {velocity, velocity * 10.0};  // trapezoidal: the drives have no jerk parameter here
       c.quick_stop_deceleration = velocity * 20.0;
       c.jog_velocity = velocity / 10.0;
       c.following_error.static_window = static_cast<double>(setup.resolution);
