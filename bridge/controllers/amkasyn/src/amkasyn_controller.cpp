@@ -90,8 +90,16 @@ void AmkasynController::command(int sf, int code, TimePoint now) noexcept {
     s = SfStatus{true, SfError::start_invalid, "out of memory"};
   }
   io().set(command_bit(sf, 5), s.error);
-  if (s.error && sf_status_ != nullptr)
-    raise(*sf_status_, static_cast<int>(s.code), now, -1, fmt::format("{} ({})", s.text, file->file));
+  if (!s.error || sf_status_ == nullptr) return;
+  // The error concerns the drive the SF writes (else the one it reads, else the whole PS).
+  int on_axis = -1;
+  const auto init = InitDb::parse(file->db.init);
+  if (init) {
+    for (const Holder h : {init->sink, init->source})
+      if (on_axis < 0 && h.address >= 1 && h.address <= 8 && setup_.aw[h.address - 1u])
+        on_axis = static_cast<int>(setup_.aw[h.address - 1u]->axis);
+  }
+  raise(*sf_status_, static_cast<int>(s.code), now, on_axis, fmt::format("{} ({})", s.text, file->file));
 }
 
 void AmkasynController::read_image() noexcept {
