@@ -27,6 +27,7 @@ AmkasynController::AmkasynController(std::shared_ptr<const profiles::Profile> pr
       runtime_(setup_.id2_half_ms, setup_.tables) {
   for (auto& a : axes) add_axis(std::move(a));
   sf_status_ = catalogue("sf_status");
+  dfkt_catalogue_ = catalogue("dfkt_status");
   flag_owned_[232] = flag_owned_[233] = true;
   for (const auto& sf : setup_.sfs) {
     // FB 207 at power-up; the factory checked that each init DB is accepted.
@@ -90,16 +91,41 @@ void AmkasynController::command(int sf, int code, TimePoint now) noexcept {
     s = SfStatus{true, SfError::start_invalid, "out of memory"};
   }
   io().set(command_bit(sf, 5), s.error);
-  if (!s.error || sf_status_ == nullptr) return;
-  // The error concerns the drive the SF writes (else the one it reads, else the whole PS).
-  int on_axis = -1;
-  const auto init = InitDb::parse(file->db.init);
-  if (init) {
-    for (const Holder h : {init->sink, init->source})
-      if (on_axis < 0 && h.address >= 1 && h.address <= 8 && setup_.aw[h.address - 1u])
-        on_axis = static_cast<int>(setup_.aw[h.address - 1u]->axis);
+  if (s.error && sf_status_ != nullptr)
+    raise(*sf_status_, static_cast<int>(s.code), now, axis_of(*file), fmt::format("{} ({})", s.text, file->file));
+}
+
+int AmkasynController::axis_of(const SfFile& file) const noexcept {
+  // An SF's error concerns the drive it writes, else the one it reads, else the whole PS.
+  const auto init = InitDb::parse(file.db.init);
+  if (!init) return -1;
+  for (const Holder h : {init->sink, init->source})
+    if (h.address >= 1 && h.address <= 8 && setup_.aw[h.address - 1u])
+      return static_cast<int>(setup_.aw[h.address - 1u]->axis);
+  return -1;
+}
+
+void AmkasynController::report_dfkt_status(TimePoint now) noexcept {
+  if (dfkt_catalogue_ == nullptr) return;
+  for (const auto& f : setup_.sfs) {
+    if (f.db.init.dr(0) != static_cast<int>(SfType::dfkt)) continue;
+    const int db = f.db.init.dl(9);  // Tab7: the output table
+    const auto it = db != 0 ? setup_.tables.find(db) : setup_.tables.end();
+    if (it == setup_.tables.end()) continue;
+    const int n = f.db.init.dl(0) & 15;
+    const auto status = static_cast<std::uint16_t>(it->second.uw(1) & 0x3F);
+    auto& last = dfkt_status_[static_cast<std::size_t>(n)];
+    if (status == last) continue;
+    const int on_axis = axis_of(f);
+    for (int bit = 0; bit < 6; ++bit) {
+      const int mask = 1 << bit;
+      if ((status & mask) != 0 && (last & mask) == 0)
+        raise(*dfkt_catalogue_, mask, now, on_axis, fmt::format("SF{} DFKT, Tab7 = DB{} DW1 bit {}", n, db, bit));
+      else if ((status & mask) == 0 && (last & mask) != 0)
+        (void)clear_error(*dfkt_catalogue_, mask, on_axis);
+    }
+    last = status;
   }
-  raise(*sf_status_, static_cast<int>(s.code), now, on_axis, fmt::format("{} ({})", s.text, file->file));
 }
 
 void AmkasynController::read_image() noexcept {
@@ -229,6 +255,7 @@ void AmkasynController::on_cycle(const CycleTime& cycle) noexcept {
       for (const auto& f : setup_.sfs) command(f.db.init.dl(0), f.db.command.dr(1), cycle.now);
   }
   runtime_.cycle(image_);
+  report_dfkt_status(cycle.now);
   if (ready) drive_axes(to_seconds(cycle_period()));
   write_image();
 }

@@ -23,8 +23,11 @@
 // actual increments of an axis (the pulse-generator input X32), in the high word when an SF reads
 // it as a 16-bit source (offsets 1/3/5/7), else as 32 bits.
 //
-// Errors: a failed FB 207/208 is a device error of the catalogue sf_status (the code of MB 233);
-// an axis fault stays motion:N (the PS has no axis error numbers).
+// Errors: a failed FB 208 is a device error of the catalogue sf_status (the code of MB 233); a
+// DFKT's output table status bits (Tab7 DW1) are self-clearing device errors of the catalogue
+// dfkt_status (the bit's value: 1, 2, 4, ..., 32), raised when the SF sets the bit and cleared
+// when it clears it; both on the axis of the AW the SF writes (else reads), else the whole PS. An
+// axis fault stays motion:N (the PS has no axis error numbers).
 
 #include <array>
 #include <cstdint>
@@ -117,6 +120,8 @@ class AmkasynController final : public Controller {
     int resting = 0;                ///< cycles without a set-point change
   };
   void command(int sf, int code, TimePoint now) noexcept;
+  void report_dfkt_status(TimePoint now) noexcept;
+  [[nodiscard]] int axis_of(const SfFile& file) const noexcept;
   void read_image() noexcept;
   void write_image() noexcept;
   void drive_axes(double dt_s) noexcept;
@@ -126,10 +131,12 @@ class AmkasynController final : public Controller {
   ProcessImage image_{};
   std::array<bool, 256> flag_owned_{};  ///< M bytes SFs (or MB 232/233) write
   std::array<AxisDrive, 8> drives_{};
-  std::vector<int> aa_used_;  ///< analog outputs that are SF sinks (0..3)
+  std::vector<int> aa_used_;                         ///< analog outputs that are SF sinks (0..3)
+  std::array<std::uint16_t, max_sf> dfkt_status_{};  ///< Tab7 DW1 as last reported, per SF
   bool enabled_ = false;
   bool started_ = false;
   const profiles::ErrorCatalogue* sf_status_ = nullptr;
+  const profiles::ErrorCatalogue* dfkt_catalogue_ = nullptr;
 };
 
 /// Registers `amkasyn-sf` in `registry`.
