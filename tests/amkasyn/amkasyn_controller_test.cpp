@@ -192,6 +192,7 @@ TEST_F(AmkController, ImageMappingAndNames) {
   EXPECT_EQ(bit("M 232.0"), (BitAddress{IoArea::marker, 232, 0})) << "MB 232 is the SF status";
   EXPECT_EQ(bit("M 100.0"), (BitAddress{IoArea::data, 116, 0})) << "a flag the PLC writes";
   EXPECT_EQ(bit("sf0_start"), (BitAddress{IoArea::data, 0, 0}));
+  EXPECT_EQ(bit("sf0_read_value"), (BitAddress{IoArea::data, 0, 3}));
   EXPECT_EQ(bit("sf0_active"), (BitAddress{IoArea::data, 0, 4}));
   EXPECT_FALSE(ctl->resolve_bit("sf1_start")) << "no SF1 in this setup";
   EXPECT_FALSE(ctl->resolve_bit("Q 1.0"));
@@ -257,7 +258,11 @@ TEST_F(AmkController, StartResetValueNewHandshake) {
   run(milliseconds(1));
   EXPECT_TRUE(get("sf0_error"));
   EXPECT_EQ(ctl->process_image().m[233], 3);
-  EXPECT_EQ(ctl->acknowledge(Acknowledgement::acknowledge), 2U);
+  // READ VALUE belongs to XFIPW: error 1 for ECOPY.
+  set("sf0_read_value", true);
+  run(milliseconds(1));
+  EXPECT_EQ(ctl->process_image().m[233], 1);
+  EXPECT_EQ(ctl->acknowledge(Acknowledgement::acknowledge), 3U);
   EXPECT_FALSE(ctl->errors().any());
 }
 

@@ -38,6 +38,7 @@ AmkasynController::AmkasynController(std::shared_ptr<const profiles::Profile> pr
     (void)io().name_bit(fmt::format("sf{}_start", n), command_bit(n, 0));
     (void)io().name_bit(fmt::format("sf{}_reset", n), command_bit(n, 1));
     (void)io().name_bit(fmt::format("sf{}_value_new", n), command_bit(n, 2));
+    (void)io().name_bit(fmt::format("sf{}_read_value", n), command_bit(n, 3));
     (void)io().name_bit(fmt::format("sf{}_active", n), command_bit(n, 4));
     (void)io().name_bit(fmt::format("sf{}_error", n), command_bit(n, 5));
     if (init->outputs_to_m && init->out_mask != 0) flag_owned_[init->out_byte] = true;
@@ -248,6 +249,7 @@ void AmkasynController::on_cycle(const CycleTime& cycle) noexcept {
     if (io().rising(command_bit(n, 1))) command(n, 0, cycle.now);
     if (io().rising(command_bit(n, 0))) command(n, 1, cycle.now);
     if (io().rising(command_bit(n, 2))) command(n, 5, cycle.now);
+    if (io().rising(command_bit(n, 3))) command(n, 6, cycle.now);
   }
   if (!started_ && ready) {
     started_ = true;

@@ -9,7 +9,8 @@
 //
 // Image (the PS's own, byte for byte): input byte n = E n, output byte n = A n, marker byte n =
 // M n. Data area: byte n (n = SF number 0..15) holds the PLC's FB 208 command bits of SF n
-// (bit 0 `sfN_start`, bit 1 `sfN_reset`, bit 2 `sfN_value_new`: rising edges) and its status
+// (bit 0 `sfN_start`, bit 1 `sfN_reset`, bit 2 `sfN_value_new`, bit 3 `sfN_read_value`: rising
+// edges) and its status
 // (bit 4 `sfN_active` = SF-ACTIVE, bit 5 `sfN_error` = MB 232 error bit of its last command);
 // bytes 16..271 are the PLC program's flag writes: flag byte n is copied from data byte 16 + n
 // before every SF cycle unless an SF writes it (outputs in M, MW/MD sinks) or it is MB 232/233.
@@ -96,7 +97,7 @@ class AmkasynController final : public Controller {
   [[nodiscard]] const ProcessImage& process_image() const noexcept { return image_; }
   [[nodiscard]] const DbStore& tables() const noexcept { return setup_.tables; }
   /// The data-area bit of SF n's command / status bit `bit` (0 start, 1 reset, 2 value new,
-  /// 4 active, 5 error).
+  /// 3 read value, 4 active, 5 error).
   [[nodiscard]] static BitAddress command_bit(int sf, int bit) noexcept {
     return {IoArea::data, static_cast<std::uint32_t>(sf), static_cast<std::uint8_t>(bit)};
   }
