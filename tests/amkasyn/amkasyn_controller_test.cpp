@@ -352,6 +352,30 @@ TEST_F(AmkController, ConfigurationErrorsNameFileLineAndKey) {
   EXPECT_NE(e.error().message.find("already initialised"), std::string::npos) << e.error().describe();
 }
 
+TEST_F(AmkController, AnAzMessageIsReadOneWayAndTheModesMatchTheSinks) {
+  // DCOPY of the 32-bit AZ message 1 into MD 40 besides VARSYNC reading its 16-bit high word.
+  spec.parameters = write("varsync.txt", varsync);
+  spec.programs = {write("dcopy.txt",
+                         "INIT DR0 = 0\nINIT DL0 = 0\nINIT DR2 = 16\nINIT DR3 = 40\nINIT DL3 = 129\n"
+                         "DR0 = 0\nDL0 = 1\nDR1 = 1\nDL1 = 0\n")};
+  spec.options = {{"aw3", "S"}, {"az1", "M"}};
+  auto e = create();
+  ASSERT_FALSE(e);
+  EXPECT_EQ(e.error().key, "controller.az1");
+  EXPECT_NE(e.error().message.find("both"), std::string::npos) << e.error().describe();
+  // Alone, the DCOPY reads the count as 32 bits: MD 40 = the master's increments.
+  spec.parameters = spec.programs.front();
+  spec.programs.clear();
+  spec.options = {{"az1", "M"}};
+  start();
+  run(milliseconds(20));
+  ASSERT_FALSE(axes[0]->move_relative(70000.0, motion::Limits{100000.0, 1000000.0}));
+  run(milliseconds(1500));
+  EXPECT_EQ(axes[0]->status().position_inc, 70000);
+  EXPECT_EQ(ctl->process_image().md(40), 70000) << "beyond 16 bits: the 32-bit form";
+  EXPECT_FALSE(get("M 232.0"));
+}
+
 constexpr const char* binea = R"(INIT DR0 = 8
 INIT DL0 = 0
 INIT DR2 = 5
