@@ -184,12 +184,7 @@ void AmkasynController::drive_axes(double dt_s) noexcept {
     AxisDrive& d = drives_[k];
     const DriveChannels& c = image_.aw[k];
     const std::int32_t channel = ch->mode == AwMode::swq1_position ? c.swq1 : c.swq2;
-    if (!d.ready) {
-      d.ready = true;
-      d.target_inc = ax.status().command_inc;
-      d.last_channel = channel;
-      continue;
-    }
+    if (!d.ready) continue;
     std::int64_t delta = 0;
     double velocity = 0.0;
     switch (ch->mode) {
@@ -243,6 +238,20 @@ void AmkasynController::on_cycle(const CycleTime& cycle) noexcept {
     ready = ready && s != motion::AxisState::disabled && s != motion::AxisState::enabling;
   }
   read_image();
+  if (!started_ && ready) {
+    // The drives are enabled: from here on their set-points follow the SF channels, from the
+    // values the channels have now (before the START of `start: auto`, so its set-point counts).
+    for (std::size_t k = 0; k < 8; ++k) {
+      if (!setup_.aw[k]) continue;
+      const DriveChannels& c = image_.aw[k];
+      drives_[k].ready = true;
+      drives_[k].target_inc = axis(setup_.aw[k]->axis).status().command_inc;
+      drives_[k].last_channel = setup_.aw[k]->mode == AwMode::swq1_position ? c.swq1 : c.swq2;
+    }
+    started_ = true;
+    if (setup_.auto_start)
+      for (const auto& f : setup_.sfs) command(f.db.init.dl(0), f.db.command.dr(1), cycle.now);
+  }
   // The PLC's FB 208 calls: the file's commanding DB with the code of the bit's edge.
   for (const auto& f : setup_.sfs) {
     const int n = f.db.init.dl(0);
@@ -250,11 +259,6 @@ void AmkasynController::on_cycle(const CycleTime& cycle) noexcept {
     if (io().rising(command_bit(n, 0))) command(n, 1, cycle.now);
     if (io().rising(command_bit(n, 2))) command(n, 5, cycle.now);
     if (io().rising(command_bit(n, 3))) command(n, 6, cycle.now);
-  }
-  if (!started_ && ready) {
-    started_ = true;
-    if (setup_.auto_start)
-      for (const auto& f : setup_.sfs) command(f.db.init.dl(0), f.db.command.dr(1), cycle.now);
   }
   runtime_.cycle(image_);
   report_dfkt_status(cycle.now);
