@@ -290,6 +290,24 @@ TEST_F(AmkController, VarsyncDrivesTheSlaveAxisFromTheMasterAxis) {
   EXPECT_EQ(s.status().position_inc, 3000);
 }
 
+TEST_F(AmkController, Swq1GoesThroughTheDrivesSynchronousRatio) {
+  spec.parameters = write("varsync.txt", varsync);
+  // ID 32893 / ID 32892 = 196608 / 131072 = 1.5, exact over odd master steps.
+  spec.options = {{"az1", "M"}, {"aw3", "S"}, {"aw3_id32893", "196608"}, {"aw3_id32892", "131072"}};
+  start();
+  run(milliseconds(50));
+  ASSERT_FALSE(axes[1]->move_relative(5001.0, motion::Limits{10000.0, 100000.0}));
+  run(milliseconds(1000));
+  EXPECT_EQ(axes[0]->status().command_inc, 7501) << "5001 x 1.5 = 7501.5: the half stays as a remainder";
+  ASSERT_FALSE(axes[1]->move_relative(1.0, motion::Limits{10000.0, 100000.0}));
+  run(milliseconds(500));
+  EXPECT_EQ(axes[0]->status().command_inc, 7503) << "5002 x 1.5";
+  spec.options = {{"az1", "M"}, {"aw3", "S"}, {"aw3_id32892", "100"}};
+  auto e = create();
+  ASSERT_FALSE(e);
+  EXPECT_EQ(e.error().key, "controller.aw3_id32892");
+}
+
 TEST_F(AmkController, ConfigurationErrorsNameFileLineAndKey) {
   spec.parameters = write("varsync.txt", varsync);
   spec.options = {{"az1", "M"}};

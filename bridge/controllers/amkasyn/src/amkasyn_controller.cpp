@@ -188,10 +188,17 @@ void AmkasynController::drive_axes(double dt_s) noexcept {
     std::int64_t delta = 0;
     double velocity = 0.0;
     switch (ch->mode) {
-      case AwMode::swq1_position:
-        delta = static_cast<std::int16_t>(static_cast<std::uint16_t>(channel - d.last_channel));
+      case AwMode::swq1_position: {
+        // The drive's synchronous ratio ID 32893 / ID 32892 on each 16-bit difference, exact (the
+        // remainder is carried: no drift).
+        const std::int64_t num =
+            static_cast<std::int16_t>(static_cast<std::uint16_t>(channel - d.last_channel)) * ch->ratio_mul +
+            d.speed_rest;
+        delta = num / ch->ratio_div;
+        d.speed_rest = num % ch->ratio_div;
         velocity = static_cast<double>(delta) / dt_s;
         break;
+      }
       case AwMode::swq2_position:
         delta =
             static_cast<std::int32_t>(static_cast<std::uint32_t>(channel) - static_cast<std::uint32_t>(d.last_channel));

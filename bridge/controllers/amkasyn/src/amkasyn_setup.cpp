@@ -89,7 +89,7 @@ std::expected<LoadedSf, ConfigError> load_sf(const std::filesystem::path& path, 
 
 constexpr const char* known_keys =
     "device, parameters, programs, cycle, tables, start, resolution, max_rpm, aw1..aw8, awN_mode, awN_message32, "
-    "az1..az4";
+    "awN_id32892, awN_id32893, az1..az4";
 
 }  // namespace
 
@@ -114,6 +114,9 @@ void register_amkasyn(ControllerRegistry& registry) {
     std::array<std::string, 4> az_axis;
     std::array<std::optional<AwMode>, 8> aw_mode;
     std::array<int, 8> aw_message{};
+    std::array<std::int64_t, 8> aw_mul, aw_div;
+    aw_mul.fill(1);
+    aw_div.fill(1);
     std::vector<std::pair<int, std::string>> table_files;
     for (const auto& [key, value] : opts) {
       const auto number = [&](std::string_view prefix, int max) -> int {
@@ -172,6 +175,15 @@ void register_amkasyn(ControllerRegistry& registry) {
                       "ID 32786 (Config-AW message32): 0 position feedback, 36 velocity command, 40 velocity "
                       "feedback, 32824 following error");
         aw_message[static_cast<std::size_t>(n - 1)] = static_cast<int>(*m);
+      } else if (n != 0 && (key == fmt::format("aw{}_id32893", n) || key == fmt::format("aw{}_id32892", n))) {
+        const bool divider = key.ends_with("32892");
+        const auto v = whole(value);
+        const bool ok =
+            v && (divider ? (*v == 0 || (*v >= 65536 && *v <= INT32_MAX)) : (*v >= INT32_MIN && *v <= INT32_MAX));
+        if (!ok)
+          return fail(key, divider ? "ID 32892 (synchronous ratio divider): 0 (= 1) or 65536..2^31-1"
+                                   : "ID 32893 (synchronous ratio multiplier): -2^31..2^31-1, 0 = 1");
+        (divider ? aw_div : aw_mul)[static_cast<std::size_t>(n - 1)] = *v == 0 ? 1 : *v;
       } else if (const int z = number("az", 4); z != 0 && key.size() == 3) {
         az_axis[static_cast<std::size_t>(z - 1)] = value;
       } else {
@@ -230,7 +242,7 @@ void register_amkasyn(ControllerRegistry& registry) {
     };
     for (std::size_t k = 0; k < 8; ++k) {
       if (aw_axis[k].empty()) {
-        if (aw_mode[k] || aw_message[k] != 0)
+        if (aw_mode[k] || aw_message[k] != 0 || aw_mul[k] != 1 || aw_div[k] != 1)
           return fail(fmt::format("aw{}", k + 1),
                       fmt::format("aw{}_... configure a drive: name its axis, aw{}: NAME", k + 1, k + 1));
         continue;
@@ -238,6 +250,8 @@ void register_amkasyn(ControllerRegistry& registry) {
       AwChannel ch;
       ch.axis = axis_index(aw_axis[k]);
       ch.message32 = aw_message[k];
+      ch.ratio_mul = aw_mul[k];
+      ch.ratio_div = aw_div[k];
       std::optional<AwMode> from_sink;
       for (const auto& sf : sfs)
         if (sf.init.sink.address == k + 1)
@@ -249,6 +263,11 @@ void register_amkasyn(ControllerRegistry& registry) {
                                 "3C0404 / 3C0043 take SWQ2 (sink offset 16)",
                                 k + 1, *from_sink == AwMode::swq1_position ? "SWQ1" : "SWQ2",
                                 ch.mode == AwMode::swq1_position ? "SWQ1" : "SWQ2"));
+      if (ch.mode != AwMode::swq1_position && (ch.ratio_mul != 1 || ch.ratio_div != 1))
+        return fail(fmt::format("aw{}_id32893", k + 1),
+                    fmt::format("the synchronous ratio ID 32892/32893 acts on SWQ1 only (ID 32800 = 3C0004); AW{} "
+                                "runs on SWQ2",
+                                k + 1));
       setup.aw[k] = ch;
     }
     for (std::size_t k = 0; k < 4; ++k) {

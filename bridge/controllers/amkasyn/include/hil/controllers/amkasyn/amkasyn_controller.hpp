@@ -47,7 +47,7 @@ namespace hil::controllers::amkasyn {
 
 /// Drive operating mode of an AW (ID 32800): what its SWQ2 means.
 enum class AwMode : std::uint8_t {
-  swq1_position,  ///< 3C0004: 16-bit position command SWQ1 (drive ratio 1:1)
+  swq1_position,  ///< 3C0004: 16-bit position command SWQ1 x the drive ratio ID 32893 / ID 32892
   swq2_position,  ///< 3C0404: 32-bit position command SWQ2 (fine interpolation)
   swq2_speed,     ///< 3C0043: 32-bit speed command SWQ2 in 0.0001 rpm
 };
@@ -57,6 +57,8 @@ struct AwChannel {
   std::size_t axis = 0;                 ///< index into the controller's axes
   AwMode mode = AwMode::swq1_position;  ///< which sink drives the axis
   int message32 = 0;                    ///< ID 32786: 0 position feedback, 36, 40, 32824
+  std::int64_t ratio_mul = 1;           ///< ID 32893 (0 -> 1): SWQ1 differences x mul / div
+  std::int64_t ratio_div = 1;           ///< ID 32892 (0 -> 1, else 2^16..2^31-1)
 };
 
 /// One AZ message counting an axis.
@@ -116,7 +118,7 @@ class AmkasynController final : public Controller {
     bool ready = false;             ///< enabled; the channel's base is taken
     std::int64_t target_inc = 0;    ///< the set-point the SFs give (unwrapped)
     std::int32_t last_channel = 0;  ///< SWQ value of the last cycle
-    std::int64_t speed_rest = 0;    ///< remainder of the speed integration
+    std::int64_t speed_rest = 0;    ///< remainder of the speed integration / the SWQ1 ratio
     bool following = false;         ///< follow() was called (stop() when the set-point rests)
     int resting = 0;                ///< cycles without a set-point change
   };
