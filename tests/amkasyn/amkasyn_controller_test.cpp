@@ -266,6 +266,42 @@ TEST_F(AmkController, StartResetValueNewHandshake) {
   EXPECT_FALSE(ctl->errors().any());
 }
 
+TEST_F(AmkController, ValueNewSendsItsOwnCommandingDb) {
+  spec.parameters = write("ecopy.txt", ecopy);
+  write("ecopy-vn.txt",
+        "; VALUE NEW for SF0: new values for both E1 states\nDR0 = 0\nDL0 = 2\nDR1 = 5\nDL1 = 3\n"
+        "DD2 = 7000\nDD4 = 3000\n");
+  spec.options = {{"aw1", "X"}, {"value_new", "ecopy-vn.txt"}};
+  start();
+  run(milliseconds(20));
+  EXPECT_EQ(ctl->trace_value(0), 10000.0);
+  set("sf0_value_new", true);
+  run(milliseconds(1));
+  EXPECT_FALSE(get("sf0_error"));
+  EXPECT_EQ(ctl->trace_value(0), 7000.0) << "ECOPY takes Value_E1_0 / Value_E1_1 at VALUE NEW";
+  set("M 100.0", true);
+  run(milliseconds(1));
+  EXPECT_EQ(ctl->trace_value(0), 3000.0);
+  // A VALUE NEW DB the profile refuses, for an SF the setup lacks, or with INIT lines.
+  write("bad-vn.txt", "DR0 = 0\nDL0 = 2\nDR1 = 5\nDD2 = 1\nDW40 = 1\n");
+  spec.options = {{"aw1", "X"}, {"value_new", "bad-vn.txt"}};
+  auto e = create();
+  ASSERT_FALSE(e);
+  EXPECT_EQ(e.error().file, (dir / "bad-vn.txt").string());
+  EXPECT_EQ(e.error().line, 5);
+  write("other-vn.txt", "DR0 = 7\nDR1 = 5\n");
+  spec.options = {{"aw1", "X"}, {"value_new", "other-vn.txt"}};
+  e = create();
+  ASSERT_FALSE(e);
+  EXPECT_EQ(e.error().key, "DR0");
+  EXPECT_NE(e.error().message.find("names no SF"), std::string::npos) << e.error().describe();
+  write("init-vn.txt", "INIT DR0 = 0\nDR0 = 0\nDR1 = 5\n");
+  spec.options = {{"aw1", "X"}, {"value_new", "init-vn.txt"}};
+  e = create();
+  ASSERT_FALSE(e);
+  EXPECT_EQ(e.error().key, "INIT");
+}
+
 TEST_F(AmkController, VarsyncDrivesTheSlaveAxisFromTheMasterAxis) {
   spec.parameters = write("varsync.txt", varsync);
   spec.options = {{"az1", "M"}, {"aw3", "S"}};

@@ -83,7 +83,7 @@ void AmkasynController::command(int sf, int code, TimePoint now) noexcept {
   for (const auto& f : setup_.sfs)
     if (f.db.init.dl(0) == sf) file = &f;
   if (file == nullptr) return;
-  DataBlock db = file->db.command;
+  DataBlock db = code == 5 && file->value_new ? *file->value_new : file->db.command;
   db.set_dr(1, static_cast<std::uint8_t>(code));
   SfStatus s;
   try {

@@ -83,13 +83,13 @@ std::expected<LoadedSf, ConfigError> load_sf(const std::filesystem::path& path, 
   }
   auto init = InitDb::parse(db->init);
   if (!init) return Unexpected(ConfigError{file, line_of(*text, "INIT DR0"), 0, "INIT", init.error().text});
-  LoadedSf out{SfFile{file, std::move(*db), std::move(checked->set)}, std::move(*text), *init};
+  LoadedSf out{SfFile{file, std::move(*db), std::move(checked->set), std::nullopt, {}}, std::move(*text), *init};
   return out;
 }
 
 constexpr const char* known_keys =
     "device, parameters, programs, cycle, tables, start, resolution, max_rpm, aw1..aw8, awN_mode, awN_message32, "
-    "awN_id32892, awN_id32893, az1..az4";
+    "awN_id32892, awN_id32893, az1..az4, value_new";
 
 }  // namespace
 
@@ -118,6 +118,7 @@ void register_amkasyn(ControllerRegistry& registry) {
     aw_mul.fill(1);
     aw_div.fill(1);
     std::vector<std::pair<int, std::string>> table_files;
+    std::vector<std::string> value_new_files;
     for (const auto& [key, value] : opts) {
       const auto number = [&](std::string_view prefix, int max) -> int {
         if (!key.starts_with(prefix) || key.size() < prefix.size() + 1) return 0;
@@ -152,6 +153,14 @@ void register_amkasyn(ControllerRegistry& registry) {
             return fail(
                 key, fmt::format("'{}': write DB=FILE, e.g. tables: \"16=db16.txt, 17=db17.txt\" (DB 1..255)", item));
           table_files.emplace_back(static_cast<int>(*n), trim(item.substr(eq + 1)));
+        }
+      } else if (key == "value_new") {
+        std::size_t pos = 0;
+        while (pos < value.size()) {
+          const auto comma = value.find(',', pos);
+          std::string item = trim(value.substr(pos, comma == std::string::npos ? std::string::npos : comma - pos));
+          pos = comma == std::string::npos ? value.size() : comma + 1;
+          if (!item.empty()) value_new_files.push_back(std::move(item));
         }
       } else if (const int n = number("aw", 8); n != 0 && key.size() == 3) {
         aw_axis[static_cast<std::size_t>(n - 1)] = value;
@@ -206,6 +215,41 @@ void register_amkasyn(ControllerRegistry& registry) {
             fmt::format("SF{} is already initialised by {}: one file per SF number", sf->init.number, owner)});
       owner = sf->sf.file;
       sfs.push_back(std::move(*sf));
+    }
+    // VALUE NEW commanding DBs: DR0 names the SF; checked by the profile with that SF's init DB.
+    for (const auto& file : value_new_files) {
+      const auto path = beside(spec, file);
+      auto text = read_text_file(path);
+      if (!text) return fail("value_new", fmt::format("cannot read the VALUE NEW DB: {}", text.error()));
+      auto parsed = parse_sf_db_text(*text);
+      if (!parsed) return Unexpected(db_error(path.string(), parsed.error()));
+      if (parsed->has_init)
+        return Unexpected(ConfigError{path.string(), line_of(*text, "INIT"), 0, "INIT",
+                                      "a VALUE NEW DB is a commanding DB only: the SF's init DB is in its SF file"});
+      const int n = parsed->command.dr(0);
+      const auto it = std::find_if(sfs.begin(), sfs.end(), [&](const LoadedSf& sf) { return sf.init.number == n; });
+      if (n >= max_sf || it == sfs.end())
+        return Unexpected(ConfigError{path.string(), line_of(*text, "DR0"), 0, "DR0",
+                                      fmt::format("DR0 = {} names no SF of this setup", n)});
+      if (it->sf.value_new)
+        return fail("value_new",
+                    fmt::format("SF{} has two VALUE NEW DBs ({} and {})", n, it->sf.value_new_file, path.string()));
+      // The INIT lines after the file's own, so that the profile's line numbers are the file's.
+      std::string combined = *text + "\n";
+      std::size_t pos = 0;
+      while (pos < it->text.size()) {
+        const auto nl = it->text.find('\n', pos);
+        const std::string line = it->text.substr(pos, nl == std::string::npos ? std::string::npos : nl - pos);
+        pos = nl == std::string::npos ? it->text.size() : nl + 1;
+        const auto first = line.find_first_not_of(" \t");
+        if (first != std::string::npos && (line.compare(first, 4, "INIT") == 0 || line.compare(first, 4, "init") == 0))
+          combined += line + "\n";
+      }
+      const profiles::Settings settings{{"id2_ms", static_cast<long double>(setup.id2_half_ms) / 2.0L}};
+      if (auto checked = load_parameter_text("amkasyn-sf", combined, path.string(), settings); !checked)
+        return Unexpected(checked.error());
+      it->sf.value_new = parsed->command;
+      it->sf.value_new_file = path.string();
     }
     for (const auto& [db, file] : table_files) {
       const auto path = beside(spec, file);

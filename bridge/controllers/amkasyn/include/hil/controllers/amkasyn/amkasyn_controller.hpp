@@ -71,7 +71,9 @@ struct AzChannel {
 struct SfFile {
   std::string file;
   SfDbText db;
-  profiles::ParameterSet parameters;  ///< the validated set (profile engine)
+  profiles::ParameterSet parameters;   ///< the validated set (profile engine)
+  std::optional<DataBlock> value_new;  ///< the commanding DB sfN_value_new sends (else `db.command`)
+  std::string value_new_file;
 };
 
 /// Everything the factory reads from the scenario's controller block.
