@@ -6,6 +6,7 @@
 
 #include <fmt/format.h>
 
+#include "hil/controllers/amkasyn/amkasyn_controller.hpp"
 #include "hil/controllers/clm14/runtime_controller.hpp"
 #include "hil/controllers/drive_io.hpp"
 #include "hil/controllers/elg/elg_controller.hpp"
@@ -39,6 +40,7 @@ std::optional<ConfigError> Machine::build_controller(const Scenario& scenario,
       return s.programs.empty() ? parameters->create(s) : programs->create(s);
     });
     controllers::elg::register_elg(builtin);
+    controllers::amkasyn::register_amkasyn(builtin);
     registry = &builtin;
   }
   auto created = registry->create(spec);

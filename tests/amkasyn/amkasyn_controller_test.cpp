@@ -1,0 +1,507 @@
+// SPDX-License-Identifier: MIT
+// The amkasyn-sf controller (docs/amkasyn.md, "Scenarios"): the DB text codec, the factory's
+// configuration errors (file, line, key), the image mapping (E/A/M byte for byte, the PLC's flag
+// writes in the data area, the FB 208 command and status bits), the start/reset/VALUE NEW
+// handshake, commanding errors as sf_status device errors, and the AW/AZ axes on simulated drives.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include "hil/controllers/amkasyn/amkasyn_controller.hpp"
+#include "hil/mocks/sim_drive.hpp"
+
+namespace hil::controllers::amkasyn {
+namespace {
+
+using std::chrono::milliseconds;
+namespace fs = std::filesystem;
+
+// ---------------------------------------------------------------------------------------------
+// DB text codec
+
+TEST(DbText, SfFileIntoInitAndCommandingDb) {
+  auto r = parse_sf_db_text(
+      "; comment\nINIT DR0 = 3\ninit DL0 = 2   ; SF2\nDL1 = 0x03\nDW2 = 7936\nDW6 = -10000\nDD10 = 70000\n"
+      "DR4 = 10h # hex\n\n");
+  ASSERT_TRUE(r) << r.error().message;
+  EXPECT_TRUE(r->has_init);
+  EXPECT_EQ(r->init.dr(0), 3);
+  EXPECT_EQ(r->init.dl(0), 2);
+  EXPECT_EQ(r->command.dl(1), 3);
+  EXPECT_EQ(r->command.dw(2), 7936);
+  EXPECT_EQ(r->command.dw(6), -10000);
+  EXPECT_EQ(r->command.dd(10), 70000);
+  EXPECT_EQ(r->command.uw(10), 70000 & 0xFFFF) << "low word first";
+  EXPECT_EQ(r->command.uw(11), 1);
+  EXPECT_EQ(r->command.dr(4), 16);
+}
+
+TEST(DbText, ErrorsNameLineAndItem) {
+  auto e = parse_sf_db_text("INIT DR0 = 1\nDW34 = 1\n");
+  ASSERT_FALSE(e);
+  EXPECT_EQ(e.error().line, 2);
+  EXPECT_EQ(e.error().item, "DW34");
+  EXPECT_NE(e.error().message.find("34-word commanding DB"), std::string::npos) << e.error().message;
+  e = parse_sf_db_text("INIT DW10 = 1\n");
+  ASSERT_FALSE(e);
+  EXPECT_NE(e.error().message.find("init DB"), std::string::npos);
+  e = parse_sf_db_text("DR3 = 256\n");
+  ASSERT_FALSE(e);
+  EXPECT_NE(e.error().message.find("does not fit"), std::string::npos);
+  e = parse_sf_db_text("DW3 = four\n");
+  ASSERT_FALSE(e);
+  EXPECT_NE(e.error().message.find("not an integer"), std::string::npos);
+  e = parse_sf_db_text("XX3 = 1\n");
+  ASSERT_FALSE(e);
+  EXPECT_NE(e.error().message.find("DRn, DLn, DWn or DDn"), std::string::npos);
+  e = parse_sf_db_text("DW99999999999999 = 1\n");
+  ASSERT_FALSE(e) << "an absurd address is an error, not an exception";
+  auto t = parse_table_db_text("INIT DR0 = 1\n");
+  ASSERT_FALSE(t);
+  EXPECT_NE(t.error().message.find("table DB"), std::string::npos);
+}
+
+TEST(DbText, TableDbUpToTheXfipwSize) {
+  auto t = parse_table_db_text("DW0 = 10\nDD2 = 0\nDD4 = 500\nDD4000 = -1\n");
+  ASSERT_TRUE(t) << t.error().message;
+  EXPECT_EQ(t->size(), 4002U);
+  EXPECT_EQ(t->dd(4), 500);
+  EXPECT_EQ(t->dd(4000), -1);
+  EXPECT_FALSE(parse_table_db_text("DD4001 = 1\n"));
+}
+
+// ---------------------------------------------------------------------------------------------
+// Factory and runs
+
+constexpr const char* ecopy = R"(INIT DR0 = 0
+INIT DL0 = 0
+INIT DR1 = 3
+INIT DR3 = 0
+INIT DL3 = 64
+INIT DR4 = 1
+INIT DL4 = 100
+INIT DR5 = 1
+INIT DL5 = 101
+DR0 = 0
+DL0 = 2
+DR1 = 1
+DL1 = 3
+DD2 = 10000
+DD4 = 5000
+)";
+
+constexpr const char* varsync = R"(INIT DR0 = 3
+INIT DL0 = 2
+INIT DR2 = 1
+INIT DL2 = 0
+INIT DR3 = 4
+INIT DL3 = 3
+INIT DR4 = 4
+INIT DL4 = 16
+INIT DR5 = 4
+INIT DL5 = 16
+DR0 = 2
+DL0 = 1
+DR1 = 1
+DL1 = 0
+DW2 = 0
+DW4 = 10000
+DW6 = -10000
+)";
+
+class AmkController : public ::testing::Test {
+ protected:
+  AmkController() {
+    dir = fs::temp_directory_path() / ("hil_amk_" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()) +
+                                       "_" + ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    fs::create_directories(dir);
+    spec.device = "amkasyn-sf";
+    spec.file = (dir / "scenario.yaml").string();
+    spec.line = 7;
+    spec.cycle = milliseconds(1);
+  }
+  ~AmkController() override { fs::remove_all(dir); }
+  fs::path write(const std::string& name, const std::string& text) {
+    std::ofstream(dir / name) << text;
+    return dir / name;
+  }
+  std::expected<std::unique_ptr<Controller>, ConfigError> create() {
+    ControllerRegistry r;
+    register_amkasyn(r);
+    return r.create(spec);
+  }
+  /// Builds the controller and one simulated axis per declared axis, enabled by the controller.
+  void start() {
+    auto c = create();
+    ASSERT_TRUE(c) << c.error().describe();
+    ctl.reset(static_cast<AmkasynController*>(c->release()));
+    std::vector<motion::Axis*> ptrs;
+    for (const auto& a : ctl->axis_specs()) {
+      mocks::SimDriveConfig d;
+      d.name = "sim:" + a.name;
+      d.plant.kv_per_s = 200.0;
+      d.plant.velocity_lag_s = 0.0;
+      d.plant.velocity_feedforward = 1.0;
+      axes.push_back(std::make_unique<motion::Axis>(a.config, std::make_unique<mocks::SimDrive>(d)));
+      ptrs.push_back(axes.back().get());
+    }
+    ASSERT_TRUE(ctl->bind_axes(ptrs));
+    ctl->io().attach(script);
+  }
+  void run(Duration d) {
+    const auto end = now + d;
+    while (now < end) {
+      now += milliseconds(1);
+      for (auto& a : axes) a->update(CycleTime{now, milliseconds(1)});
+      ctl->step(CycleTime{now, milliseconds(1)});
+    }
+  }
+  struct Script : IoSource {
+    std::vector<std::pair<BitAddress, bool>> pending;
+    void read(TimePoint, IoImage& image) noexcept override {
+      for (const auto& [a, v] : pending) image.set(a, v);
+      pending.clear();
+    }
+  };
+  void set(std::string_view signal, bool v) {
+    auto a = ctl->resolve_bit(signal);
+    ASSERT_TRUE(a) << a.error();
+    script.pending.emplace_back(*a, v);
+  }
+  bool get(std::string_view signal) {
+    auto a = ctl->resolve_bit(signal);
+    return a && ctl->io().get(*a);
+  }
+  fs::path dir;
+  ControllerSpec spec;
+  std::unique_ptr<AmkasynController> ctl;
+  std::vector<std::unique_ptr<motion::Axis>> axes;
+  Script script;
+  TimePoint now{};
+};
+
+TEST_F(AmkController, ImageMappingAndNames) {
+  spec.parameters = write("ecopy.txt", ecopy);
+  spec.options = {{"aw1", "X"}};
+  start();
+  auto bit = [&](std::string_view s) { return *ctl->resolve_bit(s); };
+  EXPECT_EQ(bit("E 16.2"), (BitAddress{IoArea::input, 16, 2}));
+  EXPECT_EQ(bit("A 8.0"), (BitAddress{IoArea::output, 8, 0}));
+  EXPECT_EQ(bit("M 101.0"), (BitAddress{IoArea::marker, 101, 0})) << "an SF output in the flag area";
+  EXPECT_EQ(bit("M 232.0"), (BitAddress{IoArea::marker, 232, 0})) << "MB 232 is the SF status";
+  EXPECT_EQ(bit("M 100.0"), (BitAddress{IoArea::data, 116, 0})) << "a flag the PLC writes";
+  EXPECT_EQ(bit("sf0_start"), (BitAddress{IoArea::data, 0, 0}));
+  EXPECT_EQ(bit("sf0_read_value"), (BitAddress{IoArea::data, 0, 3}));
+  EXPECT_EQ(bit("sf0_active"), (BitAddress{IoArea::data, 0, 4}));
+  EXPECT_FALSE(ctl->resolve_bit("sf1_start")) << "no SF1 in this setup";
+  EXPECT_FALSE(ctl->resolve_bit("Q 1.0"));
+  ASSERT_EQ(ctl->trace_signals(), std::vector<std::string>{"AA1_mV"});
+}
+
+TEST_F(AmkController, EcopyOnThePlcFlagAutoStart) {
+  spec.parameters = write("ecopy.txt", ecopy);
+  spec.options = {{"aw1", "X"}};
+  start();
+  run(milliseconds(20));
+  EXPECT_TRUE(get("sf0_active"));
+  EXPECT_EQ(ctl->trace_value(0), 10000.0);
+  EXPECT_FALSE(get("M 101.0"));
+  set("M 100.0", true);
+  run(milliseconds(1));
+  EXPECT_EQ(ctl->process_image().m[100] & 1, 1) << "the PLC's flag write reached the SF's flag image";
+  EXPECT_EQ(ctl->trace_value(0), 5000.0);
+  EXPECT_TRUE(get("M 101.0"));
+  set("M 100.0", false);
+  run(milliseconds(1));
+  EXPECT_EQ(ctl->trace_value(0), 10000.0);
+  EXPECT_FALSE(get("M 101.0"));
+  EXPECT_FALSE(ctl->errors().any());
+}
+
+TEST_F(AmkController, StartResetValueNewHandshake) {
+  spec.parameters = write("ecopy.txt", ecopy);
+  spec.options = {{"aw1", "X"}, {"start", "input"}};
+  start();
+  run(milliseconds(20));
+  EXPECT_FALSE(get("sf0_active")) << "start: input waits for the PLC";
+  EXPECT_EQ(ctl->trace_value(0), 0.0);
+  set("sf0_start", true);
+  run(milliseconds(1));
+  EXPECT_TRUE(get("sf0_active"));
+  EXPECT_FALSE(get("sf0_error"));
+  EXPECT_FALSE(get("M 232.0"));
+  EXPECT_EQ(ctl->trace_value(0), 10000.0);
+  // START while active: error 2, MB 232 bit 0, MB 233 = 2, a device error; the SF keeps running.
+  set("sf0_start", false);
+  run(milliseconds(1));
+  set("sf0_start", true);
+  run(milliseconds(1));
+  EXPECT_TRUE(get("sf0_error"));
+  EXPECT_TRUE(get("M 232.0"));
+  EXPECT_EQ(ctl->process_image().m[233], 2);
+  EXPECT_TRUE(get("sf0_active"));
+  ASSERT_TRUE(ctl->errors().any());
+  EXPECT_EQ(ctl->errors().active().front().code, 2);
+  EXPECT_EQ(std::string(ctl->errors().active().front().fault.code.category().name()), "amkasyn-sf.sf_status");
+  // VALUE NEW while active: accepted (ECOPY has it).
+  set("sf0_value_new", true);
+  run(milliseconds(1));
+  EXPECT_FALSE(get("sf0_error"));
+  // RESET: the SF stops (AA1 keeps its last value), VALUE NEW is then refused with error 3.
+  set("sf0_reset", true);
+  run(milliseconds(1));
+  EXPECT_FALSE(get("sf0_active"));
+  set("sf0_value_new", false);
+  run(milliseconds(1));
+  set("sf0_value_new", true);
+  run(milliseconds(1));
+  EXPECT_TRUE(get("sf0_error"));
+  EXPECT_EQ(ctl->process_image().m[233], 3);
+  // READ VALUE belongs to XFIPW: error 1 for ECOPY.
+  set("sf0_read_value", true);
+  run(milliseconds(1));
+  EXPECT_EQ(ctl->process_image().m[233], 1);
+  EXPECT_EQ(ctl->acknowledge(Acknowledgement::acknowledge), 3U);
+  EXPECT_FALSE(ctl->errors().any());
+}
+
+TEST_F(AmkController, ValueNewSendsItsOwnCommandingDb) {
+  spec.parameters = write("ecopy.txt", ecopy);
+  write("ecopy-vn.txt",
+        "; VALUE NEW for SF0: new values for both E1 states\nDR0 = 0\nDL0 = 2\nDR1 = 5\nDL1 = 3\n"
+        "DD2 = 7000\nDD4 = 3000\n");
+  spec.options = {{"aw1", "X"}, {"value_new", "ecopy-vn.txt"}};
+  start();
+  run(milliseconds(20));
+  EXPECT_EQ(ctl->trace_value(0), 10000.0);
+  set("sf0_value_new", true);
+  run(milliseconds(1));
+  EXPECT_FALSE(get("sf0_error"));
+  EXPECT_EQ(ctl->trace_value(0), 7000.0) << "ECOPY takes Value_E1_0 / Value_E1_1 at VALUE NEW";
+  set("M 100.0", true);
+  run(milliseconds(1));
+  EXPECT_EQ(ctl->trace_value(0), 3000.0);
+  // A VALUE NEW DB the profile refuses, for an SF the setup lacks, or with INIT lines.
+  write("bad-vn.txt", "DR0 = 0\nDL0 = 2\nDR1 = 5\nDD2 = 1\nDW40 = 1\n");
+  spec.options = {{"aw1", "X"}, {"value_new", "bad-vn.txt"}};
+  auto e = create();
+  ASSERT_FALSE(e);
+  EXPECT_EQ(e.error().file, (dir / "bad-vn.txt").string());
+  EXPECT_EQ(e.error().line, 5);
+  write("other-vn.txt", "DR0 = 7\nDR1 = 5\n");
+  spec.options = {{"aw1", "X"}, {"value_new", "other-vn.txt"}};
+  e = create();
+  ASSERT_FALSE(e);
+  EXPECT_EQ(e.error().key, "DR0");
+  EXPECT_NE(e.error().message.find("names no SF"), std::string::npos) << e.error().describe();
+  write("init-vn.txt", "INIT DR0 = 0\nDR0 = 0\nDR1 = 5\n");
+  spec.options = {{"aw1", "X"}, {"value_new", "init-vn.txt"}};
+  e = create();
+  ASSERT_FALSE(e);
+  EXPECT_EQ(e.error().key, "INIT");
+}
+
+TEST_F(AmkController, VarsyncDrivesTheSlaveAxisFromTheMasterAxis) {
+  spec.parameters = write("varsync.txt", varsync);
+  spec.options = {{"az1", "M"}, {"aw3", "S"}};
+  start();
+  ASSERT_EQ(ctl->axis_specs().size(), 2U);
+  EXPECT_EQ(ctl->axis_specs()[0].name, "S") << "AW axes first, then the AZ masters";
+  EXPECT_EQ(ctl->axis_specs()[0].units, "inc");
+  motion::Axis& s = *axes[0];
+  motion::Axis& m = *axes[1];
+  run(milliseconds(50));
+  ASSERT_EQ(m.status().state, motion::AxisState::standstill);
+  ASSERT_FALSE(m.move_relative(5000.0, motion::Limits{10000.0, 100000.0}));
+  run(milliseconds(1000));
+  EXPECT_EQ(s.status().command_inc, 5000);
+  EXPECT_EQ(s.status().state, motion::AxisState::standstill) << "the set-point rests: the coupled state ends";
+  set("E 16.2", true);  // mirror
+  run(milliseconds(2));
+  EXPECT_TRUE(get("A 16.2"));
+  ASSERT_FALSE(m.move_relative(2000.0, motion::Limits{10000.0, 100000.0}));
+  run(milliseconds(1000));
+  EXPECT_EQ(s.status().command_inc, 3000);
+  EXPECT_EQ(s.status().position_inc, 3000);
+}
+
+TEST_F(AmkController, Swq1GoesThroughTheDrivesSynchronousRatio) {
+  spec.parameters = write("varsync.txt", varsync);
+  // ID 32893 / ID 32892 = 196608 / 131072 = 1.5, exact over odd master steps.
+  spec.options = {{"az1", "M"}, {"aw3", "S"}, {"aw3_id32893", "196608"}, {"aw3_id32892", "131072"}};
+  start();
+  run(milliseconds(50));
+  ASSERT_FALSE(axes[1]->move_relative(5001.0, motion::Limits{10000.0, 100000.0}));
+  run(milliseconds(1000));
+  EXPECT_EQ(axes[0]->status().command_inc, 7501) << "5001 x 1.5 = 7501.5: the half stays as a remainder";
+  ASSERT_FALSE(axes[1]->move_relative(1.0, motion::Limits{10000.0, 100000.0}));
+  run(milliseconds(500));
+  EXPECT_EQ(axes[0]->status().command_inc, 7503) << "5002 x 1.5";
+  spec.options = {{"az1", "M"}, {"aw3", "S"}, {"aw3_id32892", "100"}};
+  auto e = create();
+  ASSERT_FALSE(e);
+  EXPECT_EQ(e.error().key, "controller.aw3_id32892");
+}
+
+TEST_F(AmkController, ConfigurationErrorsNameFileLineAndKey) {
+  spec.parameters = write("varsync.txt", varsync);
+  spec.options = {{"az1", "M"}};
+  auto e = create();
+  ASSERT_FALSE(e);
+  EXPECT_EQ(e.error().key, "INIT DL3");
+  EXPECT_NE(e.error().message.find("aw3: NAME"), std::string::npos) << e.error().describe();
+  EXPECT_EQ(e.error().line, 6);
+
+  spec.options = {{"aw3", "S"}};
+  e = create();
+  ASSERT_FALSE(e);
+  EXPECT_NE(e.error().message.find("az1: NAME"), std::string::npos) << e.error().describe();
+
+  spec.options = {{"aw3", "S"}, {"az1", "M"}, {"bogus", "1"}};
+  e = create();
+  ASSERT_FALSE(e);
+  EXPECT_EQ(e.error().key, "controller.bogus");
+  EXPECT_EQ(e.error().line, 7);
+  EXPECT_EQ(e.error().file, spec.file);
+
+  spec.options = {{"aw3", "S"}, {"az1", "M"}, {"aw3_mode", "3C0043"}};
+  e = create();
+  ASSERT_FALSE(e);
+  EXPECT_NE(e.error().message.find("SWQ1"), std::string::npos) << e.error().describe();
+
+  spec.options = {{"aw3", "S"}, {"az1", "M"}};
+  spec.cycle = milliseconds(1) + std::chrono::microseconds(250);
+  e = create();
+  ASSERT_FALSE(e);
+  EXPECT_EQ(e.error().key, "controller.cycle");
+  spec.cycle = milliseconds(1);
+
+  // A value the profile refuses: its file, line and parameter.
+  std::string bad = varsync;
+  bad.replace(bad.find("DW4 = 10000"), 11, "DW4 = 99999");
+  spec.parameters = write("bad.txt", bad);
+  e = create();
+  ASSERT_FALSE(e);
+  EXPECT_EQ(e.error().file, (dir / "bad.txt").string());
+  EXPECT_EQ(e.error().line, 16);
+  EXPECT_NE(e.error().key.find("DW4"), std::string::npos) << e.error().describe();
+
+  spec.parameters = dir / "missing.txt";
+  e = create();
+  ASSERT_FALSE(e);
+  EXPECT_EQ(e.error().file, (dir / "missing.txt").string());
+  EXPECT_NE(e.error().message.find("cannot read"), std::string::npos) << e.error().describe();
+
+  spec.parameters = write("noinit.txt", "DR0 = 0\nDR1 = 1\n");
+  e = create();
+  ASSERT_FALSE(e);
+  EXPECT_EQ(e.error().key, "INIT_DR0") << e.error().describe();  // the profile's rule: the SF type is required
+
+  // Two files for one SF number.
+  spec.parameters = write("varsync.txt", varsync);
+  spec.programs = {write("varsync2.txt", varsync)};
+  e = create();
+  ASSERT_FALSE(e);
+  EXPECT_NE(e.error().message.find("already initialised"), std::string::npos) << e.error().describe();
+}
+
+TEST_F(AmkController, AnAzMessageIsReadOneWayAndTheModesMatchTheSinks) {
+  // DCOPY of the 32-bit AZ message 1 into MD 40 besides VARSYNC reading its 16-bit high word.
+  spec.parameters = write("varsync.txt", varsync);
+  spec.programs = {write("dcopy.txt",
+                         "INIT DR0 = 0\nINIT DL0 = 0\nINIT DR2 = 16\nINIT DR3 = 40\nINIT DL3 = 129\n"
+                         "DR0 = 0\nDL0 = 1\nDR1 = 1\nDL1 = 0\n")};
+  spec.options = {{"aw3", "S"}, {"az1", "M"}};
+  auto e = create();
+  ASSERT_FALSE(e);
+  EXPECT_EQ(e.error().key, "controller.az1");
+  EXPECT_NE(e.error().message.find("both"), std::string::npos) << e.error().describe();
+  // Alone, the DCOPY reads the count as 32 bits: MD 40 = the master's increments.
+  spec.parameters = spec.programs.front();
+  spec.programs.clear();
+  spec.options = {{"az1", "M"}};
+  start();
+  run(milliseconds(20));
+  ASSERT_FALSE(axes[0]->move_relative(70000.0, motion::Limits{100000.0, 1000000.0}));
+  run(milliseconds(1500));
+  EXPECT_EQ(axes[0]->status().position_inc, 70000);
+  EXPECT_EQ(ctl->process_image().md(40), 70000) << "beyond 16 bits: the 32-bit form";
+  EXPECT_FALSE(get("M 232.0"));
+}
+
+constexpr const char* binea = R"(INIT DR0 = 8
+INIT DL0 = 0
+INIT DR2 = 5
+INIT DL2 = 2
+INIT DR5 = 1
+INIT DL5 = 8
+INIT DR6 = 16
+DR0 = 0
+DR1 = 1
+DL1 = 1
+DW3 = 2
+DW4 = 2
+)";
+
+TEST_F(AmkController, TableDbErrors) {
+  spec.parameters = write("binea.txt", binea);
+  spec.options = {{"aw2", "W"}};
+  auto e = create();
+  ASSERT_FALSE(e);
+  EXPECT_EQ(e.error().key, "INIT DR6");
+  EXPECT_EQ(e.error().line, 7);
+  EXPECT_NE(e.error().message.find("tables: \"16=FILE\""), std::string::npos) << e.error().describe();
+
+  spec.options = {{"aw2", "W"}, {"tables", "16=nothere.txt"}};
+  e = create();
+  ASSERT_FALSE(e);
+  EXPECT_EQ(e.error().key, "controller.tables");
+  EXPECT_NE(e.error().message.find("DB16"), std::string::npos) << e.error().describe();
+
+  write("db16.txt", "DW0 = 9\nDD4 = 2500\nDQ6 = 1\n");
+  spec.options = {{"aw2", "W"}, {"tables", "DB16 = db16.txt"}};
+  e = create();
+  ASSERT_FALSE(e);
+  EXPECT_EQ(e.error().file, (dir / "db16.txt").string());
+  EXPECT_EQ(e.error().line, 3);
+
+  spec.options = {{"aw2", "W"}, {"tables", "sixteen=db16.txt"}};
+  e = create();
+  ASSERT_FALSE(e);
+  EXPECT_EQ(e.error().key, "controller.tables");
+}
+
+TEST_F(AmkController, BadTableContentIsARefusedStartNotACrash) {
+  // |dY| >= 32768 in a BINEA-free FIPZ table: START error 1 with the rule, the SF stays in RESET.
+  spec.parameters = write("fipz.txt", R"(INIT DR0 = 2
+INIT DL0 = 1
+INIT DR3 = 4
+INIT DL3 = 1
+INIT DR4 = 1
+INIT DL4 = 8
+INIT DR6 = 20
+DR0 = 1
+DR1 = 1
+DL1 = 16
+DW3 = 2
+DW4 = 1
+DD8 = 1
+DW10 = 200
+)");
+  write("db20.txt", "DW0 = 3\nDD2 = 0\nDD4 = 40000\n");
+  spec.options = {{"aw1", "S"}, {"tables", "20=db20.txt"}};
+  start();
+  run(milliseconds(50));
+  EXPECT_FALSE(get("sf1_active"));
+  EXPECT_TRUE(get("sf1_error"));
+  ASSERT_TRUE(ctl->errors().any());
+  const auto& err = ctl->errors().active().front();
+  EXPECT_EQ(err.code, 1);
+  EXPECT_EQ(err.axis, 0) << "on AW1's axis";
+  EXPECT_NE(err.fault.text.find("32768"), std::string::npos) << err.fault.text;
+  EXPECT_EQ(axes[0]->status().state, motion::AxisState::standstill);
+}
+
+}  // namespace
+}  // namespace hil::controllers::amkasyn

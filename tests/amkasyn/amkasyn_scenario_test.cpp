@@ -1,0 +1,109 @@
+// SPDX-License-Identifier: MIT
+// The amkasyn-sf controller inside a run (bridge/runtime): a wrong DB is a configuration error
+// naming the file, line and item (never a crash), a refused START reaches the run result as a
+// device error with the MB 233 number, and the shipped SF files run from a scenario text.
+#include <gtest/gtest.h>
+
+#include "hil/runtime/runner.hpp"
+#include "hil/runtime/scenario_loader.hpp"
+#include "sim_registry.hpp"
+
+namespace hil::runtime {
+namespace {
+
+std::expected<RunResult, ConfigError> run_text(const std::string& text) {
+  auto s = parse_scenario(text, "examples/controllers/test.yaml");  // paths relative to the shipped files
+  if (!s) return std::unexpected(s.error());
+  static Scenario keep;
+  keep = std::move(*s);
+  return run_scenario(keep, hil::testing::sim_registry(), RunOptions{});
+}
+
+const std::string fipz_head = R"(
+period: 1ms
+controller:
+  device: amkasyn-sf
+  parameters: amkasyn-fipz-sf1.txt
+  tables: "20=amkasyn-fipz-db20.txt, 21=amkasyn-fipz-db21.txt"
+  aw1: S
+machine:
+  axes:
+    - {name: S, drive: {transport: sim, kv: 200, feedforward: 1.0, velocity_lag: 0}}
+)";
+
+TEST(AmkasynScenario, AnSfCycleOtherThanId2IsTheProfilesErrorAtItsLine) {
+  // No `cycle:`: ID 2 = 1 ms, but the file's DW3 = 4 (2 ms).
+  const auto r = run_text(fipz_head);
+  ASSERT_FALSE(r);
+  EXPECT_EQ(r.error().file, "examples/controllers/amkasyn-fipz-sf1.txt");
+  EXPECT_EQ(r.error().line, 21);
+  EXPECT_NE(r.error().key.find("DW3"), std::string::npos) << r.error().describe();
+  EXPECT_NE(r.error().describe().find("ID 2"), std::string::npos) << r.error().describe();
+}
+
+TEST(AmkasynScenario, ShippedFipzRunsFromAScenarioText) {
+  std::string text = fipz_head;
+  text.replace(text.find("  aw1: S"), 8, "  aw1: S\n  cycle: 2ms");
+  const auto r = run_text(text + R"(
+io:
+  - {pulse: "E 8.0", at: 100ms, width: 10ms}
+program:
+  - wait: 1500ms
+expect:
+  - {axis: S, position: 10000, tolerance: 0.5}
+)");
+  ASSERT_TRUE(r) << r.error().describe();
+  EXPECT_TRUE(r->ok) << (r->failures.empty() ? "" : r->failures.front());
+  EXPECT_EQ(r->controller, "amkasyn-sf");
+  ASSERT_EQ(r->axes.size(), 1U);
+  EXPECT_EQ(r->axes[0].units, "inc");
+  EXPECT_TRUE(r->device_errors.empty());
+}
+
+TEST(AmkasynScenario, MissingTableAndUnknownAxisAreConfigurationErrors) {
+  std::string text = fipz_head;
+  text.replace(text.find("20=amkasyn-fipz-db20.txt, "), 26, "");
+  text.replace(text.find("  aw1: S"), 8, "  aw1: S\n  cycle: 2ms");
+  auto r = run_text(text);
+  ASSERT_FALSE(r);
+  EXPECT_EQ(r.error().file, "examples/controllers/amkasyn-fipz-sf1.txt");
+  EXPECT_EQ(r.error().key, "INIT DR6");
+  EXPECT_NE(r.error().message.find("DB20"), std::string::npos) << r.error().describe();
+
+  text = fipz_head;
+  text.replace(text.find("  aw1: S"), 8, "  aw1: T\n  cycle: 2ms");
+  r = run_text(text);
+  ASSERT_FALSE(r);
+  EXPECT_NE(r.error().describe().find("'T'"), std::string::npos) << r.error().describe();
+}
+
+TEST(AmkasynScenario, RefusedStartIsADeviceErrorOfTheRun) {
+  auto r = run_text(R"(
+period: 1ms
+controller:
+  device: amkasyn-sf
+  parameters: amkasyn-fipw-printing-mark-sf0.txt
+  tables: "16=amkasyn-fipw-db16.txt, 17=amkasyn-fipw-db17.txt, 18=amkasyn-fipw-db18.txt"
+  cycle: 2ms
+  az1: M
+  aw1: S
+machine:
+  axes:
+    - {name: M, drive: {transport: sim}}
+    - {name: S, drive: {transport: sim}}
+program:
+  - wait: 100ms
+)");
+  ASSERT_TRUE(r) << r.error().describe();
+  EXPECT_FALSE(r->ok) << "an unexpected device error fails the run";
+  ASSERT_EQ(r->device_errors.size(), 1U);
+  const auto& e = r->device_errors.front();
+  EXPECT_EQ(e.axis, "S");
+  EXPECT_EQ(e.category, "amkasyn-sf.sf_status");
+  EXPECT_EQ(e.code, "1");
+  EXPECT_NE(e.text.find("DL0 fct = 1"), std::string::npos) << e.text;
+  EXPECT_NE(e.text.find("amkasyn-fipw-printing-mark-sf0.txt"), std::string::npos) << e.text;
+}
+
+}  // namespace
+}  // namespace hil::runtime
