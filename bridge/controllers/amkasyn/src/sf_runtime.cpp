@@ -164,12 +164,18 @@ std::unique_ptr<FastFunction> make_fast_function(SfType type) {
       return make_stdfkt();
     case SfType::dfkt:
       return make_dfkt();
+    case SfType::fgen:
+      return make_fgen();
+    case SfType::regl:
+      return make_regl();
+    case SfType::imes:
+      return make_imes();
     case SfType::binea:
       return make_binea();
     case SfType::cam:
       return make_cam();
     default:
-      return nullptr;  // FGEN, REGL, IMES, XFIPW, APSF, EPOS: not implemented (docs/amkasyn.md)
+      return nullptr;  // XFIPW, APSF, EPOS: not implemented (docs/amkasyn.md)
   }
 }
 

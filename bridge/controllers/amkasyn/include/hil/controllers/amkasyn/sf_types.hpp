@@ -25,6 +25,13 @@ std::unique_ptr<FastFunction> make_fipz();
 std::unique_ptr<FastFunction> make_stdfkt();
 /// SF DFKT (type 4): speed function tables.
 std::unique_ptr<FastFunction> make_dfkt();
+/// SF FGEN (type 5): reference input variable generator (continuous / sequence, internal /
+/// external velocity, override, 2 accelerations, feedback zeroing, position monitoring).
+std::unique_ptr<FastFunction> make_fgen();
+/// SF REGL (type 6): PID controller with switches S1..S3, feed-forward, limits and external sync.
+std::unique_ptr<FastFunction> make_regl();
+/// SF IMES (type 7): pulse distance measurement on a counter's zero-pulse input.
+std::unique_ptr<FastFunction> make_imes();
 /// SF BINEA (type 8): table-based cam controller.
 std::unique_ptr<FastFunction> make_binea();
 /// SF CAM (type 12): on/off cam controller (without hysteresis: START refuses H != 0).
