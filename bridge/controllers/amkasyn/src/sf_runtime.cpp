@@ -37,6 +37,19 @@ SfStatus SfRuntime::init(const DataBlock& init_db, ProcessImage& image) {
   return finish(image, {});
 }
 
+void SfRuntime::refresh_tables(Slot& slot) noexcept {
+  for (std::size_t k = 0; k < 8; ++k) {  // a table DB may have been created after FB 207
+    const auto it = slot.init->tables[k] ? dbs_->find(slot.init->tables[k]) : dbs_->end();
+    slot.tables[k] = it == dbs_->end() ? nullptr : &it->second;
+  }
+}
+
+SfStatus SfRuntime::command(DataBlock& cmd, ProcessImage& image) {
+  SfStatus s = command(static_cast<const DataBlock&>(cmd), image);
+  if (read_value_) cmd.set_dd(32, *read_value_);
+  return s;
+}
+
 SfIo SfRuntime::make_io(Slot& slot, ProcessImage& image, const ProcessImage& snapshot) noexcept {
   const InitDb& in = *slot.init;
   SfIo io(image);
@@ -75,6 +88,7 @@ void SfRuntime::apply(Slot& slot, SfIo& io, ProcessImage& image) noexcept {
 SfStatus SfRuntime::command(const DataBlock& cmd, ProcessImage& image) {
   const int n = cmd.dr(0);
   const int code = cmd.dr(1);
+  read_value_.reset();
   if (n >= max_sf)
     return finish(image, {true, SfError::start_invalid, fmt::format("FB 208: DR0 SF number = {}: must be 0..15", n)});
   Slot& slot = slots_[static_cast<std::size_t>(n)];
@@ -99,10 +113,7 @@ SfStatus SfRuntime::command(const DataBlock& cmd, ProcessImage& image) {
         return finish(image, {true, SfError::start_invalid,
                               fmt::format("START for SF{}: SF type {} ({}) is not implemented by hilbridge", n,
                                           static_cast<int>(slot.init->type), to_string(slot.init->type))});
-      for (std::size_t k = 0; k < 8; ++k) {  // refresh: a table DB may have been created after FB 207
-        const auto it = slot.init->tables[k] ? dbs_->find(slot.init->tables[k]) : dbs_->end();
-        slot.tables[k] = it == dbs_->end() ? nullptr : &it->second;
-      }
+      refresh_tables(slot);
       if (auto f = slot.sf->start(cmd, *slot.init, io))
         return finish(image, {true, f->code, fmt::format("SF{} {}", n, f->text)});
       apply(slot, io, image);
@@ -116,9 +127,20 @@ SfStatus SfRuntime::command(const DataBlock& cmd, ProcessImage& image) {
       if (auto f = slot.sf->value_new(cmd, io))
         return finish(image, {true, f->code, fmt::format("SF{} {}", n, f->text)});
       return finish(image, {});
-    case 6:
-      return finish(image, {true, SfError::start_invalid,
-                            fmt::format("READ VALUE for SF{}: only XFIPW has it, and XFIPW is not implemented", n)});
+    case 6: {  // READ VALUE: XFIPW, only in RESET
+      if (!xfipw)
+        return finish(
+            image, {true, SfError::start_invalid,
+                    fmt::format("READ VALUE for SF{}: only XFIPW has it (SF type {})", n, to_string(slot.init->type))});
+      if (slot.active)
+        return finish(image, {true, SfError::xfipw_not_reset,
+                              fmt::format("READ VALUE for SF{} while it is active: RESET it first", n)});
+      refresh_tables(slot);
+      auto v = slot.sf->read_value(cmd, *slot.init, io);
+      if (!v) return finish(image, {true, v.error().code, fmt::format("SF{} {}", n, v.error().text)});
+      read_value_ = *v;
+      return finish(image, {});
+    }
     default:
       return finish(
           image, {true, SfError::start_invalid,
@@ -172,10 +194,12 @@ std::unique_ptr<FastFunction> make_fast_function(SfType type) {
       return make_imes();
     case SfType::binea:
       return make_binea();
+    case SfType::xfipw:
+      return make_xfipw();
     case SfType::cam:
       return make_cam();
     default:
-      return nullptr;  // XFIPW, APSF, EPOS: not implemented (docs/amkasyn.md)
+      return nullptr;  // APSF, EPOS: not implemented (docs/amkasyn.md)
   }
 }
 

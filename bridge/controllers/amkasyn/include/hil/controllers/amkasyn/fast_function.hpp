@@ -6,6 +6,7 @@
 
 #include <array>
 #include <cstdint>
+#include <expected>
 #include <map>
 #include <optional>
 
@@ -49,6 +50,9 @@ class FastFunction {
   virtual std::optional<SfFault> start(const DataBlock& cmd, const InitDb& init, SfIo& io) = 0;
   /// VALUE NEW (only in SF-ACTIVE): take over the parameters the SF allows.
   virtual std::optional<SfFault> value_new(const DataBlock& cmd, SfIo& io);
+  /// READ VALUE (code 6, only XFIPW, in RESET): the value for DD32 of the commanding DB,
+  /// computed with the same DB assignment as START.
+  virtual std::expected<std::int32_t, SfFault> read_value(const DataBlock& cmd, const InitDb& init, SfIo& io);
   /// One SF cycle.
   virtual void step(SfIo& io) noexcept = 0;
   /// RESET: back to the basic state (e.g. DFKT stops the axis).

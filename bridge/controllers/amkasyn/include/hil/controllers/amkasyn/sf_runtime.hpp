@@ -39,11 +39,15 @@ class SfRuntime {
   SfStatus init(const DataBlock& init_db, ProcessImage& image);
   /// FB 208 with a commanding DB (DR0 = SF number, DR1 = code).
   SfStatus command(const DataBlock& cmd, ProcessImage& image);
+  /// The same; READ VALUE also writes its output value into DD32 of `cmd`, as FB 208 does.
+  SfStatus command(DataBlock& cmd, ProcessImage& image);
   /// One drive cycle.
   void cycle(ProcessImage& image) noexcept;
 
   [[nodiscard]] SfState state(int sf) const noexcept;
   [[nodiscard]] const SfStatus& status() const noexcept { return status_; }
+  /// The output value of the last command if it was a successful READ VALUE (DD32).
+  [[nodiscard]] std::optional<std::int32_t> read_value() const noexcept { return read_value_; }
   [[nodiscard]] std::int32_t link(int sf) const noexcept { return links_[static_cast<std::size_t>(sf & 15)]; }
   /// Output bytes written by SFs (excluded from the PLC's PAA update): bit per byte of A (or M).
   [[nodiscard]] bool owns_output_byte(int byte, bool flag_area) const noexcept;
@@ -58,6 +62,7 @@ class SfRuntime {
     bool active = false;
   };
   SfStatus finish(ProcessImage& image, SfStatus s);
+  void refresh_tables(Slot& slot) noexcept;
   SfIo make_io(Slot& slot, ProcessImage& image, const ProcessImage& snapshot) noexcept;
   void apply(Slot& slot, SfIo& io, ProcessImage& image) noexcept;
 
@@ -66,6 +71,7 @@ class SfRuntime {
   std::array<Slot, max_sf> slots_{};
   std::array<std::int32_t, max_sf> links_{};
   SfStatus status_{};
+  std::optional<std::int32_t> read_value_;
   std::uint64_t tick_ = 0;
   ProcessImage snapshot_{};
 };

@@ -32,6 +32,10 @@ std::unique_ptr<FastFunction> make_fgen();
 std::unique_ptr<FastFunction> make_regl();
 /// SF IMES (type 7): pulse distance measurement on a counter's zero-pulse input.
 std::unique_ptr<FastFunction> make_imes();
+/// SF XFIPW (type 9): extended function interpolator (Y and XY tables, table set switch-over,
+/// retriggering, working table cycles, setting on, READ VALUE); without printing mark control and
+/// external sync (refused).
+std::unique_ptr<FastFunction> make_xfipw();
 /// SF BINEA (type 8): table-based cam controller.
 std::unique_ptr<FastFunction> make_binea();
 /// SF CAM (type 12): on/off cam controller (without hysteresis: START refuses H != 0).
