@@ -196,10 +196,12 @@ std::unique_ptr<FastFunction> make_fast_function(SfType type) {
       return make_binea();
     case SfType::xfipw:
       return make_xfipw();
+    case SfType::epos:
+      return make_epos();
     case SfType::cam:
       return make_cam();
     default:
-      return nullptr;  // APSF, EPOS: not implemented (docs/amkasyn.md)
+      return nullptr;  // APSF: not implemented (docs/amkasyn.md)
   }
 }
 

@@ -36,6 +36,9 @@ std::unique_ptr<FastFunction> make_imes();
 /// retriggering, working table cycles, setting on, READ VALUE); without printing mark control and
 /// external sync (refused).
 std::unique_ptr<FastFunction> make_xfipw();
+/// SF EPOS (type 11): extended positioning (relative, retrigger, modulo, substitutional on the
+/// drive's reference latch), velocity and acceleration override, stop.
+std::unique_ptr<FastFunction> make_epos();
 /// SF BINEA (type 8): table-based cam controller.
 std::unique_ptr<FastFunction> make_binea();
 /// SF CAM (type 12): on/off cam controller (without hysteresis: START refuses H != 0).
