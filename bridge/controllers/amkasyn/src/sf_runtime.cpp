@@ -68,6 +68,8 @@ SfIo SfRuntime::make_io(Slot& slot, ProcessImage& image, const ProcessImage& sna
   }
   io.cycle_half_ms = id2_ * in.cycle_factor;
   io.tables = &slot.tables;
+  io.dbs = dbs_;
+  io.fbs = &fbs_;
   return io;
 }
 
@@ -152,14 +154,28 @@ SfStatus SfRuntime::command(const DataBlock& cmd, ProcessImage& image) {
 void SfRuntime::cycle(ProcessImage& image) noexcept {
   snapshot_ = image;  // process data copied once: every SF sees the same inputs
   for (auto& d : image.aw) d.swq1_written = d.swq2_written = false;
-  for (auto& slot : slots_) {
+  for (std::size_t n = 0; n < slots_.size(); ++n) {
+    Slot& slot = slots_[n];
     if (!slot.active || !slot.sf) continue;
     if (tick_ % slot.init->cycle_factor != 0) continue;
     SfIo io = make_io(slot, image, snapshot_);
     slot.sf->step(io);
+    if (io.fault) {  // a running time error: the SF stops, the error stays until commanded again
+      slot.active = false;
+      (void)finish(image, {true, io.fault->code, fmt::format("SF{} {}", n, io.fault->text)});
+      continue;
+    }
     apply(slot, io, image);
   }
   ++tick_;
+}
+
+std::expected<void, std::string> SfRuntime::load_fb(int number, std::string_view listing) {
+  if (number < 0 || number > 63) return std::unexpected(fmt::format("FB {}: the number must be 0..63", number));
+  auto p = parse_awl(listing);
+  if (!p) return std::unexpected(fmt::format("FB {}: {}", number, p.error()));
+  fbs_[number] = std::move(*p);
+  return {};
 }
 
 bool SfRuntime::owns_output_byte(int byte, bool flag_area) const noexcept {
@@ -198,10 +214,12 @@ std::unique_ptr<FastFunction> make_fast_function(SfType type) {
       return make_xfipw();
     case SfType::epos:
       return make_epos();
+    case SfType::apsf:
+      return make_apsf();
     case SfType::cam:
       return make_cam();
     default:
-      return nullptr;  // APSF: not implemented (docs/amkasyn.md)
+      return nullptr;  // not an SF type (InitDb::parse refuses it)
   }
 }
 

@@ -10,6 +10,7 @@
 #include <map>
 #include <optional>
 
+#include "hil/controllers/amkasyn/awl.hpp"
 #include "hil/controllers/amkasyn/data_block.hpp"
 #include "hil/controllers/amkasyn/init_db.hpp"
 #include "hil/controllers/amkasyn/process_image.hpp"
@@ -35,6 +36,9 @@ struct SfIo {
   std::uint8_t out_owned = 0;        ///< which of `out`'s bits the SF drives (default: all it has)
   int cycle_half_ms = 2;             ///< SF cycle in 0.5 ms units (ID 2 x cycle factor)
   const SfTables* tables = nullptr;
+  DbStore* dbs = nullptr;        ///< all PS data blocks (APSF's opened DB)
+  const FbStore* fbs = nullptr;  ///< the loaded FBs (APSF)
+  std::optional<SfFault> fault;  ///< set by step(): a running time error, the SF stops
   [[nodiscard]] bool e(int k) const noexcept { return ((in >> (k - 1)) & 1) != 0; }  ///< E1..E8
   void a(int k, bool v) noexcept {
     const auto m = static_cast<std::uint8_t>(1u << (k - 1));

@@ -16,6 +16,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <string_view>
 
 #include "hil/controllers/amkasyn/fast_function.hpp"
 
@@ -41,8 +42,12 @@ class SfRuntime {
   SfStatus command(const DataBlock& cmd, ProcessImage& image);
   /// The same; READ VALUE also writes its output value into DD32 of `cmd`, as FB 208 does.
   SfStatus command(DataBlock& cmd, ProcessImage& image);
-  /// One drive cycle.
+  /// One drive cycle. An SF that reports a running time error (APSF) stops: RESET state, MB 232
+  /// error bit and MB 233 = its error number, status() says what.
   void cycle(ProcessImage& image) noexcept;
+  /// Loads (or replaces) FB `number` (0..63) from its AWL listing, for APSF (awl.hpp). A started
+  /// APSF keeps the FB it was started with.
+  std::expected<void, std::string> load_fb(int number, std::string_view listing);
 
   [[nodiscard]] SfState state(int sf) const noexcept;
   [[nodiscard]] const SfStatus& status() const noexcept { return status_; }
@@ -72,6 +77,7 @@ class SfRuntime {
   std::array<std::int32_t, max_sf> links_{};
   SfStatus status_{};
   std::optional<std::int32_t> read_value_;
+  FbStore fbs_;
   std::uint64_t tick_ = 0;
   ProcessImage snapshot_{};
 };

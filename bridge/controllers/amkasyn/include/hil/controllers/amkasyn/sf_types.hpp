@@ -36,6 +36,8 @@ std::unique_ptr<FastFunction> make_imes();
 /// retriggering, working table cycles, setting on, READ VALUE); without printing mark control and
 /// external sync (refused).
 std::unique_ptr<FastFunction> make_xfipw();
+/// SF APSF (type 10): a user AWL FB (the subset of awl.hpp) every SF cycle with the SF-PAE/PAA.
+std::unique_ptr<FastFunction> make_apsf();
 /// SF EPOS (type 11): extended positioning (relative, retrigger, modulo, substitutional on the
 /// drive's reference latch), velocity and acceleration override, stop.
 std::unique_ptr<FastFunction> make_epos();
