@@ -248,14 +248,72 @@ TEST_F(SfTest, CamStaircase) {
   }
 }
 
-TEST_F(SfTest, CamRefusesHysteresisItDoesNotImplement) {
-  dbs[56] = DataBlock(100);
+// CAM hysteresis (V02.13): one cam [10000, 11000) with H = 10 x 100 increments, absolute input,
+// through the rules of the manual: positive approach, reversal before and after X_Free, negative
+// approach.
+TEST_F(SfTest, CamHysteresisFollowsTheDirectionRules) {
+  DataBlock t(40);
+  t.set_dd(32, 10000).set_dd(34, 11000);
+  dbs[56] = t;
+  init_ok(Init(12, 0).source(1, 21).out(1, 1).tab(0, 56));
+  auto c = command(0, 0, 1, 0);
+  c.set_dw(3, 2).set_dr(6, 1).set_dw(16, 10);
+  image.aw[0].position_feedback = 9000;
+  start_ok(c);
+  auto at = [&](int x) {  // moves in steps of 100 (or less) to x, returns the track bit
+    while (image.aw[0].position_feedback != x) {
+      const int d = x - image.aw[0].position_feedback;
+      image.aw[0].position_feedback += d > 100 ? 100 : (d < -100 ? -100 : d);
+      cycles(1);
+    }
+    return image.a[1] & 1;
+  };
+  EXPECT_EQ(at(9900), 0);
+  EXPECT_EQ(at(10000), 1) << "positive: on at X_On";
+  EXPECT_EQ(at(9500), 1) << "back: stays 1 down to X_On - H";
+  EXPECT_EQ(at(9000), 1);
+  EXPECT_EQ(at(8999), 0);
+  EXPECT_EQ(at(10500), 1);
+  EXPECT_EQ(at(11000), 0) << "off at X_Off";
+  EXPECT_EQ(at(10500), 0) << "back before X_Free: stays 0 down to X_Off - H";
+  EXPECT_EQ(at(10000), 0);
+  EXPECT_EQ(at(9999), 1);
+  EXPECT_EQ(at(11000), 0);
+  EXPECT_EQ(at(12000), 0) << "X_Free = X_Off + H reached";
+  EXPECT_EQ(at(11500), 0) << "reversal: the negative rules";
+  EXPECT_EQ(at(11000), 0);
+  EXPECT_EQ(at(10999), 1) << "negative: on below X_Off";
+  EXPECT_EQ(at(11500), 1) << "forward again: stays 1 up to X_Off + H";
+  EXPECT_EQ(at(12000), 0);
+  EXPECT_EQ(at(10500), 1);
+  EXPECT_EQ(at(10000), 1);
+  EXPECT_EQ(at(9999), 0) << "off below X_On";
+  EXPECT_EQ(at(10500), 0) << "forward before X_Free (X_On - H): stays 0 up to X_On + H";
+  EXPECT_EQ(at(11000), 1);
+  EXPECT_EQ(at(8900), 0) << "back below X_On - H: X_Free";
+  EXPECT_EQ(at(9500), 0) << "reversal: the positive rules again";
+  EXPECT_EQ(at(10000), 1);
+}
+
+TEST_F(SfTest, CamHysteresisRangeIsChecked) {
+  DataBlock t(40);
+  t.set_dd(32, 10000).set_dd(34, 19500);
+  dbs[56] = t;
   init_ok(Init(12, 0).source(1, 5).out(1, 1).tab(0, 56));
   auto c = command(0, 0, 1, 1);
-  c.set_dw(3, 2).set_dr(6, 1).set_dd(14, 20000).set_dw(16, 5);
+  c.set_dw(3, 2).set_dr(6, 1).set_dd(14, 20000).set_dw(16, 105);  // 10500 >= 20000 - 9500
   const auto s = rt.command(c, image);
   EXPECT_TRUE(s.error);
-  EXPECT_NE(s.text.find("hysteresis"), std::string::npos) << s.text;
+  EXPECT_NE(s.text.find("must be below 10500"), std::string::npos) << s.text;
+  c.set_dw(16, 104);
+  EXPECT_FALSE(rt.command(c, image).error);
+  // Running on in one direction, the hysteresis never shifts the edges: X_On / X_Off every revolution.
+  for (int x = 100; x <= 3 * 20000; x += 100) {
+    image.aw[0].position_feedback = x;
+    cycles(1);
+    const int p = x % 20000;
+    ASSERT_EQ(image.a[1] & 1, (p >= 10000 && p < 19500) ? 1 : 0) << "x = " << x;
+  }
 }
 
 // 6.3 FIPW (the sequence; printing mark control itself is not implemented): BA 98 with a
