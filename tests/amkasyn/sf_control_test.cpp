@@ -356,5 +356,36 @@ TEST_F(Imes, StartChecks) {
   EXPECT_NE(rt.command(c, image).text.find("DD4 command spacing"), std::string::npos);
 }
 
+// ------------------------------------------------------------------------ SIDIFF minus SAK part
+// SIDIFF (SF0) watches AW1, which an FIPW (SF1, time mode, 10 increments per cycle) drives with
+// SAK 4032 (a lead of 4032 x 10 / 128 = 315): the drive's following error contains the lead, and
+// SIDIFF removes it, so only the real offset (20, then 150) is monitored.
+TEST_F(SfTest, SidiffRemovesTheSakPartOfTheFollowingError) {
+  DataBlock t(8);
+  t.set_dw(0, 4).set_dd(4, 5000).set_dd(6, 10000);
+  dbs[20] = t;
+  init_ok(Init(0, 0).sink(128, 20).out(1, 40));
+  auto sd = command(0, 255, 1, 0);
+  sd.set_dr(2, 1).set_dr(3, 1).set_dr(4, 1).set_dr(5, 1);  // AW1, display AW1, no mean, 1 agreement
+  start_ok(sd);
+  init_ok(Init(1, 1).sink(1, 4).tab(0, 20));
+  auto fp = command(1, 0, 1, 4);
+  fp.set_dw(2, 4032).set_dw(3, 2).set_dw(4, 1).set_dd(8, 1).set_dd(10, 2000);
+  start_ok(fp);
+  auto run = [&](int offset, int n) {
+    for (int i = 0; i < n; ++i) {
+      image.aw[0].message32 = image.aw[0].sak_part + offset;  // the drive lags by lead + offset
+      cycles(1);
+    }
+  };
+  run(20, 50);
+  EXPECT_EQ(image.aw[0].sak_part, 315);
+  EXPECT_EQ(image.mw(20), 20);
+  EXPECT_EQ(image.a[40] & 1, 0) << "315 + 20 would exceed 100; 20 does not";
+  run(150, 2);
+  EXPECT_EQ(image.mw(20), 150);
+  EXPECT_EQ(image.a[40] & 1, 1);
+}
+
 }  // namespace
 }  // namespace hil::controllers::amkasyn

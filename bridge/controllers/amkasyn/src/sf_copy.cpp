@@ -91,6 +91,11 @@ class Copy final : public FastFunction {
         const std::size_t b = static_cast<std::size_t>(6 * n);
         m.threshold = tab0->dw(b);
         if (m.threshold < 0) return start_error("SIDIFF", "Tab0 threshold", m.threshold, "0..32767 increments");
+        const std::int64_t div = tab0->dd(b + 2), mul = tab0->dd(b + 4);
+        if (div != 0 && div < 65536)
+          return start_error("SIDIFF", "Tab0 command value divider", div, "0 (= 1) or 2^16..2^31-1 (as ID 32892)");
+        m.divider = div == 0 ? 1 : div;
+        m.multiplier = mul == 0 ? 1 : mul;
       }
     }
     return std::nullopt;
@@ -103,7 +108,12 @@ class Copy final : public FastFunction {
       if (((aw_mask_ >> n) & 1) == 0) continue;
       auto& m = mon_[static_cast<std::size_t>(n)];
       const std::int32_t raw = io.image.aw[static_cast<std::size_t>(n)].message32;  // ID 32786 = 32824
-      const std::int32_t e = sixteen_ ? static_cast<std::int16_t>(raw & 0xFFFF) : raw;
+      const std::int32_t fe = sixteen_ ? static_cast<std::int16_t>(raw & 0xFFFF) : raw;
+      // Remove the part of the following error the SAK lead of the commanding FIPW/FIPZ/VARSYNC
+      // put there (command units, through the drive's synchronous ratio).
+      const std::int64_t sak = io.image.aw[static_cast<std::size_t>(n)].sak_part;
+      const std::int64_t part = sak * m.multiplier / m.divider;
+      const auto e = static_cast<std::int64_t>(fe) - part;
       m.sum += e - m.hist[m.i];
       m.hist[m.i] = e;
       m.i = (m.i + 1) % mean_n_;
@@ -128,6 +138,7 @@ class Copy final : public FastFunction {
     std::int64_t sum = 0;
     int i = 0, filled = 0, count = 0;
     int threshold = 100;
+    std::int64_t divider = 1, multiplier = 1;
     bool bit = false;
   };
   int fct_ = 0, ba_ = 0;

@@ -134,7 +134,7 @@ class Interpolator final : public FastFunction {
     }
     if (running_ && cam_.table() == nullptr && !cam_.switch_pending()) running_ = false;  // clocked out
     const std::int64_t y = base_ + scale(cam_.slave_position());
-    io.sink = static_cast<std::int32_t>(sak_lead(y, y_prev_, sak_));
+    io.sink = static_cast<std::int32_t>(apply_sak(io, drive_, y, y_prev_, sak_));
     y_prev_ = y;
     outputs(io);
   }
@@ -193,6 +193,7 @@ class Interpolator final : public FastFunction {
     if (k_ < -32768 || k_ > 32767) return start_error(name_, "DD8 multiplication factor", k_, "-2^15..2^15-1");
     cycles_ = x_ ? std::max(1, static_cast<int>(cmd.dl(7))) : 1;
     if (init.sink.address == 0) return start_error(name_, "sink address", 0, "the interpolator needs a sink");
+    drive_ = sink_drive(init);
     m_ = m;
     q_ = q;
     int n_db = m;
@@ -458,7 +459,7 @@ class Interpolator final : public FastFunction {
   const bool x_;
   const char* name_;
   Kind kind_ = Kind::cyclic;
-  int fct_ = 0, sak_ = 0, shift_ = 0, m_ = 1, q_ = 0, cycles_ = 1, sets_ = 1;
+  int fct_ = 0, sak_ = 0, drive_ = -1, shift_ = 0, m_ = 1, q_ = 0, cycles_ = 1, sets_ = 1;
   std::int64_t k_ = 1;
   int offset_ = 0, start_angle_ = 0, stop_angle_ = 0;
   bool set_switch_ = false, time_ = false;

@@ -32,6 +32,9 @@ struct DriveChannels {
   std::int16_t message16 = 0;  ///< Config-AW message16 (ID 32785): offset 2
   /// The drive's reference (zero-pulse) latch: pulses seen so far and the position feedback at
   /// the last one (EPOS substitutional positioning, "continuous homing").
+  /// The SAK lead the SF commanding this drive added to its command in its last cycle (command
+  /// units); SIDIFF subtracts it from the drive's following error.
+  std::int32_t sak_part = 0;
   std::uint32_t reference_count = 0;
   std::int32_t reference_position = 0;
 };

@@ -53,5 +53,11 @@ std::unique_ptr<FastFunction> make_cam();
 /// The SAK lead applied to a set-point: out = y + SAK/128 x (y - y_prev) (SAK/128 cycles of
 /// velocity lead; [inferred], digest §2.1), rounded half away from zero.
 [[nodiscard]] std::int64_t sak_lead(std::int64_t y, std::int64_t y_prev, int sak) noexcept;
+/// The drive (0..7) an SF's sink commands (SWQ1/SWQ2 of AW1..AW8), or -1.
+[[nodiscard]] inline int sink_drive(const InitDb& init) noexcept {
+  return init.sink.address >= 1 && init.sink.address <= 8 ? init.sink.address - 1 : -1;
+}
+/// sak_lead(), and the lead recorded on the commanded drive (DriveChannels::sak_part) for SIDIFF.
+std::int64_t apply_sak(SfIo& io, int drive, std::int64_t y, std::int64_t y_prev, int sak) noexcept;
 
 }  // namespace hil::controllers::amkasyn
