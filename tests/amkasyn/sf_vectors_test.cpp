@@ -377,15 +377,99 @@ TEST_F(SfTest, FipwRefusesPrintingMarkControlAndBadTables) {
   t.set_dw(0, 3).set_dd(4, 40000);  // |dY| >= 32768
   dbs[20] = t;
   init_ok(Init(1, 0).source(0, 16).sink(129, 40).tab(0, 20));
-  auto c = command(0, 1, 1, 2);
+  auto c = command(0, 5, 1, 2);
   c.set_dw(3, 2).set_dw(4, 1).set_dd(8, 1).set_dd(10, 20000);
   auto s = rt.command(c, image);
   EXPECT_TRUE(s.error);
-  EXPECT_NE(s.text.find("printing mark"), std::string::npos) << s.text;
+  EXPECT_NE(s.text.find("printing mark control together with the external-master sync"), std::string::npos) << s.text;
   c.set_dl(0, 0);
   s = rt.command(c, image);
   EXPECT_TRUE(s.error);
   EXPECT_NE(s.text.find("32768"), std::string::npos) << s.text;
+}
+
+// 6.3 with its printing mark control: coupling DB16, working DB17 (Y_end 20000 for the format of
+// 300 mm: s = 20000 / 3000 increments per 0.1 mm), sensor distance 100 mm -> the mark is expected
+// at s x 2000 = 13333 in the working table, valid within s x 200 = 1333; the correction is output
+// over master [5000, 15000) of the next working table; dXM shown in MD 60 (DW26).
+class PrintingMark : public SfTest {
+ protected:
+  PrintingMark() : SfTest(4) {}  // ID 2 = 2 ms (DW3 = 4)
+  std::int32_t at(std::int32_t x) {
+    while (image.az[0] < x) {
+      image.az[0] += 100;
+      cycles(1);
+    }
+    return image.md(40);
+  }
+  void mark(std::int32_t x) {  // the mark passes the sensor at master x (inside the next step)
+    image.az[0] += 100;
+    image.az_zero[0].pulse(x);
+    cycles(1);
+  }
+};
+
+TEST_F(PrintingMark, Vector6_3CorrectsTheWorkingTable) {
+  auto table = [](std::initializer_list<std::int32_t> ys) {
+    DataBlock t(8);
+    t.set_dw(0, static_cast<int>(ys.size()) + 1);
+    std::size_t a = 2;
+    for (auto y : ys) t.set_dd(a, y), a += 2;
+    return t;
+  };
+  dbs[16] = table({0, 2500, 10000});
+  dbs[17] = table({0, 10000, 20000});
+  dbs[18] = table({0, 7500, 10000});
+  init_ok(Init(1, 0).source(0, 16).sink(129, 40).in(1, 8).tab(0, 16).tab(1, 17).tab(2, 18));
+  auto c = command(0, 1, 1, 98);
+  c.set_dw(3, 4).set_dw(4, 3).set_dw(5, 1).set_dd(8, 1).set_dd(10, 20000);
+  c.set_dw(18, 3000).set_dd(20, 1000).set_dw(23, 200).set_dw(24, 5000).set_dw(25, 10000).set_dw(26, 60);
+  start_ok(c);
+  image.e[8] = 1;
+  cycles(1);
+  EXPECT_EQ(at(20000), 10000);  // the coupling table
+  at(33600);
+  mark(33633);  // 13633 into the working table: 300 late
+  EXPECT_EQ(image.md(60), 300);
+  EXPECT_EQ(at(40000), 30000) << "no correction in this period (its window had begun)";
+  EXPECT_EQ(at(45000), 35000);
+  EXPECT_EQ(at(50000), 40000 + 150) << "half of the window";
+  EXPECT_EQ(at(55000), 45000 + 300);
+  EXPECT_EQ(at(60000), 50300);
+  EXPECT_EQ(at(60100), 50400);
+  EXPECT_EQ(image.md(60), 0) << "no mark in the last period";
+  at(75200);
+  mark(75333 + 1500);  // outside the valid range (1333): ignored
+  EXPECT_EQ(image.md(60), 0);
+  EXPECT_EQ(at(80000), 70300);
+  at(93200);
+  mark(93233);  // 100 early (the earlier correction is part of the table's frame now)
+  EXPECT_EQ(image.md(60), -100);
+  EXPECT_EQ(at(105000), 95300) << "the -100 in the next period's window";
+  EXPECT_EQ(at(110000), 100250);
+  EXPECT_EQ(at(115000), 105200);
+  image.e[8] = 0;  // clock out at the table end: the correction stays, the decoupling table runs
+  EXPECT_EQ(at(120000), 110200);
+  EXPECT_EQ(at(140000), 120200);
+  EXPECT_EQ(at(150000), 120200);
+}
+
+TEST_F(SfTest, FipwExternalMasterSyncWaitsForTheZeroPulse) {
+  DataBlock t(8);
+  t.set_dw(0, 4).set_dd(4, 5000).set_dd(6, 10000);
+  dbs[20] = t;
+  init_ok(Init(1, 0).source(0, 16).sink(129, 40).tab(0, 20));
+  auto c = command(0, 4, 1, 2);
+  c.set_dw(3, 2).set_dw(4, 1).set_dd(8, 1).set_dd(10, 20000).set_dw(12, 1000);
+  start_ok(c);
+  for (int i = 0; i < 50; ++i) image.az[0] += 100, cycles(1);
+  EXPECT_EQ(image.md(40), 0) << "nothing before the master's zero pulse";
+  image.az[0] += 100;            // 5100
+  image.az_zero[0].pulse(5050);  // X := offset 1000 at master 5050
+  cycles(1);
+  EXPECT_EQ(image.md(40), 0) << "the table continues from the sink, no jump";
+  while (image.az[0] < 5050 + 9000) image.az[0] += 50, cycles(1);
+  EXPECT_EQ(image.md(40), 5000 - 525) << "X = 10000: y 5000 - y(X at the first cycle = 1050) = 525";
 }
 
 // FIPZ timing: a 1 s table (Te = 2000 x 0.5 ms) at a 2 ms SF cycle takes exactly 500 cycles;

@@ -18,8 +18,11 @@
 // table), retriggering (fct bit4: an edge during a movement is stored and restarts it seamlessly
 // at its end if E1 is still 1), A1 = A_Akt (0 while a movement runs) in the triggered modes, a
 // signed master offset, "setting on" (fct bit3: the output is the table's own position, y(offset)
-// at START, as READ VALUE computes it) and READ VALUE (code 6). Printing mark control (fct bit0)
-// and the external-master sync (fct bit2) are not implemented: START refuses them.
+// at START, as READ VALUE computes it) and READ VALUE (code 6).
+// Both: the external-master sync (fct bit2: X := master offset at the source's next zero pulse)
+// and printing mark control (fct bit0, bit1 before/after SAK; marks from the zero-pulse latch of
+// the 32-bit AZ message, corrections spread over the window [SK, SK+LK] of the working table; see
+// printing_mark()). The two together (the master zero pulse through MD DR7) are refused.
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
@@ -60,11 +63,18 @@ class Interpolator final : public FastFunction {
     running_ = clock_out_ = working_ = stopping_ = retrigger_ = repeat_queued_ = stop_queued_ = false;
     prev_e1_ = io.e(1);
     plan_.clear();
-    if (kind_ == Kind::cyclic) {
+    sync_wait_ = sync_;
+    if (sync_) sync_seen_ = io.image.az_zero[zch_].count;  // X is assigned at the next zero pulse
+    if (kind_ == Kind::cyclic && !sync_wait_) {
       cam_.set_table(&table(set_, 0));
       cam_.start(master, raw0, mod(offset_, period(set_, 0)));
       running_ = true;
     }
+    corr_total_ = corr_applied_ = corr_active_ = corr_pending_ = corr_at_start_ = 0.0;
+    active_ = pending_ = have_start_ = in_work_prev_ = mark_in_period_ = dmr_ = false;
+    marks_ = 0;
+    mark_seen_ = io.image.az_zero[zch_].count;
+    tp_prev_ = 0.0;
     switches_seen_ = cam_.switches();
     queued_set_ = set_;
     y_prev_ = base_ + scale(raw0);
@@ -74,7 +84,9 @@ class Interpolator final : public FastFunction {
 
   std::optional<SfFault> value_new(const DataBlock& cmd, SfIo& io) override {
     if (!x_) return FastFunction::value_new(cmd, io);
-    return printing_mark_parameters(cmd);  // XFIPW: the printing mark parameters only
+    if (auto f = printing_mark_parameters(cmd)) return f;  // XFIPW: the printing mark parameters only
+    if (pm_) configure_printing_mark(cmd);
+    return std::nullopt;
   }
 
   std::expected<std::int32_t, SfFault> read_value(const DataBlock& cmd, const InitDb& init, SfIo& io) override {
@@ -95,6 +107,21 @@ class Interpolator final : public FastFunction {
     const bool e1 = io.e(1);
     const bool rising = e1 && !prev_e1_;
     prev_e1_ = e1;
+    if (sync_wait_) {  // external-master sync: X := master offset angle at the master's zero pulse
+      const ZeroPulseLatch& z = io.image.az_zero[zch_];
+      if (z.count == sync_seen_) {
+        io.sink = static_cast<std::int32_t>(y_prev_);  // nothing moves before the sync
+        return;
+      }
+      origin_ = master_at(master, io.source.value, z.position) - offset_;
+      sync_wait_ = false;
+      if (kind_ == Kind::cyclic) {
+        cam_.set_table(&table(set_, 0));
+        cam_.start(master, cam_.slave_position(), mod(master - origin_, period(set_, 0)));
+        switches_seen_ = cam_.switches();
+        running_ = true;
+      }
+    }
     const std::int64_t x = master - origin_;
     switch (kind_) {
       case Kind::single:
@@ -134,8 +161,15 @@ class Interpolator final : public FastFunction {
     }
     if (running_ && cam_.table() == nullptr && !cam_.switch_pending()) running_ = false;  // clocked out
     const std::int64_t y = base_ + scale(cam_.slave_position());
-    io.sink = static_cast<std::int32_t>(apply_sak(io, drive_, y, y_prev_, sak_));
-    y_prev_ = y;
+    if (pm_) printing_mark(io, master);
+    const auto corr = static_cast<std::int64_t>(std::llround(corr_total_ + corr_applied_));
+    if (before_sak_) {  // fct bit1: the correction before the SAK
+      io.sink = static_cast<std::int32_t>(apply_sak(io, drive_, y + corr, y_prev_, sak_));
+      y_prev_ = y + corr;
+    } else {
+      io.sink = static_cast<std::int32_t>(apply_sak(io, drive_, y, y_prev_, sak_) + corr);
+      y_prev_ = y;
+    }
     outputs(io);
   }
 
@@ -146,10 +180,10 @@ class Interpolator final : public FastFunction {
     if (fct_ & ~(x_ ? 0x3F : 0x07))
       return start_error(name_, "DL0 fct", fct_,
                          x_ ? "bits 0..5" : "bits 0..2 (printing mark, before SAK, external sync)");
-    if (fct_ & 5)
+    if ((fct_ & 5) == 5)
       return SfFault{SfError::start_invalid,
-                     fmt::format("{}: DL0 fct = {}: printing mark control (bit0/bit1) and the external-master "
-                                 "sync (bit2) are not implemented by hilbridge; use 0",
+                     fmt::format("{}: DL0 fct = {}: printing mark control together with the external-master sync "
+                                 "(the master zero pulse through MD DR7) is not implemented by hilbridge",
                                  name_, fct_)};
     const int ba = cmd.dl(1);
     set_switch_ = x_ && ba % 2 == 1;
@@ -193,6 +227,18 @@ class Interpolator final : public FastFunction {
     if (k_ < -32768 || k_ > 32767) return start_error(name_, "DD8 multiplication factor", k_, "-2^15..2^15-1");
     cycles_ = x_ ? std::max(1, static_cast<int>(cmd.dl(7))) : 1;
     if (init.sink.address == 0) return start_error(name_, "sink address", 0, "the interpolator needs a sink");
+    pm_ = (fct_ & 1) != 0;
+    sync_ = (fct_ & 4) != 0;
+    if ((pm_ || sync_) &&
+        (init.source.address != 0 || init.source.offset < 16 || init.source.offset > 22 || init.source.offset % 2 != 0))
+      return start_error(name_, "source offset", init.source.offset,
+                         "printing mark control and the external sync need the 32-bit AZ message (address 0, offset "
+                         "16/18/20/22) with its zero pulse");
+    zch_ = static_cast<std::size_t>((init.source.offset - 16) / 2 % 4);
+    if (pm_ && (time_ || set_switch_ || (!x_ && kind_ != Kind::cyclic && kind_ != Kind::clocked)))
+      return start_error(
+          name_, "DL1 BA", ba,
+          x_ ? "printing mark control only in BA 2, 26, 82, 98" : "printing mark control only in BA 2 or 98");
     drive_ = sink_drive(init);
     m_ = m;
     q_ = q;
@@ -227,8 +273,34 @@ class Interpolator final : public FastFunction {
       if (stop_angle_ < 0 || stop_angle_ >= pw)
         return start_error(name_, "DW16 stop angle", stop_angle_, "0..P-1 of the working table");
     }
-    if (x_) return printing_mark_parameters(cmd);
+    if (auto f = printing_mark_parameters(cmd)) return f;
+    if (pm_) configure_printing_mark(cmd);
     return std::nullopt;
+  }
+
+  // Printing mark control (digest §3.2.4 [inferred]): s = Y_end(working table) / format length;
+  // the mark's expected slave position in the working table Xm_cmd = s ((FL - ((SD - SS) mod FL))
+  // mod FL); valid within s x DW23 (0 = anywhere); F from DR27; the correction window [SK, SK+LK].
+  void configure_printing_mark(const DataBlock& cmd) {
+    const double fl = cmd.dw(18);
+    work_lift_ = static_cast<double>(scale(table(0, q_).lift()));
+    const double sc = work_lift_ / fl;
+    const std::int64_t sd = cmd.dd(20), ss = cmd.dw(22);
+    const std::int64_t f = static_cast<std::int64_t>(fl);
+    xm_cmd_ = std::round(sc * static_cast<double>(mod(f - mod(sd - ss, f), f)));
+    valid_ = sc * cmd.dw(23);
+    const std::int64_t p = period(0, q_);
+    sk_ = cmd.dw(24);
+    lk_ = cmd.dw(25);
+    if (sk_ == 0 && lk_ == 0) {
+      sk_ = p * 3 / 4;
+      lk_ = p / 8;
+    }
+    md_ = cmd.dw(26);
+    const int k = cmd.dr(27);
+    weight_ = k == 0 ? 1.0 : k < 32 ? std::ldexp(1.0, -k) : k == 32 ? 0.0 : -std::ldexp(1.0, -(k - 128));
+    every_ = std::max(1, static_cast<int>(cmd.dl(27)));
+    before_sak_ = (fct_ & 2) != 0;
   }
 
   std::expected<hil::motion::CamTable, SfFault> parse_table(const DataBlock& db, int t, const DataBlock& cmd,
@@ -284,8 +356,17 @@ class Interpolator final : public FastFunction {
 
   // XFIPW VALUE NEW: DW18..DL27, checked as at START (they act only with printing mark control).
   std::optional<SfFault> printing_mark_parameters(const DataBlock& cmd) const {
+    if (!x_ && !pm_) return std::nullopt;  // FIPW: used only with printing mark control
     const int format = cmd.dw(18);
-    if (format < 0) return start_error(name_, "DW18 format length", format, "0..32767");
+    if (format < 0 || (pm_ && format == 0))
+      return start_error(name_, "DW18 format length", format, pm_ ? "1..32767 (printing mark control)" : "0..32767");
+    if (pm_ && !tables_.empty()) {
+      const std::int64_t p = period(0, q_);
+      if (cmd.dw(24) < 0 || cmd.dw(24) > p)
+        return start_error(name_, "DW24 start angle correction range", cmd.dw(24), "0..Xme");
+      if (cmd.dw(25) < 0 || cmd.dw(25) > p - cmd.dw(24))
+        return start_error(name_, "DW25 length correction range", cmd.dw(25), "0..Xme - SK");
+    }
     if (cmd.dd(20) < 0) return start_error(name_, "DD20 printing mark sensor distance", cmd.dd(20), "0..2^31-1");
     if (cmd.dw(22) < 0 || (format > 0 && cmd.dw(22) >= format))
       return start_error(name_, "DW22 synchronous point shift", cmd.dw(22), "0..format length-1");
@@ -297,6 +378,82 @@ class Interpolator final : public FastFunction {
     const int k = cmd.dr(27);
     if (k > 32 && (k < 128 || k > 159)) return start_error(name_, "DR27 correction weighting", k, "0..32 or 128..159");
     return std::nullopt;
+  }
+
+  // The master position at a latched counter value (32-bit source: the difference to now).
+  [[nodiscard]] static std::int64_t master_at(std::int64_t master, std::int32_t raw_now,
+                                              std::int32_t latched) noexcept {
+    return master -
+           static_cast<std::int32_t>(static_cast<std::uint32_t>(raw_now) - static_cast<std::uint32_t>(latched));
+  }
+
+  // One cycle of printing mark control, while the working table runs: the period start at each
+  // working-table zero passage, the correction window, the marks of the zero-pulse latch.
+  void printing_mark(SfIo& io, std::int64_t master) noexcept {
+    const auto& work = table(set_, q_);
+    const bool in_work = cam_.table() == &work;
+    const double tp = cam_.table_position();
+    if (!in_work) {
+      if (in_work_prev_) {  // left the working table: keep what was applied, drop the rest
+        corr_total_ += corr_applied_;
+        corr_applied_ = 0.0;
+        active_ = pending_ = false;
+      }
+      in_work_prev_ = false;
+      mark_seen_ = io.image.az_zero[zch_].count;
+      return;
+    }
+    if (!in_work_prev_ || tp < tp_prev_) {  // a zero passage of the working table
+      if (have_start_) {
+        if (!mark_in_period_ && md_) io.image.set_md(md_, 0);
+        dmr_ = mark_in_period_;
+      }
+      mark_in_period_ = false;
+      if (active_) corr_total_ += corr_active_;
+      active_ = false;
+      corr_applied_ = 0.0;
+      if (pending_) {
+        corr_active_ = corr_pending_;
+        active_ = true;
+        pending_ = false;
+      }
+      corr_at_start_ = corr_total_;
+      have_start_ = true;
+    }
+    in_work_prev_ = true;
+    tp_prev_ = tp;
+    if (active_) {
+      const double f = lk_ > 0 ? std::clamp((tp - static_cast<double>(sk_)) / static_cast<double>(lk_), 0.0, 1.0)
+                               : (tp >= static_cast<double>(sk_) ? 1.0 : 0.0);
+      corr_applied_ = corr_active_ * f;
+      if (f >= 1.0) {
+        corr_total_ += corr_active_;
+        corr_applied_ = 0.0;
+        active_ = false;
+      }
+    }
+    const ZeroPulseLatch& z = io.image.az_zero[zch_];
+    if (z.count == mark_seen_) return;
+    mark_seen_ = z.count;
+    const double tp_mark = tp - static_cast<double>(master - master_at(master, io.source.value, z.position));
+    if (tp_mark < 0.0) return;  // before this period: not a mark of the working table
+    // The slave's travel in this period up to the mark, against the expected mark position.
+    const double fb = static_cast<double>(scale(work.value(tp_mark))) + corr_total_ + corr_applied_ - corr_at_start_;
+    double dxm = std::fmod(fb - xm_cmd_, work_lift_);
+    if (dxm >= work_lift_ / 2) dxm -= work_lift_;
+    if (dxm < -work_lift_ / 2) dxm += work_lift_;
+    if (valid_ > 0 && std::fabs(dxm) > valid_) return;  // outside the valid range
+    mark_in_period_ = true;
+    if (md_) io.image.set_md(md_, std::llround(dxm));
+    if (++marks_ % every_ != 0) return;
+    const double c = weight_ * dxm;
+    if (!active_ && tp < static_cast<double>(sk_)) {  // the window of this period is still ahead
+      corr_active_ = c;
+      active_ = true;
+    } else {
+      corr_pending_ = c;
+      pending_ = true;
+    }
   }
 
   // ------------------------------------------------------------------------------- sequencing
@@ -449,11 +606,13 @@ class Interpolator final : public FastFunction {
     if (!x_) return;
     const bool suk = set_switch_ && enable_ && desired_ == set_;
     if (kind_ == Kind::cyclic) {
-      if (set_switch_) io.a(1, suk);  // A1 = A_SUK (A_Dmr needs printing mark control)
+      if (set_switch_) io.a(1, suk);  // A1 = A_SUK
+      if (pm_) io.a(1, dmr_);         // A1 = A_Dmr
       return;
     }
     io.a(1, !running_);  // A_Akt: 0 while a movement runs
     if (set_switch_) io.a(2, suk);
+    if (pm_) io.a(2, dmr_);  // A2 = A_Dmr
   }
 
   const bool x_;
@@ -465,6 +624,16 @@ class Interpolator final : public FastFunction {
   bool set_switch_ = false, time_ = false;
   bool running_ = false, clock_out_ = false, working_ = false, stopping_ = false, prev_e1_ = false;
   bool retrigger_ = false, repeat_queued_ = false, stop_queued_ = false, enable_ = false;
+  // external sync and printing mark control
+  bool pm_ = false, sync_ = false, sync_wait_ = false, before_sak_ = false;
+  std::size_t zch_ = 0;
+  std::uint32_t sync_seen_ = 0, mark_seen_ = 0;
+  double work_lift_ = 1.0, xm_cmd_ = 0.0, valid_ = 0.0, weight_ = 1.0, tp_prev_ = 0.0;
+  std::int64_t sk_ = 0, lk_ = 0;
+  int md_ = 0, every_ = 1, marks_ = 0;
+  double corr_total_ = 0.0, corr_applied_ = 0.0, corr_active_ = 0.0, corr_pending_ = 0.0, corr_at_start_ = 0.0;
+  bool active_ = false, pending_ = false, have_start_ = false, in_work_prev_ = false, mark_in_period_ = false,
+       dmr_ = false;
   int set_ = 0, desired_ = -1, queued_set_ = 0;
   std::int64_t switches_seen_ = 0;
   std::vector<hil::motion::CamTable> tables_;
