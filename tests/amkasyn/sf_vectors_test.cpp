@@ -316,7 +316,7 @@ TEST_F(SfTest, CamHysteresisRangeIsChecked) {
   }
 }
 
-// 6.3 FIPW (the sequence; printing mark control itself is not implemented): BA 98 with a
+// 6.3 FIPW (the sequence; its printing mark control: PrintingMark below): BA 98 with a
 // coupling table DB16, working table DB17, decoupling table DB18 over Xme = 20000 from the 32-bit
 // AZ message 1. E8.0 = 1 runs DB16 for one master revolution, then DB17 repeatedly; E8.0 = 0 runs
 // DB18 once from the next table end, then holds.

@@ -179,6 +179,41 @@ TEST_F(Xfipw, TableSetSwitchOverInTheCyclicMode) {
   EXPECT_EQ(at(60000), 50000) << "still set 1";
 }
 
+// XFIPW printing mark control in BA 2: A1 = A_Dmr (a valid mark in the last working-table period);
+// SK = LK = 0: the window [3/4, 7/8] x Xme of the same period when the mark comes before it;
+// VALUE NEW takes over the weighting (32: F = 0, dXM still shown).
+TEST_F(Xfipw, PrintingMarkWithADmrAndValueNew) {
+  dbs[16] = y_table({0, 10000, 20000});
+  init_ok(Init(9, 0).source(0, 16).sink(129, 40).out(1, 8).tab(0, 16));
+  auto c = cmd(1, 2);
+  c.set_dw(18, 3000).set_dd(20, 1000).set_dw(26, 60);  // the mark expected at 13333
+  start_ok(c);
+  at(13400);
+  image.az[0] += 100;
+  image.az_zero[0].pulse(13433);  // 100 late
+  cycles(1);
+  EXPECT_EQ(image.md(60), 100);
+  EXPECT_EQ(at(15000), 15000);
+  EXPECT_EQ(at(16300), 16300 + 52);
+  EXPECT_EQ(at(17500), 17600);
+  EXPECT_EQ(image.a[8] & 1, 0) << "A_Dmr at the end of the working table";
+  EXPECT_EQ(at(20100), 20200);
+  EXPECT_EQ(image.a[8] & 1, 1);
+  auto vn = c;
+  vn.set_dr(1, 5).set_dr(27, 32);  // F = 0
+  ASSERT_FALSE(rt.command(vn, image).error);
+  at(33400);
+  image.az[0] += 100;
+  image.az_zero[0].pulse(33333 + 200);
+  cycles(1);
+  EXPECT_EQ(image.md(60), 200) << "this mark 200 late";
+  EXPECT_EQ(at(40100), 40200) << "no correction with F = 0";
+  EXPECT_EQ(image.a[8] & 1, 1);
+  EXPECT_EQ(at(60100), 60200);
+  EXPECT_EQ(image.a[8] & 1, 0) << "no mark in the last period";
+  EXPECT_EQ(image.md(60), 0);
+}
+
 TEST_F(Xfipw, StartChecks) {
   dbs[16] = y_table({0, 100, 200});
   dbs[17] = y_table({0, 100, 200});

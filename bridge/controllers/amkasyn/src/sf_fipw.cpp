@@ -74,7 +74,6 @@ class Interpolator final : public FastFunction {
     active_ = pending_ = have_start_ = in_work_prev_ = mark_in_period_ = dmr_ = false;
     marks_ = 0;
     mark_seen_ = io.image.az_zero[zch_].count;
-    tp_prev_ = 0.0;
     switches_seen_ = cam_.switches();
     queued_set_ = set_;
     y_prev_ = base_ + scale(raw0);
@@ -403,7 +402,8 @@ class Interpolator final : public FastFunction {
       mark_seen_ = io.image.az_zero[zch_].count;
       return;
     }
-    if (!in_work_prev_ || tp < tp_prev_) {  // a zero passage of the working table
+    // A zero passage of the working table: entered (a switch) or one more period forwards.
+    if (!in_work_prev_ || cam_.switches() != pm_switches_ || cam_.periods() > pm_periods_) {
       if (have_start_) {
         if (!mark_in_period_ && md_) io.image.set_md(md_, 0);
         dmr_ = mark_in_period_;
@@ -421,7 +421,8 @@ class Interpolator final : public FastFunction {
       have_start_ = true;
     }
     in_work_prev_ = true;
-    tp_prev_ = tp;
+    pm_switches_ = cam_.switches();
+    pm_periods_ = cam_.periods();
     if (active_) {
       const double f = lk_ > 0 ? std::clamp((tp - static_cast<double>(sk_)) / static_cast<double>(lk_), 0.0, 1.0)
                                : (tp >= static_cast<double>(sk_) ? 1.0 : 0.0);
@@ -628,7 +629,8 @@ class Interpolator final : public FastFunction {
   bool pm_ = false, sync_ = false, sync_wait_ = false, before_sak_ = false;
   std::size_t zch_ = 0;
   std::uint32_t sync_seen_ = 0, mark_seen_ = 0;
-  double work_lift_ = 1.0, xm_cmd_ = 0.0, valid_ = 0.0, weight_ = 1.0, tp_prev_ = 0.0;
+  double work_lift_ = 1.0, xm_cmd_ = 0.0, valid_ = 0.0, weight_ = 1.0;
+  std::int64_t pm_switches_ = 0, pm_periods_ = 0;
   std::int64_t sk_ = 0, lk_ = 0;
   int md_ = 0, every_ = 1, marks_ = 0;
   double corr_total_ = 0.0, corr_applied_ = 0.0, corr_active_ = 0.0, corr_pending_ = 0.0, corr_at_start_ = 0.0;
