@@ -76,7 +76,38 @@ TEST_F(SfTest, FgenSecondAccelerationOnE2) {
   EXPECT_EQ(image.md(40), 110 + 20 + 19);
 }
 
-TEST_F(SfTest, FgenSequenceOutputsExactlyDd4WithoutRampsAtItsEnds) {
+TEST_F(SfTest, FgenSequenceRampsUpAndDownToExactlyDd4) {
+  init_ok(Init(5, 0).sink(129, 40).in(1, 10).out(1, 20));
+  auto c = fgen_command(1, 2);
+  c.set_dw(2, 100).set_dd(4, 1000);  // 1000 increments, 20 per cycle at full speed
+  start_ok(c);
+  image.e[10] = 1;
+  std::int32_t prev = 0, last_step = 0;
+  int n = 0;
+  while (image.md(40) < 1000 && n < 200) {
+    cycles(1);
+    ++n;
+    last_step = image.md(40) - prev;
+    ASSERT_GE(last_step, 0);
+    ASSERT_LE(last_step, 21);
+    prev = image.md(40);
+    if (n == 1) {
+      EXPECT_EQ(image.md(40), 0) << "from rest: 0.5 in the first cycle";
+    }
+  }
+  EXPECT_EQ(image.md(40), 1000);
+  EXPECT_GE(n, 85) << "40 cycles up, ~10 at 20, 40 down";
+  EXPECT_LE(n, 95);
+  EXPECT_LE(last_step, 2) << "it arrives at rest";
+  EXPECT_EQ(image.a[20] & 1, 1);
+  cycles(10);
+  EXPECT_EQ(image.md(40), 1000);
+}
+
+TEST_F(SfTest, FgenSequenceWithoutRampsAtItsEndsAsOption) {
+  SfOptions o;
+  o.fgen_sequence_without_ramps = true;
+  rt.set_options(o);
   init_ok(Init(5, 0).sink(129, 40).in(1, 10).out(1, 20));
   auto c = fgen_command(1, 2);
   c.set_dw(2, 100).set_dd(4, 1000);  // 1000 increments in 50 ms: 20 per cycle
@@ -144,6 +175,9 @@ TEST_F(SfTest, FgenStartChecksAndValueNew) {
   bad = fgen_command(1, 4);
   EXPECT_NE(rt.command(bad, image).text.find("DD24"), std::string::npos);
   EXPECT_EQ(rt.state(0), SfState::reset);
+  SfOptions o;
+  o.fgen_sequence_without_ramps = true;
+  rt.set_options(o);
   start_ok(fgen_command(1, 0));
   auto vn = fgen_command(1, 1);
   vn.set_dr(1, 5);

@@ -5,10 +5,12 @@
 //   or external = the source's increments per SF cycle (BA bit0); times the override MW[DW8] / 1024
 //   (0 = no output: the position holds at once);
 //   continuous (BA bit1 = 0): ramp up on E1 = 1, ramp down to rest on E1 = 0, forever;
-//   sequence (BA bit1 = 1): an E1 0->1 edge at rest starts a sequence of DD4 increments, output at
-//   the full velocity from the first cycle and ended exactly at DD4 without a ramp (the manual's
-//   exception "beginning and end of a sequence"); E1 = 0 interrupts with the ramp, E1 = 1
-//   continues the rest with the ramp;
+//   sequence (BA bit1 = 1): an E1 0->1 edge at rest starts a sequence of DD4 increments that ramps
+//   up from rest and ramps down to end at rest exactly at DD4 (the velocity never above the one
+//   that still stops in the rest, (sqrt(dv^2 + 8 dv d) - dv) / 2); with
+//   SfOptions::fgen_sequence_without_ramps it starts at full velocity and stops at DD4 without a
+//   ramp (the literal reading of the manual's exception "beginning and end of a sequence");
+//   E1 = 0 interrupts with the ramp, E1 = 1 continues the rest with the ramp;
 //   the ramp is DD6, or DD24 while E2 = 1 with BA bit2.
 // Feedback zeroing (fct bit1): at each start the position feedback of the AWs in DW9 is taken as
 // zero; ED 128 + 4(n-1) shows AWn's feedback relative to it every cycle. Position monitoring
@@ -61,6 +63,7 @@ class Fgen final : public FastFunction {
     v_ = 0.0;
     remaining_ = 0;
     prev_e1_ = io.e(1);
+    steps_ = io.options && io.options->fgen_sequence_without_ramps;
     zero_.fill(0);
     io.a(1, true);
     return std::nullopt;
@@ -126,10 +129,14 @@ class Fgen final : public FastFunction {
     const bool go = e1 && (!sequence || remaining_ > 0);
     if (ovr == 0) {
       v_ = 0.0;  // override 0: no output
-    } else if (sequence && fresh_ && rising) {
+    } else if (sequence && steps_ && fresh_ && rising) {
       v_ = v_set;  // a sequence begins at full velocity
     } else {
-      const double target = go ? v_set : 0.0;
+      double target = go ? v_set : 0.0;
+      if (sequence && !steps_) {  // ramp down so that the sequence ends at rest exactly at DD4
+        const double d = std::max(static_cast<double>(remaining_) - frac_, 0.0);
+        target = std::min(target, (std::sqrt(dv * dv + 8.0 * dv * d) - dv) / 2.0);
+      }
       v_ = v_ < target ? std::min(v_ + dv, target) : std::max(v_ - dv, target);
     }
     fresh_ = false;
@@ -175,7 +182,7 @@ class Fgen final : public FastFunction {
   std::int64_t src_prev_ = 0;
   std::int64_t base_ = 0, position_ = 0, remaining_ = 0;
   double v_ = 0.0, frac_ = 0.0;
-  bool prev_e1_ = false, fresh_ = false;
+  bool prev_e1_ = false, fresh_ = false, steps_ = false;
 };
 
 }  // namespace

@@ -70,6 +70,7 @@ SfIo SfRuntime::make_io(Slot& slot, ProcessImage& image, const ProcessImage& sna
   io.tables = &slot.tables;
   io.dbs = dbs_;
   io.fbs = &fbs_;
+  io.options = &options_;
   return io;
 }
 

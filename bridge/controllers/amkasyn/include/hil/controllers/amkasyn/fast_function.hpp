@@ -23,6 +23,15 @@ using DbStore = std::map<int, DataBlock>;
 /// Tab0..Tab7 of one SF (nullptr = not assigned).
 using SfTables = std::array<DataBlock*, 8>;
 
+/// Choices where the manual is ambiguous (docs/amkasyn.md "Decisions"); set on the runtime.
+struct SfOptions {
+  /// FGEN sequence mode: false (default) = a sequence ramps up from rest and ramps down to end at
+  /// rest exactly after DD4 increments; true = the literal reading of "all velocity changes use the
+  /// ramps, except beginning and end of a sequence": full velocity from the first cycle, a stop
+  /// without a ramp at DD4.
+  bool fgen_sequence_without_ramps = false;
+};
+
 /// One SF cycle's view. `source` comes from the cycle's snapshot (an SF link, address 255, from
 /// the producer's sink of this cycle); writes go to `sink` / `out` and are applied after step().
 struct SfIo {
@@ -39,6 +48,7 @@ struct SfIo {
   DbStore* dbs = nullptr;        ///< all PS data blocks (APSF's opened DB)
   const FbStore* fbs = nullptr;  ///< the loaded FBs (APSF)
   std::optional<SfFault> fault;  ///< set by step(): a running time error, the SF stops
+  const SfOptions* options = nullptr;
   [[nodiscard]] bool e(int k) const noexcept { return ((in >> (k - 1)) & 1) != 0; }  ///< E1..E8
   void a(int k, bool v) noexcept {
     const auto m = static_cast<std::uint8_t>(1u << (k - 1));

@@ -51,6 +51,9 @@ class SfRuntime {
 
   [[nodiscard]] SfState state(int sf) const noexcept;
   [[nodiscard]] const SfStatus& status() const noexcept { return status_; }
+  /// The decisions where the manual is ambiguous; they take effect at the next START.
+  void set_options(const SfOptions& o) noexcept { options_ = o; }
+  [[nodiscard]] const SfOptions& options() const noexcept { return options_; }
   /// The output value of the last command if it was a successful READ VALUE (DD32).
   [[nodiscard]] std::optional<std::int32_t> read_value() const noexcept { return read_value_; }
   [[nodiscard]] std::int32_t link(int sf) const noexcept { return links_[static_cast<std::size_t>(sf & 15)]; }
@@ -78,6 +81,7 @@ class SfRuntime {
   SfStatus status_{};
   std::optional<std::int32_t> read_value_;
   FbStore fbs_;
+  SfOptions options_{};
   std::uint64_t tick_ = 0;
   ProcessImage snapshot_{};
 };
