@@ -372,16 +372,16 @@ TEST_F(SfTest, FipwCyclicTimeModeAndScaling) {
   EXPECT_EQ(image.md(40), 12000);
 }
 
-TEST_F(SfTest, FipwRefusesPrintingMarkControlAndBadTables) {
+TEST_F(SfTest, FipwRefusesABadSyncAddressAndBadTables) {
   DataBlock t(8);
   t.set_dw(0, 3).set_dd(4, 40000);  // |dY| >= 32768
   dbs[20] = t;
   init_ok(Init(1, 0).source(0, 16).sink(129, 40).tab(0, 20));
   auto c = command(0, 5, 1, 2);
-  c.set_dw(3, 2).set_dw(4, 1).set_dd(8, 1).set_dd(10, 20000);
+  c.set_dw(3, 2).set_dw(4, 1).set_dd(8, 1).set_dd(10, 20000).set_dr(7, 6);
   auto s = rt.command(c, image);
   EXPECT_TRUE(s.error);
-  EXPECT_NE(s.text.find("printing mark control together with the external-master sync"), std::string::npos) << s.text;
+  EXPECT_NE(s.text.find("DR7 MD addr. ext. sync. = 6"), std::string::npos) << s.text;
   c.set_dl(0, 0);
   s = rt.command(c, image);
   EXPECT_TRUE(s.error);
@@ -470,6 +470,40 @@ TEST_F(SfTest, FipwExternalMasterSyncWaitsForTheZeroPulse) {
   EXPECT_EQ(image.md(40), 0) << "the table continues from the sink, no jump";
   while (image.az[0] < 5050 + 9000) image.az[0] += 50, cycles(1);
   EXPECT_EQ(image.md(40), 5000 - 525) << "X = 10000: y 5000 - y(X at the first cycle = 1050) = 525";
+}
+
+// Printing mark control with the external-master sync: the master's zero pulse comes on a second
+// input (AZ message 2, its counter 777 ahead of the first), which SF0 (DCOPY) copies into MD 40
+// with its latch; SF1 (FIPW, DR7 = 40) starts the table at that pulse and corrects on the marks of
+// its own input (AZ message 1).
+TEST_F(SfTest, FipwPrintingMarkWithTheExternalSyncThroughMd) {
+  DataBlock t(8);
+  t.set_dw(0, 4).set_dd(4, 10000).set_dd(6, 20000);
+  dbs[17] = t;
+  init_ok(Init(0, 0).source(0, 18).sink(129, 40));
+  start_ok(command(0, 1, 1, 0));
+  init_ok(Init(1, 1).source(0, 16).sink(129, 60).tab(0, 17));
+  auto c = command(1, 5, 1, 2);
+  c.set_dw(3, 2).set_dw(4, 1).set_dd(8, 1).set_dd(10, 20000).set_dr(7, 40);
+  c.set_dw(18, 3000).set_dd(20, 1000).set_dw(26, 64);  // the mark expected at 13333
+  start_ok(c);
+  image.az[1] = 777;
+  auto step = [&] {
+    image.az[0] += 50;
+    image.az[1] += 50;
+    cycles(1);
+  };
+  for (int i = 0; i < 100; ++i) step();
+  EXPECT_EQ(image.md(60), 0) << "nothing before the master's zero pulse";
+  image.az_zero[1].pulse(image.az[1] + 25);  // at master 5025 (counter 2: 5802)
+  step();                                    // master 5050: X = 25 from the pulse
+  EXPECT_EQ(image.md(60), 0) << "the table starts where the slave is";
+  while (image.az[0] < 5025 + 13600) step();
+  image.az_zero[0].pulse(5025 + 13633);  // the mark: 300 late
+  step();
+  EXPECT_EQ(image.md(64), 300);
+  while (image.az[0] < 5025 + 20000) step();
+  EXPECT_EQ(image.md(60), 20025 - 25 + 300) << "X = 20025 from the pulse, the slave started at X = 25";
 }
 
 // FIPZ timing: a 1 s table (Te = 2000 x 0.5 ms) at a 2 ms SF cycle takes exactly 500 cycles;

@@ -21,6 +21,11 @@ class Copy final : public FastFunction {
         if (init.sink.address == 0) return start_error("DCOPY", "sink address", 0, "DCOPY needs a sink");
         acc_ = io.sink_now;  // incremental copy sums from the sink value at START
         prev_lo_ = static_cast<std::int16_t>(io.source.value & 0xFFFF);
+        // A 32-bit AZ message copied into an MD takes its zero-pulse latch along.
+        latch_from_ = init.source.address == 0 && init.source.offset >= 16 && init.source.offset <= 22
+                          ? (init.source.offset - 16) / 2
+                          : -1;
+        latch_to_ = init.sink.address == 129 && ba_ == 0 ? init.sink.offset / 4 : -1;
         return std::nullopt;
       case 2:  // ECOPY
         if (ba_ > 3) return start_error("ECOPY", "DL1 BA", ba_, "bit0/bit1 select parameter copying: 0..3");
@@ -52,6 +57,9 @@ class Copy final : public FastFunction {
       case 1:
         if (ba_ == 0) {
           io.sink = io.source.value;
+          if (latch_from_ >= 0 && latch_to_ >= 0)
+            io.image.md_zero[static_cast<std::size_t>(latch_to_)] =
+                io.image.az_zero[static_cast<std::size_t>(latch_from_)];
         } else {
           const auto lo = static_cast<std::int16_t>(io.source.value & 0xFFFF);
           acc_ += static_cast<std::int16_t>(static_cast<std::uint16_t>(lo - prev_lo_));
@@ -141,7 +149,7 @@ class Copy final : public FastFunction {
     std::int64_t divider = 1, multiplier = 1;
     bool bit = false;
   };
-  int fct_ = 0, ba_ = 0;
+  int fct_ = 0, ba_ = 0, latch_from_ = -1, latch_to_ = -1;
   std::int64_t acc_ = 0;
   std::int16_t prev_lo_ = 0;
   std::int32_t value0_ = 0, value1_ = 0;

@@ -22,7 +22,8 @@
 // Both: the external-master sync (fct bit2: X := master offset at the source's next zero pulse)
 // and printing mark control (fct bit0, bit1 before/after SAK; marks from the zero-pulse latch of
 // the 32-bit AZ message, corrections spread over the window [SK, SK+LK] of the working table; see
-// printing_mark()). The two together (the master zero pulse through MD DR7) are refused.
+// printing_mark()). With both, the master zero pulse is the latch an SF COPY copies along with the
+// second input's 32-bit AZ message into MD DR7 (ProcessImage::md_zero).
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
@@ -64,7 +65,7 @@ class Interpolator final : public FastFunction {
     prev_e1_ = io.e(1);
     plan_.clear();
     sync_wait_ = sync_;
-    if (sync_) sync_seen_ = io.image.az_zero[zch_].count;  // X is assigned at the next zero pulse
+    if (sync_) sync_seen_ = sync_latch(io).count;  // X is assigned at the next zero pulse
     if (kind_ == Kind::cyclic && !sync_wait_) {
       cam_.set_table(&table(set_, 0));
       cam_.start(master, raw0, mod(offset_, period(set_, 0)));
@@ -107,12 +108,14 @@ class Interpolator final : public FastFunction {
     const bool rising = e1 && !prev_e1_;
     prev_e1_ = e1;
     if (sync_wait_) {  // external-master sync: X := master offset angle at the master's zero pulse
-      const ZeroPulseLatch& z = io.image.az_zero[zch_];
+      const ZeroPulseLatch& z = sync_latch(io);
       if (z.count == sync_seen_) {
         io.sink = static_cast<std::int32_t>(y_prev_);  // nothing moves before the sync
         return;
       }
-      origin_ = master_at(master, io.source.value, z.position) - offset_;
+      // The pulse's distance back from now, in the counts of the input that saw it.
+      const std::int32_t now = sync_md_ >= 0 ? io.image.md(sync_md_) : io.source.value;
+      origin_ = master_at(master, now, z.position) - offset_;
       sync_wait_ = false;
       if (kind_ == Kind::cyclic) {
         cam_.set_table(&table(set_, 0));
@@ -179,11 +182,12 @@ class Interpolator final : public FastFunction {
     if (fct_ & ~(x_ ? 0x3F : 0x07))
       return start_error(name_, "DL0 fct", fct_,
                          x_ ? "bits 0..5" : "bits 0..2 (printing mark, before SAK, external sync)");
-    if ((fct_ & 5) == 5)
-      return SfFault{SfError::start_invalid,
-                     fmt::format("{}: DL0 fct = {}: printing mark control together with the external-master sync "
-                                 "(the master zero pulse through MD DR7) is not implemented by hilbridge",
-                                 name_, fct_)};
+    // Printing mark control with the external sync: the master zero pulse comes on a second input
+    // that an SF COPY (lower number) copies into MD DR7 (counter and its zero-pulse latch).
+    sync_md_ = (fct_ & 5) == 5 ? cmd.dr(7) : -1;
+    if (sync_md_ >= 0 && (sync_md_ > 124 || sync_md_ % 4 != 0))
+      return start_error(name_, "DR7 MD addr. ext. sync.", sync_md_,
+                         "0..124, a multiple of 4 (printing mark control with the external sync)");
     const int ba = cmd.dl(1);
     set_switch_ = x_ && ba % 2 == 1;
     switch (set_switch_ ? ba - 1 : ba) {
@@ -377,6 +381,11 @@ class Interpolator final : public FastFunction {
     const int k = cmd.dr(27);
     if (k > 32 && (k < 128 || k > 159)) return start_error(name_, "DR27 correction weighting", k, "0..32 or 128..159");
     return std::nullopt;
+  }
+
+  // The master zero pulse: the FIPW source's own, or (with printing mark control) MD DR7's.
+  [[nodiscard]] const ZeroPulseLatch& sync_latch(const SfIo& io) const noexcept {
+    return sync_md_ >= 0 ? io.image.md_zero[static_cast<std::size_t>(sync_md_ / 4)] : io.image.az_zero[zch_];
   }
 
   // The master position at a latched counter value (32-bit source: the difference to now).
@@ -628,6 +637,7 @@ class Interpolator final : public FastFunction {
   // external sync and printing mark control
   bool pm_ = false, sync_ = false, sync_wait_ = false, before_sak_ = false;
   std::size_t zch_ = 0;
+  int sync_md_ = -1;
   std::uint32_t sync_seen_ = 0, mark_seen_ = 0;
   double work_lift_ = 1.0, xm_cmd_ = 0.0, valid_ = 0.0, weight_ = 1.0;
   std::int64_t pm_switches_ = 0, pm_periods_ = 0;

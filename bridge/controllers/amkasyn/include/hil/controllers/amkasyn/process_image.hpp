@@ -55,9 +55,12 @@ struct ZeroPulseLatch {
 
 struct ProcessImage {
   std::array<std::uint8_t, 256> e{}, a{}, m{};
-  std::array<DriveChannels, 8> aw{};         ///< AW1..AW8
-  std::array<std::int32_t, 4> az{};          ///< AZ messages 1..4 (32-bit counters)
-  std::array<ZeroPulseLatch, 4> az_zero{};   ///< their zero-pulse inputs
+  std::array<DriveChannels, 8> aw{};        ///< AW1..AW8
+  std::array<std::int32_t, 4> az{};         ///< AZ messages 1..4 (32-bit counters)
+  std::array<ZeroPulseLatch, 4> az_zero{};  ///< their zero-pulse inputs
+  /// The zero-pulse latch that travels with a 32-bit AZ message a DCOPY copies into MD 4n (the
+  /// counter in MD 4n, the latch here; FIPW/XFIPW "MD addr. ext. sync." DR7).
+  std::array<ZeroPulseLatch, 32> md_zero{};
   std::array<std::int32_t, 4> analog_out{};  ///< AA1..AA4 (10000 = end value)
 
   [[nodiscard]] bool bit(const std::array<std::uint8_t, 256>& area, int byte, int bit_no) const noexcept {
