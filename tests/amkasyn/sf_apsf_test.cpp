@@ -149,6 +149,20 @@ TEST_F(Apsf, DataBlockAccessBitLogicAndCompares) {
       T    MB 32
       L    KM 0000 0000 1111 0000
       T    MW 34
+      L    MW 34
+      L    KH 0F0F
+      UW                  ; 0x0000
+      L    KH 00F0
+      OW                  ; 0x00F0
+      SLW  4              ; 0x0F00
+      L    KH FFFF
+      XOW                 ; 0xF0FF
+      T    MW 36
+      L    KD 1
+      SLD  31
+      SRD  30             ; 2
+      KEW                 ; 0xFFFD
+      T    MD 44
       BE
 )"));
   init_ok(Init(10, 0).sink(129, 40));
@@ -165,6 +179,8 @@ TEST_F(Apsf, DataBlockAccessBitLogicAndCompares) {
   EXPECT_EQ(image.m[31] & 1, 0);
   EXPECT_EQ(image.m[32], 0xFF);
   EXPECT_EQ(image.mw(34), 0xF0);
+  EXPECT_EQ(static_cast<std::uint16_t>(image.mw(36)), 0xF0FF);
+  EXPECT_EQ(image.md(44), 0xFFFD);
 }
 
 TEST(Awl, ParserErrorsNameTheLine) {

@@ -151,6 +151,20 @@ std::expected<AwlProgram, std::string> parse_awl(std::string_view text) {
     const auto sp = line.find_first_of(" \t");
     const std::string mn = upper(line.substr(0, sp));
     const std::string_view operand_text = sp == std::string_view::npos ? std::string_view{} : line.substr(sp);
+    static const std::map<std::string, std::pair<Op, int>> shifts = {
+        {"SLW", {Op::shl_w, 15}}, {"SRW", {Op::shr_w, 15}}, {"SLD", {Op::shl_d, 32}}, {"SRD", {Op::shr_d, 32}}};
+    if (const auto sh = shifts.find(mn); sh != shifts.end()) {
+      long long n = 0;
+      if (!number(operand_text, n) || n < 0 || n > sh->second.second)
+        return bad(line, fmt::format("{} takes a shift count 0..{}", mn, sh->second.second));
+      AwlInstruction shift;
+      shift.op = sh->second.first;
+      shift.address = static_cast<int>(n);
+      shift.line = line_no;
+      shift.text = std::string(line);
+      p.code.push_back(std::move(shift));
+      continue;
+    }
     auto operand = parse_operand(operand_text);
     if (!operand) return bad(line, operand.error());
     AwlInstruction ins;
@@ -166,9 +180,10 @@ std::expected<AwlProgram, std::string> parse_awl(std::string_view text) {
       p.forbidden.push_back(fmt::format("line {}: {}", line_no, ins.text));
     };
     static const std::map<std::string, Op> plain = {
-        {"+F", Op::add_f},     {"-F", Op::sub_f},      {"XF", Op::mul_f},         {":F", Op::div_f}, {"+D", Op::add_d},
-        {"-D", Op::sub_d},     {"XD", Op::mul_d},      {":D", Op::div_d},         {"WWD", Op::wwd},  {"TAK", Op::tak},
-        {"BE", Op::block_end}, {"BEA", Op::block_end}, {"BEB", Op::block_end_rlo}};
+        {"+F", Op::add_f},     {"-F", Op::sub_f},      {"XF", Op::mul_f},          {":F", Op::div_f}, {"+D", Op::add_d},
+        {"-D", Op::sub_d},     {"XD", Op::mul_d},      {":D", Op::div_d},          {"WWD", Op::wwd},  {"TAK", Op::tak},
+        {"BE", Op::block_end}, {"BEA", Op::block_end}, {"BEB", Op::block_end_rlo}, {"UW", Op::and_w}, {"OW", Op::or_w},
+        {"XOW", Op::xor_w},    {"KEW", Op::not_w},     {"KZW", Op::neg_w}};
     static const std::map<std::string, std::pair<Op, int>> compares = {
         {"!=F", {Op::cmp_f, 0}}, {"><F", {Op::cmp_f, 1}}, {">F", {Op::cmp_f, 2}},  {">=F", {Op::cmp_f, 3}},
         {"<F", {Op::cmp_f, 4}},  {"<=F", {Op::cmp_f, 5}}, {"!=D", {Op::cmp_d, 0}}, {"><D", {Op::cmp_d, 1}},
@@ -340,6 +355,33 @@ AwlRun run_awl(const AwlProgram& program, AwlMemory& mem, int open_db, int budge
         break;
       case Op::wwd:
         accu1 = sext16(accu1);
+        break;
+      case Op::and_w:
+        accu1 = (accu2 & accu1) & 0xFFFF;
+        break;
+      case Op::or_w:
+        accu1 = (accu2 | accu1) & 0xFFFF;
+        break;
+      case Op::xor_w:
+        accu1 = (accu2 ^ accu1) & 0xFFFF;
+        break;
+      case Op::not_w:
+        accu1 = ~accu1 & 0xFFFF;
+        break;
+      case Op::neg_w:
+        accu1 = sext16(-b16);
+        break;
+      case Op::shl_w:
+        accu1 = static_cast<std::int32_t>((static_cast<std::uint32_t>(accu1) << ins.address) & 0xFFFFu);
+        break;
+      case Op::shr_w:
+        accu1 = static_cast<std::int32_t>((static_cast<std::uint32_t>(accu1) & 0xFFFFu) >> ins.address);
+        break;
+      case Op::shl_d:
+        accu1 = ins.address >= 32 ? 0 : static_cast<std::int32_t>(static_cast<std::uint32_t>(accu1) << ins.address);
+        break;
+      case Op::shr_d:
+        accu1 = ins.address >= 32 ? 0 : static_cast<std::int32_t>(static_cast<std::uint32_t>(accu1) >> ins.address);
         break;
       case Op::tak:
         std::swap(accu1, accu2);

@@ -10,6 +10,8 @@
 //                      KD 32-bit (AMK)
 //   arithmetic         +F -F xF :F (16 bit), +D -D xD :D (32 bit), WWD (ACCU1 low word -> 32 bit
 //                      signed, AMK from V02.09), TAK (swap ACCU1/ACCU2), ADD KF n
+//   word logic, shifts UW OW XOW (ACCU2 with ACCU1, 16 bit), KEW / KZW (one's / two's complement of
+//                      the low word), SLW / SRW n (0..15, logical, 16 bit), SLD / SRD n (0..32, 32 bit)
 //   compare -> RLO     !=F ><F >F >=F <F <=F and the D forms (ACCU2 against ACCU1)
 //   bit logic          U UN O ON E/A/M byte.bit; = S R A/M byte.bit
 //   jumps              SPA SPB SPBN SPZ SPN SPP SPM =label (within the block)
@@ -45,6 +47,15 @@ struct AwlInstruction {
     div_d,
     wwd,
     tak,
+    and_w,
+    or_w,
+    xor_w,
+    not_w,
+    neg_w,
+    shl_w,
+    shr_w,
+    shl_d,
+    shr_d,
     add_k,
     cmp_f,
     cmp_d,
