@@ -77,7 +77,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     }
   }
   (void)rt.command(amk::DataBlock(34), image);  // RESET SF0
-  cmd.set_dr(1, 6);                              // READ VALUE (XFIPW; an error for the others)
+  cmd.set_dr(1, 6);                             // READ VALUE (XFIPW; an error for the others)
   const auto s2 = rt.command(cmd, image);
   if (s2.error && s2.text.empty()) std::abort();
   return 0;
