@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: MIT
 // AMKASYN SF speed (issue 16; run: bench_amkasyn --benchmark_format=json):
-//   one SF cycle with 8 active SFs (2 VARSYNC, CAM, BINEA, DFKT, 2 DCOPY, ECOPY)
+//   one SF cycle with 8 active SFs (2 VARSYNC, CAM, BINEA, DFKT, 2 DCOPY, ECOPY);
+//   one SF cycle with 8 active SFs of the other types (FGEN -> XFIPW link, FIPW, REGL, IMES, EPOS,
+//   APSF running a 12-statement FB, SIDIFF)
 #include <benchmark/benchmark.h>
 
 #include "hil/controllers/amkasyn/sf_runtime.hpp"
@@ -100,5 +102,86 @@ void BM_SfCycle8Active(benchmark::State& state) {
   }
 }
 BENCHMARK(BM_SfCycle8Active);
+
+void BM_SfCycle8ActiveOtherTypes(benchmark::State& state) {
+  DbStore dbs;
+  DataBlock y(80);  // a 31-point Y table over 20000
+  y.set_dw(0, 32);
+  for (int i = 0; i < 31; ++i) y.set_dd(static_cast<std::size_t>(2 + 2 * i), 300 * i);
+  dbs[16] = y;
+  dbs[20] = DataBlock(8);
+  ProcessImage im;
+  SfRuntime rt(2, dbs);
+  (void)rt.load_fb(10, "L ED 212\nL MD 24\n-D\nWWD\nL KD 30000\nxD\nL KF 2\n:D\nT AD 212\nL ED 212\nT MD 24\nBE\n");
+  (void)rt.init(init(5, 0, 0, 0, 255, 0, 1, 10, 1, 10), im);  // FGEN -> SF link
+  {
+    auto c = cmd(0, 1, 0);
+    c.set_dw(2, 2000).set_dw(3, 2).set_dd(4, 20000).set_dd(6, 500000);
+    (void)rt.command(c, im);
+  }
+  (void)rt.init(init(9, 1, 255, 0, 1, 4, 0, 0, 0, 0, 16), im);  // XFIPW on FGEN's output
+  {
+    auto c = cmd(1, 0, 2);
+    c.set_dw(3, 2).set_dw(4, 1).set_dd(8, 1).set_dd(10, 20000);
+    (void)rt.command(c, im);
+  }
+  (void)rt.init(init(1, 2, 0, 16, 2, 4, 0, 0, 0, 0, 16), im);  // FIPW on the AZ message
+  {
+    auto c = cmd(2, 0, 2);
+    c.set_dw(3, 2).set_dw(4, 1).set_dd(8, 1).set_dd(10, 20000);
+    (void)rt.command(c, im);
+  }
+  (void)rt.init(init(6, 3, 1, 2, 3, 16, 0, 0, 1, 0), im);  // REGL
+  {
+    auto c = cmd(3, 0, 0);
+    c.set_dw(3, 2).set_dw(4, 7).set_dw(6, 512).set_dw(7, 128).set_dw(8, 64).set_dd(10, 1000000).set_dw(12, 1000);
+    c.set_dd(14, 1000000).set_dw(18, 100).set_dd(20, 5000000);
+    (void)rt.command(c, im);
+  }
+  (void)rt.init(init(7, 4, 0, 18, 128, 20, 0, 0, 1, 30), im);  // IMES
+  {
+    auto c = cmd(4, 0, 0);
+    c.set_dd(4, 1000);
+    (void)rt.command(c, im);
+  }
+  (void)rt.init(init(11, 5, 0, 0, 4, 16, 1, 12, 1, 12), im);  // EPOS (modulo, E1 held)
+  {
+    auto c = cmd(5, 0, 16);
+    c.set_dw(3, 2).set_dd(4, 1000).set_dd(6, 600000).set_dd(8, 100000).set_dd(10, 200000).set_dd(12, 10000);
+    (void)rt.command(c, im);
+  }
+  (void)rt.init(init(10, 6, 0, 1, 5, 16, 1, 8, 1, 8), im);  // APSF
+  {
+    auto c = cmd(6, 0, 0);
+    c.set_dw(4, 10).set_dw(5, 20).set_dw(6, 1);
+    (void)rt.command(c, im);
+  }
+  (void)rt.init(init(0, 7, 0, 0, 128, 60, 0, 0, 1, 40), im);  // SIDIFF over AW1..AW8
+  {
+    auto c = cmd(7, 255, 0);
+    c.set_dr(2, 0xFF).set_dr(3, 1);
+    (void)rt.command(c, im);
+  }
+  int active = 0;
+  for (int n = 0; n < 16; ++n) active += rt.state(n) == SfState::active ? 1 : 0;
+  if (active != 8) state.SkipWithError("not all 8 SFs started");
+  im.e[10] = 1;
+  im.e[12] = 1;
+  std::int32_t pos = 0;
+  for (auto _ : state) {
+    pos += 13;
+    im.az[0] += 7 << 16;
+    im.az[1] += 9;
+    if (pos % 1000 < 13) im.az_zero[1].pulse(im.az[1]);
+    for (auto& d : im.aw) {
+      d.position_feedback = pos;
+      d.message32 = pos % 50;
+      d.message16 = static_cast<std::int16_t>(2048 + pos % 100);
+    }
+    rt.cycle(im);
+    benchmark::DoNotOptimize(im.aw[0].swq1);
+  }
+}
+BENCHMARK(BM_SfCycle8ActiveOtherTypes);
 
 }  // namespace

@@ -3,10 +3,15 @@
 // init DB, commanding DB, table DB and input stream must give a status or run cycles, never a
 // crash, hang or exception; a START that failed leaves the slot in RESET with an error text.
 //   bytes: [type][fct][ba][init words 2..9: 16 bytes][command words 2..33: 64 bytes]
-//          [table DB 1: up to 128 bytes][per cycle: E byte, M byte, position step (2 bytes)]...
+//          [table DB 1: up to 128 bytes][APSF only: FB listing, length byte + text]
+//          [per cycle: E byte, M byte, position step (2 bytes)][IMES/EPOS only: pulse byte]...
+// The FB listing goes through the AWL parser (SfRuntime::load_fb as FB DW4); pulse bits feed the
+// zero-pulse latch of AZ message 1..4 (IMES) and the drives' reference latch (EPOS); at the end a
+// READ VALUE (XFIPW) is commanded. (The type-dependent parts keep the older seeds' layout.)
 #include <cstdint>
 #include <cstdlib>
 #include <span>
+#include <string>
 
 #include "hil/controllers/amkasyn/sf_runtime.hpp"
 
@@ -30,10 +35,14 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   cmd.set_dr(0, 0).set_dl(0, fct).set_dr(1, 1).set_dl(1, ba);
   for (std::size_t w = 2; w < 34; ++w) cmd.set_dw(w, word());
   for (std::size_t w = 0; w < 64; ++w) tab.set_dw(w, word());
+  std::string listing;
+  if (type == 10)
+    for (std::size_t n = take(); n > 0 && !in.empty(); --n) listing += static_cast<char>(take());
   amk::DbStore dbs;
   dbs[1] = tab;
   amk::ProcessImage image;
   amk::SfRuntime rt(2, dbs);
+  if (const auto fb = rt.load_fb(cmd.dw(4) & 63, listing); !fb && fb.error().empty()) std::abort();
   const auto s0 = rt.init(init, image);
   if (s0.error && s0.text.empty()) std::abort();
   if (s0.error) return 0;
@@ -54,6 +63,13 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
       d.message16 = static_cast<std::int16_t>(pos);
     }
     image.az[0] = wrap(static_cast<std::uint32_t>(image.az[0]) + static_cast<std::uint32_t>(step) * 65537u);
+    const std::uint8_t pulses = (type == 7 || type == 11) ? take() : 0;
+    for (std::size_t k = 0; k < 4; ++k)
+      if ((pulses >> k) & 1) image.az_zero[k].pulse(image.az[k]);
+    if (pulses & 0x10) {
+      ++image.aw[0].reference_count;
+      image.aw[0].reference_position = pos;
+    }
     rt.cycle(image);
     if (c == 1000) {
       cmd.set_dr(1, 5);  // VALUE NEW in the middle
@@ -61,5 +77,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     }
   }
   (void)rt.command(amk::DataBlock(34), image);  // RESET SF0
+  cmd.set_dr(1, 6);                             // READ VALUE (XFIPW; an error for the others)
+  const auto s2 = rt.command(cmd, image);
+  if (s2.error && s2.text.empty()) std::abort();
   return 0;
 }

@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: MIT
 // The SF scheduler and commanding state machine: FB 207 checks, START / VALUE NEW / RESET rules
 // with their error numbers in MB 232/233, slot order with SF links (a producer's sink read by a
-// higher SF in the same cycle), cycle factors, DCOPY absolute/incremental, DIGDREH, and an SF type
-// hilbridge does not implement being refused at START.
+// higher SF in the same cycle), cycle factors, DCOPY absolute/incremental, DIGDREH, and a START
+// that fails on its tables leaving the SF in RESET with an error naming the type.
 #include <gtest/gtest.h>
 
 #include "sf_fixture.hpp"
@@ -49,7 +49,7 @@ TEST_F(SfTest, CommandStateMachineAndErrorNumbers) {
   EXPECT_TRUE(s.error) << "slot 4 not initialised";
 }
 
-TEST_F(SfTest, UnimplementedTypeIsRefusedAtStart) {
+TEST_F(SfTest, StartWithoutTablesIsRefused) {
   init_ok(Init(1, 0).source(0, 16).sink(1, 4));
   const auto s = rt.command(command(0, 0, 1, 2), image);
   EXPECT_TRUE(s.error);

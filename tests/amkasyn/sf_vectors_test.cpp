@@ -248,17 +248,75 @@ TEST_F(SfTest, CamStaircase) {
   }
 }
 
-TEST_F(SfTest, CamRefusesHysteresisItDoesNotImplement) {
-  dbs[56] = DataBlock(100);
-  init_ok(Init(12, 0).source(1, 5).out(1, 1).tab(0, 56));
-  auto c = command(0, 0, 1, 1);
-  c.set_dw(3, 2).set_dr(6, 1).set_dd(14, 20000).set_dw(16, 5);
-  const auto s = rt.command(c, image);
-  EXPECT_TRUE(s.error);
-  EXPECT_NE(s.text.find("hysteresis"), std::string::npos) << s.text;
+// CAM hysteresis (V02.13): one cam [10000, 11000) with H = 10 x 100 increments, absolute input,
+// through the rules of the manual: positive approach, reversal before and after X_Free, negative
+// approach.
+TEST_F(SfTest, CamHysteresisFollowsTheDirectionRules) {
+  DataBlock t(40);
+  t.set_dd(32, 10000).set_dd(34, 11000);
+  dbs[56] = t;
+  init_ok(Init(12, 0).source(1, 21).out(1, 1).tab(0, 56));
+  auto c = command(0, 0, 1, 0);
+  c.set_dw(3, 2).set_dr(6, 1).set_dw(16, 10);
+  image.aw[0].position_feedback = 9000;
+  start_ok(c);
+  auto at = [&](int x) {  // moves in steps of 100 (or less) to x, returns the track bit
+    while (image.aw[0].position_feedback != x) {
+      const int d = x - image.aw[0].position_feedback;
+      image.aw[0].position_feedback += d > 100 ? 100 : (d < -100 ? -100 : d);
+      cycles(1);
+    }
+    return image.a[1] & 1;
+  };
+  EXPECT_EQ(at(9900), 0);
+  EXPECT_EQ(at(10000), 1) << "positive: on at X_On";
+  EXPECT_EQ(at(9500), 1) << "back: stays 1 down to X_On - H";
+  EXPECT_EQ(at(9000), 1);
+  EXPECT_EQ(at(8999), 0);
+  EXPECT_EQ(at(10500), 1);
+  EXPECT_EQ(at(11000), 0) << "off at X_Off";
+  EXPECT_EQ(at(10500), 0) << "back before X_Free: stays 0 down to X_Off - H";
+  EXPECT_EQ(at(10000), 0);
+  EXPECT_EQ(at(9999), 1);
+  EXPECT_EQ(at(11000), 0);
+  EXPECT_EQ(at(12000), 0) << "X_Free = X_Off + H reached";
+  EXPECT_EQ(at(11500), 0) << "reversal: the negative rules";
+  EXPECT_EQ(at(11000), 0);
+  EXPECT_EQ(at(10999), 1) << "negative: on below X_Off";
+  EXPECT_EQ(at(11500), 1) << "forward again: stays 1 up to X_Off + H";
+  EXPECT_EQ(at(12000), 0);
+  EXPECT_EQ(at(10500), 1);
+  EXPECT_EQ(at(10000), 1);
+  EXPECT_EQ(at(9999), 0) << "off below X_On";
+  EXPECT_EQ(at(10500), 0) << "forward before X_Free (X_On - H): stays 0 up to X_On + H";
+  EXPECT_EQ(at(11000), 1);
+  EXPECT_EQ(at(8900), 0) << "back below X_On - H: X_Free";
+  EXPECT_EQ(at(9500), 0) << "reversal: the positive rules again";
+  EXPECT_EQ(at(10000), 1);
 }
 
-// 6.3 FIPW (the sequence; printing mark control itself is not implemented): BA 98 with a
+TEST_F(SfTest, CamHysteresisRangeIsChecked) {
+  DataBlock t(40);
+  t.set_dd(32, 10000).set_dd(34, 19500);
+  dbs[56] = t;
+  init_ok(Init(12, 0).source(1, 5).out(1, 1).tab(0, 56));
+  auto c = command(0, 0, 1, 1);
+  c.set_dw(3, 2).set_dr(6, 1).set_dd(14, 20000).set_dw(16, 105);  // 10500 >= 20000 - 9500
+  const auto s = rt.command(c, image);
+  EXPECT_TRUE(s.error);
+  EXPECT_NE(s.text.find("must be below 10500"), std::string::npos) << s.text;
+  c.set_dw(16, 104);
+  EXPECT_FALSE(rt.command(c, image).error);
+  // Running on in one direction, the hysteresis never shifts the edges: X_On / X_Off every revolution.
+  for (int x = 100; x <= 3 * 20000; x += 100) {
+    image.aw[0].position_feedback = x;
+    cycles(1);
+    const int p = x % 20000;
+    ASSERT_EQ(image.a[1] & 1, (p >= 10000 && p < 19500) ? 1 : 0) << "x = " << x;
+  }
+}
+
+// 6.3 FIPW (the sequence; its printing mark control: PrintingMark below): BA 98 with a
 // coupling table DB16, working table DB17, decoupling table DB18 over Xme = 20000 from the 32-bit
 // AZ message 1. E8.0 = 1 runs DB16 for one master revolution, then DB17 repeatedly; E8.0 = 0 runs
 // DB18 once from the next table end, then holds.
@@ -314,20 +372,138 @@ TEST_F(SfTest, FipwCyclicTimeModeAndScaling) {
   EXPECT_EQ(image.md(40), 12000);
 }
 
-TEST_F(SfTest, FipwRefusesPrintingMarkControlAndBadTables) {
+TEST_F(SfTest, FipwRefusesABadSyncAddressAndBadTables) {
   DataBlock t(8);
   t.set_dw(0, 3).set_dd(4, 40000);  // |dY| >= 32768
   dbs[20] = t;
   init_ok(Init(1, 0).source(0, 16).sink(129, 40).tab(0, 20));
-  auto c = command(0, 1, 1, 2);
-  c.set_dw(3, 2).set_dw(4, 1).set_dd(8, 1).set_dd(10, 20000);
+  auto c = command(0, 5, 1, 2);
+  c.set_dw(3, 2).set_dw(4, 1).set_dd(8, 1).set_dd(10, 20000).set_dr(7, 6);
   auto s = rt.command(c, image);
   EXPECT_TRUE(s.error);
-  EXPECT_NE(s.text.find("printing mark"), std::string::npos) << s.text;
+  EXPECT_NE(s.text.find("DR7 MD addr. ext. sync. = 6"), std::string::npos) << s.text;
   c.set_dl(0, 0);
   s = rt.command(c, image);
   EXPECT_TRUE(s.error);
   EXPECT_NE(s.text.find("32768"), std::string::npos) << s.text;
+}
+
+// 6.3 with its printing mark control: coupling DB16, working DB17 (Y_end 20000 for the format of
+// 300 mm: s = 20000 / 3000 increments per 0.1 mm), sensor distance 100 mm -> the mark is expected
+// at s x 2000 = 13333 in the working table, valid within s x 200 = 1333; the correction is output
+// over master [5000, 15000) of the next working table; dXM shown in MD 60 (DW26).
+class PrintingMark : public SfTest {
+ protected:
+  PrintingMark() : SfTest(4) {}  // ID 2 = 2 ms (DW3 = 4)
+  std::int32_t at(std::int32_t x) {
+    while (image.az[0] < x) {
+      image.az[0] += 100;
+      cycles(1);
+    }
+    return image.md(40);
+  }
+  void mark(std::int32_t x) {  // the mark passes the sensor at master x (inside the next step)
+    image.az[0] += 100;
+    image.az_zero[0].pulse(x);
+    cycles(1);
+  }
+};
+
+TEST_F(PrintingMark, Vector6_3CorrectsTheWorkingTable) {
+  auto table = [](std::initializer_list<std::int32_t> ys) {
+    DataBlock t(8);
+    t.set_dw(0, static_cast<int>(ys.size()) + 1);
+    std::size_t a = 2;
+    for (auto y : ys) t.set_dd(a, y), a += 2;
+    return t;
+  };
+  dbs[16] = table({0, 2500, 10000});
+  dbs[17] = table({0, 10000, 20000});
+  dbs[18] = table({0, 7500, 10000});
+  init_ok(Init(1, 0).source(0, 16).sink(129, 40).in(1, 8).tab(0, 16).tab(1, 17).tab(2, 18));
+  auto c = command(0, 1, 1, 98);
+  c.set_dw(3, 4).set_dw(4, 3).set_dw(5, 1).set_dd(8, 1).set_dd(10, 20000);
+  c.set_dw(18, 3000).set_dd(20, 1000).set_dw(23, 200).set_dw(24, 5000).set_dw(25, 10000).set_dw(26, 60);
+  start_ok(c);
+  image.e[8] = 1;
+  cycles(1);
+  EXPECT_EQ(at(20000), 10000);  // the coupling table
+  at(33600);
+  mark(33633);  // 13633 into the working table: 300 late
+  EXPECT_EQ(image.md(60), 300);
+  EXPECT_EQ(at(40000), 30000) << "no correction in this period (its window had begun)";
+  EXPECT_EQ(at(45000), 35000);
+  EXPECT_EQ(at(50000), 40000 + 150) << "half of the window";
+  EXPECT_EQ(at(55000), 45000 + 300);
+  EXPECT_EQ(at(60000), 50300);
+  EXPECT_EQ(at(60100), 50400);
+  EXPECT_EQ(image.md(60), 0) << "no mark in the last period";
+  at(75200);
+  mark(75333 + 1500);  // outside the valid range (1333): ignored
+  EXPECT_EQ(image.md(60), 0);
+  EXPECT_EQ(at(80000), 70300);
+  at(93200);
+  mark(93233);  // 100 early (the earlier correction is part of the table's frame now)
+  EXPECT_EQ(image.md(60), -100);
+  EXPECT_EQ(at(105000), 95300) << "the -100 in the next period's window";
+  EXPECT_EQ(at(110000), 100250);
+  EXPECT_EQ(at(115000), 105200);
+  image.e[8] = 0;  // clock out at the table end: the correction stays, the decoupling table runs
+  EXPECT_EQ(at(120000), 110200);
+  EXPECT_EQ(at(140000), 120200);
+  EXPECT_EQ(at(150000), 120200);
+}
+
+TEST_F(SfTest, FipwExternalMasterSyncWaitsForTheZeroPulse) {
+  DataBlock t(8);
+  t.set_dw(0, 4).set_dd(4, 5000).set_dd(6, 10000);
+  dbs[20] = t;
+  init_ok(Init(1, 0).source(0, 16).sink(129, 40).tab(0, 20));
+  auto c = command(0, 4, 1, 2);
+  c.set_dw(3, 2).set_dw(4, 1).set_dd(8, 1).set_dd(10, 20000).set_dw(12, 1000);
+  start_ok(c);
+  for (int i = 0; i < 50; ++i) image.az[0] += 100, cycles(1);
+  EXPECT_EQ(image.md(40), 0) << "nothing before the master's zero pulse";
+  image.az[0] += 100;            // 5100
+  image.az_zero[0].pulse(5050);  // X := offset 1000 at master 5050
+  cycles(1);
+  EXPECT_EQ(image.md(40), 0) << "the table continues from the sink, no jump";
+  while (image.az[0] < 5050 + 9000) image.az[0] += 50, cycles(1);
+  EXPECT_EQ(image.md(40), 5000 - 525) << "X = 10000: y 5000 - y(X at the first cycle = 1050) = 525";
+}
+
+// Printing mark control with the external-master sync: the master's zero pulse comes on a second
+// input (AZ message 2, its counter 777 ahead of the first), which SF0 (DCOPY) copies into MD 40
+// with its latch; SF1 (FIPW, DR7 = 40) starts the table at that pulse and corrects on the marks of
+// its own input (AZ message 1).
+TEST_F(SfTest, FipwPrintingMarkWithTheExternalSyncThroughMd) {
+  DataBlock t(8);
+  t.set_dw(0, 4).set_dd(4, 10000).set_dd(6, 20000);
+  dbs[17] = t;
+  init_ok(Init(0, 0).source(0, 18).sink(129, 40));
+  start_ok(command(0, 1, 1, 0));
+  init_ok(Init(1, 1).source(0, 16).sink(129, 60).tab(0, 17));
+  auto c = command(1, 5, 1, 2);
+  c.set_dw(3, 2).set_dw(4, 1).set_dd(8, 1).set_dd(10, 20000).set_dr(7, 40);
+  c.set_dw(18, 3000).set_dd(20, 1000).set_dw(26, 64);  // the mark expected at 13333
+  start_ok(c);
+  image.az[1] = 777;
+  auto step = [&] {
+    image.az[0] += 50;
+    image.az[1] += 50;
+    cycles(1);
+  };
+  for (int i = 0; i < 100; ++i) step();
+  EXPECT_EQ(image.md(60), 0) << "nothing before the master's zero pulse";
+  image.az_zero[1].pulse(image.az[1] + 25);  // at master 5025 (counter 2: 5802)
+  step();                                    // master 5050: X = 25 from the pulse
+  EXPECT_EQ(image.md(60), 0) << "the table starts where the slave is";
+  while (image.az[0] < 5025 + 13600) step();
+  image.az_zero[0].pulse(5025 + 13633);  // the mark: 300 late
+  step();
+  EXPECT_EQ(image.md(64), 300);
+  while (image.az[0] < 5025 + 20000) step();
+  EXPECT_EQ(image.md(60), 20025 - 25 + 300) << "X = 20025 from the pulse, the slave started at X = 25";
 }
 
 // FIPZ timing: a 1 s table (Te = 2000 x 0.5 ms) at a 2 ms SF cycle takes exactly 500 cycles;

@@ -122,7 +122,8 @@ TEST_F(Amk, Catalogues) {
 // The profile accepts every example block the manual prints (issue 16): FIPZ with unused table
 // cycle times 0, XFIPW with DD18 = 0, EPOS with DD14 = 0 - and still refuses what they would hide.
 TEST_F(Amk, ManualExamplesWithZeroedUnusedFieldsAreValid) {
-  for (const char* f : {"amk_fipz_unused_tables.txt", "amk_xfipw_dd18_zero.txt", "amk_epos_dd14_zero.txt"})
+  for (const char* f :
+       {"amk_fipz_unused_tables.txt", "amk_xfipw_dd18_zero.txt", "amk_epos_dd14_zero.txt", "amk_apsf_speed.txt"})
     for (const auto& p : check(read(f))) ADD_FAILURE() << f << ": " << p.describe();
   // A table in use without a cycle time is still an error.
   auto fipz = read("amk_fipz_unused_tables.txt");

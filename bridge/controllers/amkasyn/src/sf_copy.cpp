@@ -21,6 +21,11 @@ class Copy final : public FastFunction {
         if (init.sink.address == 0) return start_error("DCOPY", "sink address", 0, "DCOPY needs a sink");
         acc_ = io.sink_now;  // incremental copy sums from the sink value at START
         prev_lo_ = static_cast<std::int16_t>(io.source.value & 0xFFFF);
+        // A 32-bit AZ message copied into an MD takes its zero-pulse latch along.
+        latch_from_ = init.source.address == 0 && init.source.offset >= 16 && init.source.offset <= 22
+                          ? (init.source.offset - 16) / 2
+                          : -1;
+        latch_to_ = init.sink.address == 129 && ba_ == 0 ? init.sink.offset / 4 : -1;
         return std::nullopt;
       case 2:  // ECOPY
         if (ba_ > 3) return start_error("ECOPY", "DL1 BA", ba_, "bit0/bit1 select parameter copying: 0..3");
@@ -52,6 +57,9 @@ class Copy final : public FastFunction {
       case 1:
         if (ba_ == 0) {
           io.sink = io.source.value;
+          if (latch_from_ >= 0 && latch_to_ >= 0)
+            io.image.md_zero[static_cast<std::size_t>(latch_to_)] =
+                io.image.az_zero[static_cast<std::size_t>(latch_from_)];
         } else {
           const auto lo = static_cast<std::int16_t>(io.source.value & 0xFFFF);
           acc_ += static_cast<std::int16_t>(static_cast<std::uint16_t>(lo - prev_lo_));
@@ -91,6 +99,11 @@ class Copy final : public FastFunction {
         const std::size_t b = static_cast<std::size_t>(6 * n);
         m.threshold = tab0->dw(b);
         if (m.threshold < 0) return start_error("SIDIFF", "Tab0 threshold", m.threshold, "0..32767 increments");
+        const std::int64_t div = tab0->dd(b + 2), mul = tab0->dd(b + 4);
+        if (div != 0 && div < 65536)
+          return start_error("SIDIFF", "Tab0 command value divider", div, "0 (= 1) or 2^16..2^31-1 (as ID 32892)");
+        m.divider = div == 0 ? 1 : div;
+        m.multiplier = mul == 0 ? 1 : mul;
       }
     }
     return std::nullopt;
@@ -103,7 +116,12 @@ class Copy final : public FastFunction {
       if (((aw_mask_ >> n) & 1) == 0) continue;
       auto& m = mon_[static_cast<std::size_t>(n)];
       const std::int32_t raw = io.image.aw[static_cast<std::size_t>(n)].message32;  // ID 32786 = 32824
-      const std::int32_t e = sixteen_ ? static_cast<std::int16_t>(raw & 0xFFFF) : raw;
+      const std::int32_t fe = sixteen_ ? static_cast<std::int16_t>(raw & 0xFFFF) : raw;
+      // Remove the part of the following error the SAK lead of the commanding FIPW/FIPZ/VARSYNC
+      // put there (command units, through the drive's synchronous ratio).
+      const std::int64_t sak = io.image.aw[static_cast<std::size_t>(n)].sak_part;
+      const std::int64_t part = sak * m.multiplier / m.divider;
+      const auto e = static_cast<std::int64_t>(fe) - part;
       m.sum += e - m.hist[m.i];
       m.hist[m.i] = e;
       m.i = (m.i + 1) % mean_n_;
@@ -128,9 +146,10 @@ class Copy final : public FastFunction {
     std::int64_t sum = 0;
     int i = 0, filled = 0, count = 0;
     int threshold = 100;
+    std::int64_t divider = 1, multiplier = 1;
     bool bit = false;
   };
-  int fct_ = 0, ba_ = 0;
+  int fct_ = 0, ba_ = 0, latch_from_ = -1, latch_to_ = -1;
   std::int64_t acc_ = 0;
   std::int16_t prev_lo_ = 0;
   std::int32_t value0_ = 0, value1_ = 0;

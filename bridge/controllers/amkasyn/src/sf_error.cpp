@@ -100,6 +100,10 @@ std::optional<SfFault> FastFunction::value_new(const DataBlock&, SfIo&) {
   return SfFault{SfError::value_new_not_active, "this SF type does not accept VALUE NEW (manual §2.3 code table)"};
 }
 
+std::expected<std::int32_t, SfFault> FastFunction::read_value(const DataBlock&, const InitDb&, SfIo&) {
+  return std::unexpected(SfFault{SfError::start_invalid, "READ VALUE: only XFIPW has it (manual §2.3 code table)"});
+}
+
 void FastFunction::reset(SfIo&) noexcept {}
 
 SfFault start_error(const char* sf, const char* field, long long value, const char* rule) {

@@ -34,6 +34,7 @@ class Fipz final : public FastFunction {
     k_ = cmd.dd(8);
     if (k_ < 1 || k_ > 32767) return start_error("FIPZ", "DD8 multiplication factor", k_, "+1..+32767");
     if (init.sink.address == 0) return start_error("FIPZ", "sink address", 0, "FIPZ needs a sink");
+    drive_ = sink_drive(init);
     tables_.clear();
     for (int t = 0; t < m; ++t) {
       const int te = cmd.dw(static_cast<std::size_t>(10 + t));
@@ -97,12 +98,12 @@ class Fipz final : public FastFunction {
     }
     const double raw = cam_.slave_position() * static_cast<double>(k_) / static_cast<double>(1 << shift_);
     const std::int64_t y = base_ + std::llround(raw);
-    io.sink = static_cast<std::int32_t>(sak_lead(y, y_prev_, sak_));
+    io.sink = static_cast<std::int32_t>(apply_sak(io, drive_, y, y_prev_, sak_));
     y_prev_ = y;
   }
 
  private:
-  int ba_ = 16, sak_ = 0, shift_ = 0;
+  int ba_ = 16, sak_ = 0, drive_ = -1, shift_ = 0;
   std::int64_t k_ = 1;
   std::vector<hil::motion::CamTable> tables_;
   hil::motion::CamCoupling cam_{nullptr};

@@ -37,6 +37,19 @@ SfStatus SfRuntime::init(const DataBlock& init_db, ProcessImage& image) {
   return finish(image, {});
 }
 
+void SfRuntime::refresh_tables(Slot& slot) noexcept {
+  for (std::size_t k = 0; k < 8; ++k) {  // a table DB may have been created after FB 207
+    const auto it = slot.init->tables[k] ? dbs_->find(slot.init->tables[k]) : dbs_->end();
+    slot.tables[k] = it == dbs_->end() ? nullptr : &it->second;
+  }
+}
+
+SfStatus SfRuntime::command(DataBlock& cmd, ProcessImage& image) {
+  SfStatus s = command(static_cast<const DataBlock&>(cmd), image);
+  if (read_value_) cmd.set_dd(32, *read_value_);
+  return s;
+}
+
 SfIo SfRuntime::make_io(Slot& slot, ProcessImage& image, const ProcessImage& snapshot) noexcept {
   const InitDb& in = *slot.init;
   SfIo io(image);
@@ -55,6 +68,9 @@ SfIo SfRuntime::make_io(Slot& slot, ProcessImage& image, const ProcessImage& sna
   }
   io.cycle_half_ms = id2_ * in.cycle_factor;
   io.tables = &slot.tables;
+  io.dbs = dbs_;
+  io.fbs = &fbs_;
+  io.options = &options_;
   return io;
 }
 
@@ -75,6 +91,7 @@ void SfRuntime::apply(Slot& slot, SfIo& io, ProcessImage& image) noexcept {
 SfStatus SfRuntime::command(const DataBlock& cmd, ProcessImage& image) {
   const int n = cmd.dr(0);
   const int code = cmd.dr(1);
+  read_value_.reset();
   if (n >= max_sf)
     return finish(image, {true, SfError::start_invalid, fmt::format("FB 208: DR0 SF number = {}: must be 0..15", n)});
   Slot& slot = slots_[static_cast<std::size_t>(n)];
@@ -99,10 +116,7 @@ SfStatus SfRuntime::command(const DataBlock& cmd, ProcessImage& image) {
         return finish(image, {true, SfError::start_invalid,
                               fmt::format("START for SF{}: SF type {} ({}) is not implemented by hilbridge", n,
                                           static_cast<int>(slot.init->type), to_string(slot.init->type))});
-      for (std::size_t k = 0; k < 8; ++k) {  // refresh: a table DB may have been created after FB 207
-        const auto it = slot.init->tables[k] ? dbs_->find(slot.init->tables[k]) : dbs_->end();
-        slot.tables[k] = it == dbs_->end() ? nullptr : &it->second;
-      }
+      refresh_tables(slot);
       if (auto f = slot.sf->start(cmd, *slot.init, io))
         return finish(image, {true, f->code, fmt::format("SF{} {}", n, f->text)});
       apply(slot, io, image);
@@ -116,9 +130,20 @@ SfStatus SfRuntime::command(const DataBlock& cmd, ProcessImage& image) {
       if (auto f = slot.sf->value_new(cmd, io))
         return finish(image, {true, f->code, fmt::format("SF{} {}", n, f->text)});
       return finish(image, {});
-    case 6:
-      return finish(image, {true, SfError::start_invalid,
-                            fmt::format("READ VALUE for SF{}: only XFIPW has it, and XFIPW is not implemented", n)});
+    case 6: {  // READ VALUE: XFIPW, only in RESET
+      if (!xfipw)
+        return finish(
+            image, {true, SfError::start_invalid,
+                    fmt::format("READ VALUE for SF{}: only XFIPW has it (SF type {})", n, to_string(slot.init->type))});
+      if (slot.active)
+        return finish(image, {true, SfError::xfipw_not_reset,
+                              fmt::format("READ VALUE for SF{} while it is active: RESET it first", n)});
+      refresh_tables(slot);
+      auto v = slot.sf->read_value(cmd, *slot.init, io);
+      if (!v) return finish(image, {true, v.error().code, fmt::format("SF{} {}", n, v.error().text)});
+      read_value_ = *v;
+      return finish(image, {});
+    }
     default:
       return finish(
           image, {true, SfError::start_invalid,
@@ -130,14 +155,28 @@ SfStatus SfRuntime::command(const DataBlock& cmd, ProcessImage& image) {
 void SfRuntime::cycle(ProcessImage& image) noexcept {
   snapshot_ = image;  // process data copied once: every SF sees the same inputs
   for (auto& d : image.aw) d.swq1_written = d.swq2_written = false;
-  for (auto& slot : slots_) {
+  for (std::size_t n = 0; n < slots_.size(); ++n) {
+    Slot& slot = slots_[n];
     if (!slot.active || !slot.sf) continue;
     if (tick_ % slot.init->cycle_factor != 0) continue;
     SfIo io = make_io(slot, image, snapshot_);
     slot.sf->step(io);
+    if (io.fault) {  // a running time error: the SF stops, the error stays until commanded again
+      slot.active = false;
+      (void)finish(image, {true, io.fault->code, fmt::format("SF{} {}", n, io.fault->text)});
+      continue;
+    }
     apply(slot, io, image);
   }
   ++tick_;
+}
+
+std::expected<void, std::string> SfRuntime::load_fb(int number, std::string_view listing) {
+  if (number < 0 || number > 63) return std::unexpected(fmt::format("FB {}: the number must be 0..63", number));
+  auto p = parse_awl(listing);
+  if (!p) return std::unexpected(fmt::format("FB {}: {}", number, p.error()));
+  fbs_[number] = std::move(*p);
+  return {};
 }
 
 bool SfRuntime::owns_output_byte(int byte, bool flag_area) const noexcept {
@@ -164,12 +203,24 @@ std::unique_ptr<FastFunction> make_fast_function(SfType type) {
       return make_stdfkt();
     case SfType::dfkt:
       return make_dfkt();
+    case SfType::fgen:
+      return make_fgen();
+    case SfType::regl:
+      return make_regl();
+    case SfType::imes:
+      return make_imes();
     case SfType::binea:
       return make_binea();
+    case SfType::xfipw:
+      return make_xfipw();
+    case SfType::epos:
+      return make_epos();
+    case SfType::apsf:
+      return make_apsf();
     case SfType::cam:
       return make_cam();
     default:
-      return nullptr;  // FGEN, REGL, IMES, XFIPW, APSF, EPOS: not implemented (docs/amkasyn.md)
+      return nullptr;  // not an SF type (InitDb::parse refuses it)
   }
 }
 

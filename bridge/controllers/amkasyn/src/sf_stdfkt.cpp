@@ -20,6 +20,13 @@ std::int64_t sak_lead(std::int64_t y, std::int64_t y_prev, int sak) noexcept {
   return y + lead;
 }
 
+std::int64_t apply_sak(SfIo& io, int drive, std::int64_t y, std::int64_t y_prev, int sak) noexcept {
+  const std::int64_t out = sak_lead(y, y_prev, sak);
+  if (drive >= 0 && drive < 8)
+    io.image.aw[static_cast<std::size_t>(drive)].sak_part = static_cast<std::int32_t>(out - y);
+  return out;
+}
+
 namespace {
 
 class StdFkt final : public FastFunction {
@@ -39,6 +46,7 @@ class StdFkt final : public FastFunction {
     sak_ = cmd.dw(2);
     if (sak_ < 0) return start_error("VARSYNC", "DW2 SAK", sak_, "0 (off) or 1..32767");
     if (init.sink.address == 0) return start_error("VARSYNC", "sink address", 0, "VARSYNC needs a sink (SWQ1/SWQ2)");
+    drive_ = sink_drive(init);
     if (ba_ == 3) {
       if (cmd.dw(3) != io.cycle_half_ms)
         return start_error("VARSYNC", "DW3 SF cycle time", cmd.dw(3), "must equal ID 2 (0.5 ms units)");
@@ -72,7 +80,7 @@ class StdFkt final : public FastFunction {
     }
     gear_.update(master);
     const std::int64_t y = gear_.slave_inc();
-    io.sink = static_cast<std::int32_t>(sak_lead(y, y_prev_, sak_));
+    io.sink = static_cast<std::int32_t>(apply_sak(io, drive_, y, y_prev_, sak_));
     y_prev_ = y;
   }
 
@@ -136,7 +144,7 @@ class StdFkt final : public FastFunction {
     io.a(1, n_s_ == 0);
   }
 
-  int fct_ = 0, ba_ = 0, sak_ = 0;
+  int fct_ = 0, ba_ = 0, sak_ = 0, drive_ = -1;
   std::array<int, 8> m_{};
   int word_ = 0;
   bool from_ew_ = false;

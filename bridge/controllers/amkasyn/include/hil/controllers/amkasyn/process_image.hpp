@@ -30,12 +30,37 @@ struct DriveChannels {
   std::int32_t position_feedback = 0;               ///< source offsets 21 (32-bit) and 5 (low word)
   std::int32_t message32 = 0;  ///< Config-AW message32 (ID 32786): offsets 19 (32-bit), 3 (low word)
   std::int16_t message16 = 0;  ///< Config-AW message16 (ID 32785): offset 2
+  /// The drive's reference (zero-pulse) latch: pulses seen so far and the position feedback at
+  /// the last one (EPOS substitutional positioning, "continuous homing").
+  /// The SAK lead the SF commanding this drive added to its command in its last cycle (command
+  /// units); SIDIFF subtracts it from the drive's following error.
+  std::int32_t sak_part = 0;
+  std::uint32_t reference_count = 0;
+  std::int32_t reference_position = 0;
+};
+
+/// The zero-pulse (reference) input of a counter behind an AZ message (X32 or an AZ-IG1 channel):
+/// pulses seen so far and the 32-bit counter value latched at the last one. What the 32-bit AZ
+/// message (source offsets 16..22) carries besides the count (manual: "including the reference
+/// pulse"); read by IMES, FIPW printing mark control and external-master sync.
+struct ZeroPulseLatch {
+  std::uint32_t count = 0;
+  std::int32_t position = 0;
+  /// A pulse at `counter_value` (for the adapter and tests).
+  void pulse(std::int32_t counter_value) noexcept {
+    ++count;
+    position = counter_value;
+  }
 };
 
 struct ProcessImage {
   std::array<std::uint8_t, 256> e{}, a{}, m{};
-  std::array<DriveChannels, 8> aw{};         ///< AW1..AW8
-  std::array<std::int32_t, 4> az{};          ///< AZ messages 1..4 (32-bit counters)
+  std::array<DriveChannels, 8> aw{};        ///< AW1..AW8
+  std::array<std::int32_t, 4> az{};         ///< AZ messages 1..4 (32-bit counters)
+  std::array<ZeroPulseLatch, 4> az_zero{};  ///< their zero-pulse inputs
+  /// The zero-pulse latch that travels with a 32-bit AZ message a DCOPY copies into MD 4n (the
+  /// counter in MD 4n, the latch here; FIPW/XFIPW "MD addr. ext. sync." DR7).
+  std::array<ZeroPulseLatch, 32> md_zero{};
   std::array<std::int32_t, 4> analog_out{};  ///< AA1..AA4 (10000 = end value)
 
   [[nodiscard]] bool bit(const std::array<std::uint8_t, 256>& area, int byte, int bit_no) const noexcept {

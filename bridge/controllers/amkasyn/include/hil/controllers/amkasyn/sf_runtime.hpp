@@ -16,6 +16,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <string_view>
 
 #include "hil/controllers/amkasyn/fast_function.hpp"
 
@@ -39,11 +40,22 @@ class SfRuntime {
   SfStatus init(const DataBlock& init_db, ProcessImage& image);
   /// FB 208 with a commanding DB (DR0 = SF number, DR1 = code).
   SfStatus command(const DataBlock& cmd, ProcessImage& image);
-  /// One drive cycle.
+  /// The same; READ VALUE also writes its output value into DD32 of `cmd`, as FB 208 does.
+  SfStatus command(DataBlock& cmd, ProcessImage& image);
+  /// One drive cycle. An SF that reports a running time error (APSF) stops: RESET state, MB 232
+  /// error bit and MB 233 = its error number, status() says what.
   void cycle(ProcessImage& image) noexcept;
+  /// Loads (or replaces) FB `number` (0..63) from its AWL listing, for APSF (awl.hpp). A started
+  /// APSF keeps the FB it was started with.
+  std::expected<void, std::string> load_fb(int number, std::string_view listing);
 
   [[nodiscard]] SfState state(int sf) const noexcept;
   [[nodiscard]] const SfStatus& status() const noexcept { return status_; }
+  /// The decisions where the manual is ambiguous; they take effect at the next START.
+  void set_options(const SfOptions& o) noexcept { options_ = o; }
+  [[nodiscard]] const SfOptions& options() const noexcept { return options_; }
+  /// The output value of the last command if it was a successful READ VALUE (DD32).
+  [[nodiscard]] std::optional<std::int32_t> read_value() const noexcept { return read_value_; }
   [[nodiscard]] std::int32_t link(int sf) const noexcept { return links_[static_cast<std::size_t>(sf & 15)]; }
   /// Output bytes written by SFs (excluded from the PLC's PAA update): bit per byte of A (or M).
   [[nodiscard]] bool owns_output_byte(int byte, bool flag_area) const noexcept;
@@ -58,6 +70,7 @@ class SfRuntime {
     bool active = false;
   };
   SfStatus finish(ProcessImage& image, SfStatus s);
+  void refresh_tables(Slot& slot) noexcept;
   SfIo make_io(Slot& slot, ProcessImage& image, const ProcessImage& snapshot) noexcept;
   void apply(Slot& slot, SfIo& io, ProcessImage& image) noexcept;
 
@@ -66,6 +79,9 @@ class SfRuntime {
   std::array<Slot, max_sf> slots_{};
   std::array<std::int32_t, max_sf> links_{};
   SfStatus status_{};
+  std::optional<std::int32_t> read_value_;
+  FbStore fbs_;
+  SfOptions options_{};
   std::uint64_t tick_ = 0;
   ProcessImage snapshot_{};
 };

@@ -25,6 +25,22 @@ std::unique_ptr<FastFunction> make_fipz();
 std::unique_ptr<FastFunction> make_stdfkt();
 /// SF DFKT (type 4): speed function tables.
 std::unique_ptr<FastFunction> make_dfkt();
+/// SF FGEN (type 5): reference input variable generator (continuous / sequence, internal /
+/// external velocity, override, 2 accelerations, feedback zeroing, position monitoring).
+std::unique_ptr<FastFunction> make_fgen();
+/// SF REGL (type 6): PID controller with switches S1..S3, feed-forward, limits and external sync.
+std::unique_ptr<FastFunction> make_regl();
+/// SF IMES (type 7): pulse distance measurement on a counter's zero-pulse input.
+std::unique_ptr<FastFunction> make_imes();
+/// SF XFIPW (type 9): extended function interpolator (Y and XY tables, table set switch-over,
+/// retriggering, working table cycles, setting on, READ VALUE); without printing mark control and
+/// external sync (refused).
+std::unique_ptr<FastFunction> make_xfipw();
+/// SF APSF (type 10): a user AWL FB (the subset of awl.hpp) every SF cycle with the SF-PAE/PAA.
+std::unique_ptr<FastFunction> make_apsf();
+/// SF EPOS (type 11): extended positioning (relative, retrigger, modulo, substitutional on the
+/// drive's reference latch), velocity and acceleration override, stop.
+std::unique_ptr<FastFunction> make_epos();
 /// SF BINEA (type 8): table-based cam controller.
 std::unique_ptr<FastFunction> make_binea();
 /// SF CAM (type 12): on/off cam controller (without hysteresis: START refuses H != 0).
@@ -37,5 +53,11 @@ std::unique_ptr<FastFunction> make_cam();
 /// The SAK lead applied to a set-point: out = y + SAK/128 x (y - y_prev) (SAK/128 cycles of
 /// velocity lead; [inferred], digest §2.1), rounded half away from zero.
 [[nodiscard]] std::int64_t sak_lead(std::int64_t y, std::int64_t y_prev, int sak) noexcept;
+/// The drive (0..7) an SF's sink commands (SWQ1/SWQ2 of AW1..AW8), or -1.
+[[nodiscard]] inline int sink_drive(const InitDb& init) noexcept {
+  return init.sink.address >= 1 && init.sink.address <= 8 ? init.sink.address - 1 : -1;
+}
+/// sak_lead(), and the lead recorded on the commanded drive (DriveChannels::sak_part) for SIDIFF.
+std::int64_t apply_sak(SfIo& io, int drive, std::int64_t y, std::int64_t y_prev, int sak) noexcept;
 
 }  // namespace hil::controllers::amkasyn
