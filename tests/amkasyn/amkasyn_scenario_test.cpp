@@ -82,8 +82,8 @@ TEST(AmkasynScenario, RefusedStartIsADeviceErrorOfTheRun) {
 period: 1ms
 controller:
   device: amkasyn-sf
-  parameters: amkasyn-fipw-printing-mark-sf0.txt
-  tables: "16=amkasyn-fipw-db16.txt, 17=amkasyn-fipw-db17.txt, 18=amkasyn-fipw-db18.txt"
+  parameters: amkasyn-fipw-sf0.txt
+  tables: "16=amkasyn-fipw-refused-db16.txt, 17=amkasyn-fipw-db17.txt, 18=amkasyn-fipw-db18.txt"
   cycle: 2ms
   az1: M
   aw1: S
@@ -101,8 +101,8 @@ program:
   EXPECT_EQ(e.axis, "S");
   EXPECT_EQ(e.category, "amkasyn-sf.sf_status");
   EXPECT_EQ(e.code, "1");
-  EXPECT_NE(e.text.find("DL0 fct = 1"), std::string::npos) << e.text;
-  EXPECT_NE(e.text.find("amkasyn-fipw-printing-mark-sf0.txt"), std::string::npos) << e.text;
+  EXPECT_NE(e.text.find("Tab0 value difference = 40000"), std::string::npos) << e.text;
+  EXPECT_NE(e.text.find("amkasyn-fipw-sf0.txt"), std::string::npos) << e.text;
 }
 
 }  // namespace

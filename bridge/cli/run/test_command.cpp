@@ -125,12 +125,13 @@ int test_command(Context& ctx, const TestArgs& args) {
                  to_seconds(r.simulated), o.wall_s);
       for (const auto& e : r.expectations)
         if (!e.passed || args.verbose)
-          fmt::print(out, "  {} axis {}: {}{}\n", e.passed ? "pass" : "FAIL", e.axis, e.description,
+          fmt::print(out, "  {} {}: {}{}\n", e.passed ? "pass" : "FAIL", e.subject(), e.description,
                      e.passed ? ""
                               : fmt::format("\n       expected {}, {} ({}:{} {})", e.description, e.detail, o.file,
                                             e.line, e.path));
       for (const auto& f : r.failures)
-        if (!f.starts_with("axis ") || f.find(": expected ") == std::string::npos) fmt::print(out, "  FAIL {}\n", f);
+        if ((!f.starts_with("axis ") || f.find(": expected ") == std::string::npos) && !f.starts_with("I/O: expected "))
+          fmt::print(out, "  FAIL {}\n", f);  // expectation failures were printed above, with their line
       if (r.cut_off && r.cut_off_expected) fmt::print(out, "  note: {} (cut_off: expected)\n", *r.cut_off);
       for (const auto& w : r.warnings) fmt::print(out, "  warning: {}\n", w);
       if (r.ok) ++passed;
