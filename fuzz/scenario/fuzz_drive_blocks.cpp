@@ -51,7 +51,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     exercise(drive, clock);
   } else {
     hil::RunEnvironment env{clock, true, nullptr, "fuzz.yaml", std::chrono::milliseconds(1), false, {}};
-    env.verify_steps = true;
+    env.verify_edge_streams = true;
     hil::drives::stepdir::StepDirTransportFactory factory;
     auto d = factory.make_drive("x", node, env);
     if (!d) {

@@ -298,7 +298,7 @@ class EnvProbe final : public hil::TransportFactory {
   std::expected<hil::DrivePtr, hil::ConfigError> make_drive(const std::string& axis, const YAML::Node& node,
                                                             hil::RunEnvironment& env) override {
     seen_.push_back(fmt::format("{} virtual={} verify={} period={} file={} io={}", axis, env.virtual_time,
-                                env.verify_steps, env.period.count(), env.source_file, env.io != nullptr));
+                                env.verify_edge_streams, env.period.count(), env.source_file, env.io != nullptr));
     YAML::Node plain = YAML::Clone(node);
     plain["transport"] = "sim";
     return sim_->make_drive(axis, plain, env);

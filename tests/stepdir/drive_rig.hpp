@@ -18,7 +18,7 @@ struct DriveRig {
   hil::Duration period = std::chrono::milliseconds(1);
 
   explicit DriveRig(const std::string& yaml) {
-    env.verify_steps = true;
+    env.verify_edge_streams = true;
     auto node = YAML::Load(yaml);
     auto d = factory.make_drive("x", node, env);
     if (!d) {

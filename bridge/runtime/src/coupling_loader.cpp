@@ -5,6 +5,10 @@
 #include <algorithm>
 #include <numeric>
 
+#include <fmt/format.h>
+
+#include "hil/runtime/scenario_loader.hpp"
+
 namespace hil::runtime::detail {
 namespace {
 

@@ -2,12 +2,14 @@
 #pragma once
 // Device kinds of the `io_links:` entries, loaded apart from the rest of the scenario loader
 // (one function per kind's device map and one per bit). Internal to the loader; errors are
-// LoadFailure (file, line, key path, what was expected).
+// hil::yaml::Failure (file, line, column, key path, what was expected).
 
+#include "hil/config/yaml_field.hpp"
 #include "hil/runtime/scenario.hpp"
-#include "yaml_reader.hpp"
 
 namespace hil::runtime::detail {
+
+using yaml::Field;  // the one YAML-reading idiom (hil::config)
 
 /// `modbus: {bus, unit, poll, timeout, stale_after, listen, status}`.
 ModbusLinkDevice load_modbus_device(const Field& m);

@@ -9,17 +9,18 @@
 #include <fstream>
 #include <sstream>
 
+#include <fmt/format.h>
+
 #include "coupling_loader.hpp"
+#include "hil/config/yaml_field.hpp"
 #include "hil/core/duration_text.hpp"
 #include "hil/core/text_file.hpp"
 #include "io_link_loader.hpp"
-#include "yaml_reader.hpp"
 
 namespace hil::runtime {
 namespace {
 
-using detail::Field;
-using detail::LoadFailure;
+using yaml::Field;
 
 constexpr int max_parallel_depth = 4;
 
@@ -37,7 +38,7 @@ class Loader {
     Scenario s;
     s.file = file_;
     s.document = root;
-    const Field top(file_, root, "", YAML::Mark{});
+    const Field top(root, yaml::Where{file_, ""}, YAML::Mark{});
     if (!root.IsMap())
       top.fail(fmt::format("a scenario is a map with 'machine:' and 'program:', got {}", top.describe()));
     top.expect_map({"name", "description", "period", "duration", "cut_off", "timeout", "realtime", "controller",
@@ -333,8 +334,8 @@ class Loader {
       link.inputs = bits("inputs", true, load);
       link.outputs = bits("outputs", false, load);
     } else if (kind == "modbus") {
-      link.device = load_modbus_device(f.child("modbus"));
-      const auto load = [&](const Field& bit, bool input) { return load_modbus_bit(bit, input); };
+      link.device = detail::load_modbus_device(f.child("modbus"));
+      const auto load = [&](const Field& bit, bool input) { return detail::load_modbus_bit(bit, input); };
       link.inputs = bits("inputs", true, load);
       link.outputs = bits("outputs", false, load);
     }
@@ -891,14 +892,8 @@ std::expected<Scenario, ConfigError> parse_scenario(std::string_view text, const
                                        e.mark.column >= 0 ? e.mark.column + 1 : 0, "",
                                        fmt::format("not valid YAML: {}", e.msg)});
   }
-  try {
-    return Loader(file_name).load(root);
-  } catch (const LoadFailure& f) {
-    return std::unexpected(f.error);
-  } catch (const YAML::Exception& e) {  // defensive: a yaml-cpp accessor we did not guard
-    return std::unexpected(ConfigError{file_name, e.mark.line >= 0 ? e.mark.line + 1 : 0,
-                                       e.mark.column >= 0 ? e.mark.column + 1 : 0, "", e.msg});
-  }
+  // A Field throws yaml::Failure inside the loader; read_document turns it into the expected.
+  return yaml::read_document(file_name, [&] { return Loader(file_name).load(root); });
 }
 
 std::expected<Scenario, ConfigError> load_scenario(const std::filesystem::path& file) {

@@ -38,7 +38,7 @@ StepDirTransportFactory::~StepDirTransportFactory() = default;
 std::expected<DrivePtr, ConfigError> StepDirTransportFactory::make_drive(const std::string& axis_name,
                                                                          const YAML::Node& drive_node,
                                                                          RunEnvironment& env) {
-  verify_ = verify_ || env.verify_steps;
+  verify_ = verify_ || env.verify_edge_streams;
   auto cfg = parse_stepdir_config(drive_node, hil::yaml::Where{env.source_file, env.drive_path(axis_name)});
   if (!cfg) return std::unexpected(cfg.error());
   auto ramp = Ip247Ramp::make(cfg->ramp, cfg->timing.min_period_ns());

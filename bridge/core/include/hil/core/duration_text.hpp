@@ -15,12 +15,13 @@ namespace hil {
 /// The units a duration may be written in, for messages: "ns, us, ms, s or min".
 inline constexpr std::string_view k_duration_units = "ns, us, ms, s or min";
 
-/// `text` -> Duration. A number without unit is read in `bare_unit` ("s" in scenario files; the
-/// old unit of a CLI option). nullopt when malformed, an unknown unit, negative, not finite or
+/// `text` -> Duration. A number without unit is read in `bare_unit` ("s" in scenario files; an
+/// option's old unit on the command line). nullopt when malformed, an unknown unit, negative, not finite or
 /// longer than ten days. Rounds to the nanosecond (100us is 100000ns, not 99999ns).
 [[nodiscard]] std::optional<Duration> parse_duration_text(std::string_view text, std::string_view bare_unit = "s");
 
-/// True when `text` is a bare number (no unit after it): what the CLI warns about as deprecated.
+/// True when `text` is a bare number (no unit after it): what a command-line option warns about as
+/// deprecated.
 [[nodiscard]] bool is_bare_number(std::string_view text);
 
 }  // namespace hil

@@ -1,8 +1,9 @@
 // SPDX-License-Identifier: MIT
 #pragma once
 // How a scenario's `drive:` block becomes a Drive. Each transport (sim, canopen, modbus,
-// stepdir, ...) provides a TransportFactory; the CLI registers one creator per transport in a
-// TransportRegistry (no process-wide singleton). A run creates fresh factory instances, so a
+// stepdir, ...) provides a TransportFactory; the application (a command-line tool, a test, an
+// embedding program) registers one creator per transport in a TransportRegistry (no process-wide
+// singleton). A run creates fresh factory instances, so a
 // factory may keep per-run state shared by its axes (one CANopen master for all nodes on a bus).
 
 #include <expected>
@@ -28,11 +29,14 @@ namespace hil {
 /// What a run gives its transports.
 struct RunEnvironment {
   const Clock& clock;
-  bool virtual_time = true;        ///< true: `hilbridge test` / CI runs; no real I/O may block
+  bool virtual_time = true;        ///< true: the clock is simulated; no real I/O may block
   asio::io_context* io = nullptr;  ///< real-time runs: the I/O context for sockets and serial ports
   std::string source_file;         ///< scenario path, for ConfigError and relative paths
   Duration period{std::chrono::milliseconds(1)};
-  bool verify_steps = false;  ///< `hilbridge run --verify-steps`: step/dir transports verify edge streams
+  /// Transports that generate pulse streams (step/dir) check every edge they emit against the
+  /// timing rules of their line and the plan's position, and report a violation in their
+  /// TransportReport (ok == false). Other transports ignore it.
+  bool verify_edge_streams = false;
   /// Key path of the `drive:` block being built ("machine.axes[2].drive"), set by the runner before
   /// each make_drive so that transports' errors use the same paths as the scenario loader.
   std::string drive_key;

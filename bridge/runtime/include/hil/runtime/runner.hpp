@@ -24,7 +24,7 @@ namespace hil::runtime {
 
 struct RunOptions {
   bool virtual_time = true;
-  bool verify_steps = false;    ///< RunEnvironment::verify_steps
+  bool verify_steps = false;    ///< sets RunEnvironment::verify_edge_streams
   bool handle_signals = false;  ///< real time: SIGINT/SIGTERM stop the run in a controlled way
   /// Real time only: SCHED_FIFO, memory lock, CPU affinity, cpu_dma_latency and absolute
   /// clock_nanosleep wake-ups for the cycle thread (the calling thread). A refused setting is a
