@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstdlib>
 
+#include "hil/controllers/amkasyn/awl.hpp"
 #include "hil/controllers/io_address_s5.hpp"
 
 namespace hil::controllers::amkasyn {
@@ -29,6 +30,20 @@ AmkasynController::AmkasynController(std::shared_ptr<const profiles::Profile> pr
   sf_status_ = catalogue("sf_status");
   dfkt_catalogue_ = catalogue("dfkt_status");
   flag_owned_[232] = flag_owned_[233] = true;
+  for (const auto& [number, listing] : setup_.fbs) {
+    (void)runtime_.load_fb(number, listing);  // the factory parsed it
+    // The flag bytes an APSF function block writes are the SF's, like an SF's M sink: the PLC's
+    // flag image does not overwrite them (its MD24 must survive from one SF cycle to the next).
+    const auto program = parse_awl(listing);
+    if (!program) continue;
+    using Op = AwlInstruction::Op;
+    for (const auto& ins : program->code) {
+      const bool writes = ins.op == Op::transfer || ins.op == Op::assign || ins.op == Op::set || ins.op == Op::reset;
+      if (!writes || ins.area != AwlArea::m) continue;
+      for (int k = 0; k < std::max(1, ins.width / 8); ++k)
+        flag_owned_[static_cast<std::size_t>(ins.address + k) & 0xFF] = true;
+    }
+  }
   for (const auto& sf : setup_.sfs) {
     // FB 207 at power-up; the factory checked that each init DB is accepted.
     (void)runtime_.init(sf.db.init, image_);

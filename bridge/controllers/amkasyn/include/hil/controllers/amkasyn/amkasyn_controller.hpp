@@ -81,6 +81,7 @@ struct AmkasynSetup {
   int id2_half_ms = 2;  ///< drive parameter ID 2 in 0.5 ms = the controller cycle
   std::vector<SfFile> sfs;
   DbStore tables;
+  std::vector<std::pair<int, std::string>> fbs;  ///< APSF function blocks: FB number, AWL listing (parsed)
   std::array<std::optional<AwChannel>, 8> aw;
   std::array<std::optional<AzChannel>, 4> az;
   std::int64_t resolution = 20000;  ///< increments per revolution (speed conversions)
