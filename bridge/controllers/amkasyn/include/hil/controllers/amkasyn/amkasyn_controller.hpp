@@ -108,6 +108,10 @@ class AmkasynController final : public Controller {
   }
   /// First data byte of the PLC's flag writes.
   static constexpr std::uint32_t plc_flags_base = 16;
+  /// The data-area bit of the zero-pulse (reference) input of AZ message k (0..3): `azK_zero`.
+  [[nodiscard]] static BitAddress zero_pulse_bit(int k) noexcept {
+    return {IoArea::data, plc_flags_base + 256, static_cast<std::uint8_t>(k)};
+  }
 
  protected:
   void on_cycle(const CycleTime& cycle) noexcept override;
