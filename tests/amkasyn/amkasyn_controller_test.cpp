@@ -326,6 +326,33 @@ TEST_F(AmkController, VarsyncDrivesTheSlaveAxisFromTheMasterAxis) {
   EXPECT_EQ(s.status().position_inc, 3000);
 }
 
+TEST_F(AmkController, ZeroPulseInputLatchesTheCounterOfItsCycle) {
+  spec.parameters = write("varsync.txt", varsync);
+  spec.options = {{"az1", "M"}, {"aw3", "S"}};
+  start();
+  EXPECT_EQ(*ctl->resolve_bit("az1_zero"), AmkasynController::zero_pulse_bit(0));
+  EXPECT_EQ(AmkasynController::zero_pulse_bit(0), (BitAddress{IoArea::data, 272, 0}));
+  EXPECT_FALSE(ctl->resolve_bit("az2_zero")) << "AZ message 2 has no axis in this setup";
+  motion::Axis& m = *axes[1];
+  run(milliseconds(50));
+  ASSERT_FALSE(m.move_relative(5000.0, motion::Limits{10000.0, 100000.0}));
+  run(milliseconds(1000));
+  EXPECT_EQ(ctl->process_image().az_zero[0].count, 0U);
+  set("az1_zero", true);
+  run(milliseconds(1));
+  EXPECT_EQ(ctl->process_image().az_zero[0].count, 1U);
+  EXPECT_EQ(ctl->process_image().az_zero[0].position, 5000) << "the 32-bit counter of the edge's cycle";
+  ASSERT_FALSE(m.move_relative(2000.0, motion::Limits{10000.0, 100000.0}));
+  run(milliseconds(1000));
+  EXPECT_EQ(ctl->process_image().az_zero[0].count, 1U) << "a level is no pulse: only the rising edge latches";
+  set("az1_zero", false);
+  run(milliseconds(1));
+  set("az1_zero", true);
+  run(milliseconds(1));
+  EXPECT_EQ(ctl->process_image().az_zero[0].count, 2U);
+  EXPECT_EQ(ctl->process_image().az_zero[0].position, 7000);
+}
+
 TEST_F(AmkController, Swq1GoesThroughTheDrivesSynchronousRatio) {
   spec.parameters = write("varsync.txt", varsync);
   // ID 32893 / ID 32892 = 196608 / 131072 = 1.5, exact over odd master steps.

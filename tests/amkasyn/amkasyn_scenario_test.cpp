@@ -4,6 +4,9 @@
 // device error with the MB 233 number, and the shipped SF files run from a scenario text.
 #include <gtest/gtest.h>
 
+#include <filesystem>
+#include <fstream>
+
 #include "hil/runtime/runner.hpp"
 #include "hil/runtime/scenario_loader.hpp"
 #include "sim_registry.hpp"
@@ -75,6 +78,75 @@ TEST(AmkasynScenario, MissingTableAndUnknownAxisAreConfigurationErrors) {
   r = run_text(text);
   ASSERT_FALSE(r);
   EXPECT_NE(r.error().describe().find("'T'"), std::string::npos) << r.error().describe();
+}
+
+const std::string apsf_head = R"(
+period: 1ms
+controller:
+  device: amkasyn-sf
+  parameters: amkasyn-apsf-sf0.txt
+  tables: "20=amkasyn-apsf-db20.txt"
+  cycle: 2ms
+  aw1: S
+  aw1_mode: 3C0043
+  az1: P
+machine:
+  axes:
+    - {name: P, drive: {transport: sim, kv: 200, feedforward: 1.0, velocity_lag: 0}}
+    - {name: S, drive: {transport: sim, kv: 200, feedforward: 1.0, velocity_lag: 0}}
+)";
+
+TEST(AmkasynScenario, ApsfRunsTheScenariosFunctionBlock) {
+  // Vector 6.13: S travels exactly P's increments (n = diff x 30000 / 2 in 0.0001 rpm), across the
+  // 16-bit wrap of the AZ high word; MD24, the FB's own flag, survives the PLC's flag image.
+  std::string text = apsf_head;
+  text.replace(text.find("  cycle: 2ms"), 12, "  cycle: 2ms\n  fb: \"FB10=amkasyn-apsf-fb10.awl\"");
+  const auto r = run_text(text + R"(
+io:
+  - {set: "E 8.0", at: 50ms}
+program:
+  - wait: 100ms
+  - move_relative: {axis: P, distance: 40000, velocity: 40000, acceleration: 400000}
+  - wait_until: {axis: S, in_position: true}
+expect:
+  - {axis: S, position: 40000, tolerance: 0.5}
+  - {io: "A 8.0", state: true}
+)");
+  ASSERT_TRUE(r) << r.error().describe();
+  EXPECT_TRUE(r->ok) << (r->failures.empty() ? "" : r->failures.front());
+  EXPECT_TRUE(r->device_errors.empty());
+}
+
+TEST(AmkasynScenario, ApsfWithoutItsFunctionBlockRefusesStart) {
+  const auto r = run_text(apsf_head + "program:\n  - wait: 50ms\n");
+  ASSERT_TRUE(r) << r.error().describe();
+  ASSERT_EQ(r->device_errors.size(), 1U);
+  EXPECT_EQ(r->device_errors.front().code, "1");  // START with invalid parameters (DW4)
+  EXPECT_NE(r->device_errors.front().text.find("not loaded"), std::string::npos) << r->device_errors.front().text;
+}
+
+TEST(AmkasynScenario, FunctionBlockErrorsNameTheFileAndLine) {
+  const auto dir = std::filesystem::temp_directory_path() / "amkvec_fb_test";
+  std::filesystem::create_directories(dir);
+  const auto fb = dir / "bad.awl";
+  std::ofstream(fb) << "FB10\n      L    EB 217\n      L    QQ 1\n      BE\n";
+  std::string text = apsf_head;
+  text.replace(text.find("  cycle: 2ms"), 12, "  cycle: 2ms\n  fb: \"10=" + fb.string() + "\"");
+  auto r = run_text(text);
+  ASSERT_FALSE(r);
+  EXPECT_EQ(r.error().file, fb.string());
+  EXPECT_EQ(r.error().line, 3);
+  EXPECT_EQ(r.error().key, "FB10");
+  EXPECT_NE(r.error().message.find("QQ"), std::string::npos) << r.error().describe();
+
+  for (const char* bad : {"64=x.awl", "10", "10=amkasyn-apsf-fb10.awl, FB10=amkasyn-apsf-fb10.awl", "10=nowhere.awl"}) {
+    text = apsf_head;
+    text.replace(text.find("  cycle: 2ms"), 12, std::string("  cycle: 2ms\n  fb: \"") + bad + "\"");
+    r = run_text(text);
+    ASSERT_FALSE(r) << bad;
+    EXPECT_EQ(r.error().key, "controller.fb") << bad << ": " << r.error().describe();
+  }
+  std::filesystem::remove_all(dir);
 }
 
 TEST(AmkasynScenario, RefusedStartIsADeviceErrorOfTheRun) {

@@ -8,13 +8,14 @@
 #include <cmath>
 #include <cstdlib>
 
+#include "hil/controllers/amkasyn/awl.hpp"
 #include "hil/controllers/io_address_s5.hpp"
 
 namespace hil::controllers::amkasyn {
 namespace {
 
 constexpr std::uint32_t image_bytes = 256;
-constexpr std::uint32_t data_bytes = AmkasynController::plc_flags_base + image_bytes;
+constexpr std::uint32_t data_bytes = AmkasynController::plc_flags_base + image_bytes + 1;  // + the zero pulses
 
 }  // namespace
 
@@ -29,6 +30,22 @@ AmkasynController::AmkasynController(std::shared_ptr<const profiles::Profile> pr
   sf_status_ = catalogue("sf_status");
   dfkt_catalogue_ = catalogue("dfkt_status");
   flag_owned_[232] = flag_owned_[233] = true;
+  for (int k = 0; k < 4; ++k)
+    if (setup_.az[static_cast<std::size_t>(k)]) (void)io().name_bit(fmt::format("az{}_zero", k + 1), zero_pulse_bit(k));
+  for (const auto& [number, listing] : setup_.fbs) {
+    (void)runtime_.load_fb(number, listing);  // the factory parsed it
+    // The flag bytes an APSF function block writes are the SF's, like an SF's M sink: the PLC's
+    // flag image does not overwrite them (its MD24 must survive from one SF cycle to the next).
+    const auto program = parse_awl(listing);
+    if (!program) continue;
+    using Op = AwlInstruction::Op;
+    for (const auto& ins : program->code) {
+      const bool writes = ins.op == Op::transfer || ins.op == Op::assign || ins.op == Op::set || ins.op == Op::reset;
+      if (!writes || ins.area != AwlArea::m) continue;
+      for (int k = 0; k < std::max(1, ins.width / 8); ++k)
+        flag_owned_[static_cast<std::size_t>(ins.address + k) & 0xFF] = true;
+    }
+  }
   for (const auto& sf : setup_.sfs) {
     // FB 207 at power-up; the factory checked that each init DB is accepted.
     (void)runtime_.init(sf.db.init, image_);
@@ -162,6 +179,9 @@ void AmkasynController::read_image() noexcept {
     if (!ch) continue;
     const auto count = static_cast<std::uint32_t>(axis(ch->axis).status().position_inc);
     image_.az[k] = static_cast<std::int32_t>(ch->high_word ? count << 16 : count);
+    // The zero-pulse input (a printing mark sensor, the encoder's reference mark): a rising edge
+    // latches the 32-bit counter of this cycle.
+    if (io().rising(zero_pulse_bit(static_cast<int>(k)))) image_.az_zero[k].pulse(static_cast<std::int32_t>(count));
   }
 }
 

@@ -7,6 +7,7 @@
 #include <charconv>
 
 #include "hil/controllers/amkasyn/amkasyn_controller.hpp"
+#include "hil/controllers/amkasyn/awl.hpp"
 #include "hil/core/text_file.hpp"
 #include "hil/profiles/loader.hpp"
 
@@ -89,7 +90,17 @@ std::expected<LoadedSf, ConfigError> load_sf(const std::filesystem::path& path, 
 
 constexpr const char* known_keys =
     "device, parameters, programs, cycle, tables, start, resolution, max_rpm, aw1..aw8, awN_mode, awN_message32, "
-    "awN_id32892, awN_id32893, az1..az4, value_new";
+    "awN_id32892, awN_id32893, az1..az4, value_new, fb";
+
+/// The line number of an AWL parse error ("FB line N: ..."), 0 when it names none.
+int awl_error_line(const std::string& error) {
+  const auto at = error.find("line ");
+  if (at == std::string::npos) return 0;
+  int line = 0;
+  const char* first = error.data() + at + 5;
+  std::from_chars(first, error.data() + error.size(), line);
+  return line;
+}
 
 }  // namespace
 
@@ -119,6 +130,7 @@ void register_amkasyn(ControllerRegistry& registry) {
     aw_div.fill(1);
     std::vector<std::pair<int, std::string>> table_files;
     std::vector<std::string> value_new_files;
+    std::vector<std::pair<int, std::string>> fb_files;
     for (const auto& [key, value] : opts) {
       const auto number = [&](std::string_view prefix, int max) -> int {
         if (!key.starts_with(prefix) || key.size() < prefix.size() + 1) return 0;
@@ -153,6 +165,25 @@ void register_amkasyn(ControllerRegistry& registry) {
             return fail(
                 key, fmt::format("'{}': write DB=FILE, e.g. tables: \"16=db16.txt, 17=db17.txt\" (DB 1..255)", item));
           table_files.emplace_back(static_cast<int>(*n), trim(item.substr(eq + 1)));
+        }
+      } else if (key == "fb") {
+        std::size_t pos = 0;
+        while (pos < value.size()) {
+          const auto comma = value.find(',', pos);
+          const std::string item =
+              trim(value.substr(pos, comma == std::string::npos ? std::string::npos : comma - pos));
+          pos = comma == std::string::npos ? value.size() : comma + 1;
+          if (item.empty()) continue;
+          const auto eq = item.find('=');
+          std::string fb = eq == std::string::npos ? "" : trim(item.substr(0, eq));
+          if (fb.starts_with("FB") || fb.starts_with("fb")) fb = fb.substr(2);
+          const auto n = whole(fb);
+          if (!n || *n < 0 || *n > 63 || trim(item.substr(eq + 1)).empty())
+            return fail(key,
+                        fmt::format("'{}': write FB=FILE, e.g. fb: \"10=fb10.awl\" (the APSF's DW4, FB 0..63)", item));
+          if (std::any_of(fb_files.begin(), fb_files.end(), [&](const auto& f) { return f.first == *n; }))
+            return fail(key, fmt::format("FB{} is given twice", *n));
+          fb_files.emplace_back(static_cast<int>(*n), trim(item.substr(eq + 1)));
         }
       } else if (key == "value_new") {
         std::size_t pos = 0;
@@ -259,6 +290,17 @@ void register_amkasyn(ControllerRegistry& registry) {
       if (!block) return Unexpected(db_error(path.string(), block.error()));
       if (setup.tables.count(db) != 0) return fail("tables", fmt::format("DB{} is given twice", db));
       setup.tables.emplace(db, std::move(*block));
+    }
+    // APSF function blocks: the AWL subset (awl.hpp); a parse error names the listing's line.
+    for (const auto& [fb, file] : fb_files) {
+      const auto path = beside(spec, file);
+      auto text = read_text_file(path);
+      if (!text) return fail("fb", fmt::format("FB{}: cannot read the function block: {}", fb, text.error()));
+      if (auto parsed = parse_awl(*text); !parsed) {
+        const std::string& why = parsed.error();
+        return Unexpected(ConfigError{path.string(), awl_error_line(why), 0, fmt::format("FB{}", fb), why});
+      }
+      setup.fbs.emplace_back(fb, std::move(*text));
     }
     // Every table DB an init DB names must exist (the DFKT output table Tab7 is created: the SF writes it).
     for (const auto& sf : sfs)

@@ -81,6 +81,7 @@ struct AmkasynSetup {
   int id2_half_ms = 2;  ///< drive parameter ID 2 in 0.5 ms = the controller cycle
   std::vector<SfFile> sfs;
   DbStore tables;
+  std::vector<std::pair<int, std::string>> fbs;  ///< APSF function blocks: FB number, AWL listing (parsed)
   std::array<std::optional<AwChannel>, 8> aw;
   std::array<std::optional<AzChannel>, 4> az;
   std::int64_t resolution = 20000;  ///< increments per revolution (speed conversions)
@@ -107,6 +108,10 @@ class AmkasynController final : public Controller {
   }
   /// First data byte of the PLC's flag writes.
   static constexpr std::uint32_t plc_flags_base = 16;
+  /// The data-area bit of the zero-pulse (reference) input of AZ message k (0..3): `azK_zero`.
+  [[nodiscard]] static BitAddress zero_pulse_bit(int k) noexcept {
+    return {IoArea::data, plc_flags_base + 256, static_cast<std::uint8_t>(k)};
+  }
 
  protected:
   void on_cycle(const CycleTime& cycle) noexcept override;
