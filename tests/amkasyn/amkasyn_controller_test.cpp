@@ -530,5 +530,116 @@ DW10 = 200
   EXPECT_EQ(axes[0]->status().state, motion::AxisState::standstill);
 }
 
+// ---------------------------------------------------------------------------------------------
+// awN_message16: the analog input A1 of an AW drive (vector 6.9 REGL)
+
+TEST(AnalogSchedule, EachWordIsHeldFromItsTimeUntilTheNext) {
+  const auto s = parse_analog_schedule(" 0ms=2108, 3ms = 2128 ,1s=0x0800, 1000001us=65535");
+  ASSERT_TRUE(s) << s.error();
+  ASSERT_EQ(s->size(), 4U);
+  EXPECT_EQ(analog_word_at(*s, milliseconds(0)), 2108);
+  EXPECT_EQ(analog_word_at(*s, std::chrono::microseconds(2999)), 2108);
+  EXPECT_EQ(analog_word_at(*s, milliseconds(3)), 2128);
+  EXPECT_EQ(analog_word_at(*s, milliseconds(999)), 2128);
+  EXPECT_EQ(analog_word_at(*s, std::chrono::seconds(1)), 0x800);
+  EXPECT_EQ(analog_word_at(*s, std::chrono::seconds(5)), 65535);
+  const auto late = parse_analog_schedule("5ms=2148");
+  ASSERT_TRUE(late);
+  EXPECT_EQ(analog_word_at(*late, milliseconds(4)), 0) << "no input before the first step";
+  EXPECT_EQ(analog_word_at(*late, milliseconds(5)), 2148);
+}
+
+TEST(AnalogSchedule, ErrorsNameTheItem) {
+  const auto error = [](std::string_view text) {
+    const auto s = parse_analog_schedule(text);
+    return s ? std::string("accepted") : s.error();
+  };
+  EXPECT_NE(error("0ms 2108").find("'0ms 2108': write TIME=WORD"), std::string::npos) << error("0ms 2108");
+  EXPECT_NE(error("0=2108").find("'0=2108': the time"), std::string::npos) << error("0=2108");
+  EXPECT_NE(error("-1ms=2108").find("the time"), std::string::npos);
+  EXPECT_NE(error("1.5ms=2108").find("the time"), std::string::npos);
+  EXPECT_NE(error("0ms=65536").find("'0ms=65536': the word"), std::string::npos) << error("0ms=65536");
+  EXPECT_NE(error("0ms=-1").find("the word"), std::string::npos);
+  EXPECT_NE(error("0ms=0x1FFFF").find("the word"), std::string::npos);
+  EXPECT_NE(error("0ms=2108, 3ms=").find("'3ms=': the word"), std::string::npos) << error("0ms=2108, 3ms=");
+  EXPECT_NE(error("3ms=2108, 3ms=2128").find("'3ms=2128': the times must increase"), std::string::npos)
+      << error("3ms=2108, 3ms=2128");
+  EXPECT_NE(error("2s=1, 1s=2").find("increase"), std::string::npos);
+  EXPECT_NE(error(" , ").find("no step"), std::string::npos) << error(" , ");
+  EXPECT_NE(error("100000s=1").find("at most a day"), std::string::npos);
+}
+
+constexpr const char* regl = R"(INIT DR0 = 6
+INIT DL0 = 0
+INIT DR2 = 2
+INIT DL2 = 1
+INIT DR3 = 16
+INIT DL3 = 1
+INIT DR5 = 1
+INIT DL5 = 0
+DR0 = 0
+DL0 = 0
+DR1 = 1
+DL1 = 0
+DW3 = 2
+DW4 = 7
+DW6 = 512
+DW7 = 128
+DW8 = 64
+DD10 = 1000000
+DW12 = 1000
+DD14 = 1000000
+DW18 = 100
+DD20 = 5000000
+)";
+
+TEST_F(AmkController, AwMessage16FeedsTheAnalogInputOfItsCycle) {
+  // The START comes once the simulated drive is enabled; the REGL's first control cycle is at
+  // t = 4 ms (t counts from the controller's first cycle). Vector 6.9: F = 60 N (2108) for four
+  // control cycles, then 80 N (2128) from t = 8 ms.
+  spec.parameters = write("regl.txt", regl);
+  spec.options = {{"aw1", "S"}, {"aw1_mode", "3C0043"}, {"aw1_message16", "0ms=2108, 8ms=2128"}};
+  start();
+  std::vector<int> words, outputs;
+  for (int k = 0; k < 10; ++k) {
+    run(milliseconds(1));
+    words.push_back(ctl->process_image().aw[0].message16);
+    outputs.push_back(ctl->process_image().aw[0].swq2);
+  }
+  EXPECT_EQ(words, (std::vector<int>{2108, 2108, 2108, 2108, 2108, 2108, 2108, 2108, 2128, 2128}));
+  EXPECT_EQ(outputs, (std::vector<int>{0, 0, 0, 0, 5100000, 5120000, 5140000, 5160000, 5125000, 5140000}));
+  EXPECT_FALSE(get("A 0.0"));
+  EXPECT_FALSE(get("A 0.1"));
+}
+
+TEST_F(AmkController, WithoutTheAnalogInputMessage16ReadsZero) {
+  spec.parameters = write("regl.txt", regl);
+  spec.options = {{"aw1", "S"}, {"aw1_mode", "3C0043"}};
+  start();
+  run(milliseconds(5));
+  EXPECT_EQ(ctl->process_image().aw[0].message16, 0);
+  // 0 in 12-bit offset binary is -2048 N: e = 2148 N, the output limited to y_max.
+  EXPECT_EQ(ctl->process_image().aw[0].swq2, 1000000 + 5000000);
+  EXPECT_TRUE(get("A 0.0")) << "positive limitation";
+}
+
+TEST_F(AmkController, AwMessage16ErrorsNameTheKey) {
+  spec.parameters = write("regl.txt", regl);
+  spec.options = {{"aw1", "S"}, {"aw1_mode", "3C0043"}, {"aw1_message16", "0ms=2108, 3ms=70000"}};
+  auto e = create();
+  ASSERT_FALSE(e);
+  EXPECT_EQ(e.error().key, "controller.aw1_message16");
+  EXPECT_EQ(e.error().file, spec.file);
+  EXPECT_EQ(e.error().line, 7);
+  EXPECT_NE(e.error().message.find("'3ms=70000'"), std::string::npos) << e.error().describe();
+  EXPECT_NE(e.error().message.find("AW1"), std::string::npos) << e.error().describe();
+
+  spec.options = {{"aw1", "S"}, {"aw1_mode", "3C0043"}, {"aw2_message16", "0ms=2048"}};
+  e = create();
+  ASSERT_FALSE(e);
+  EXPECT_EQ(e.error().key, "controller.aw2");
+  EXPECT_NE(e.error().message.find("aw2: NAME"), std::string::npos) << e.error().describe();
+}
+
 }  // namespace
 }  // namespace hil::controllers::amkasyn

@@ -146,7 +146,7 @@ void AmkasynController::report_dfkt_status(TimePoint now) noexcept {
   }
 }
 
-void AmkasynController::read_image() noexcept {
+void AmkasynController::read_image(Duration since_first_cycle) noexcept {
   const auto in = io().bytes(IoArea::input);
   std::copy(in.begin(), in.end(), image_.e.begin());
   const auto data = io().bytes(IoArea::data);
@@ -158,6 +158,8 @@ void AmkasynController::read_image() noexcept {
     const auto& st = axis(ch->axis).status();
     auto& d = image_.aw[k];
     d.position_feedback = static_cast<std::int32_t>(static_cast<std::uint32_t>(st.position_inc));
+    // The analog input A1 (Config-AW message16), the word the scenario holds at this cycle.
+    d.message16 = static_cast<std::int16_t>(analog_word_at(setup_.aw_message16[k], since_first_cycle));
     const double to_rpm4 = 600000.0 / static_cast<double>(setup_.resolution);  // inc/s -> 0.0001 rpm
     switch (ch->message32) {
       case 36:
@@ -264,7 +266,8 @@ void AmkasynController::on_cycle(const CycleTime& cycle) noexcept {
     const auto s = axis(i).status().state;
     ready = ready && s != motion::AxisState::disabled && s != motion::AxisState::enabling;
   }
-  read_image();
+  if (!first_cycle_) first_cycle_ = cycle.now;
+  read_image(cycle.now - *first_cycle_);
   if (!started_ && ready) {
     // The drives are enabled: from here on their set-points follow the SF channels, from the
     // values the channels have now (before the START of `start: auto`, so its set-point counts).

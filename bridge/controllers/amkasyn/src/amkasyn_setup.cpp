@@ -90,6 +90,7 @@ std::expected<LoadedSf, ConfigError> load_sf(const std::filesystem::path& path, 
 
 constexpr const char* known_keys =
     "device, parameters, programs, cycle, tables, start, resolution, max_rpm, aw1..aw8, awN_mode, awN_message32, "
+    "awN_message16, "
     "awN_id32892, awN_id32893, az1..az4, value_new, fb";
 
 /// The line number of an AWL parse error ("FB line N: ..."), 0 when it names none.
@@ -215,6 +216,13 @@ void register_amkasyn(ControllerRegistry& registry) {
                       "ID 32786 (Config-AW message32): 0 position feedback, 36 velocity command, 40 velocity "
                       "feedback, 32824 following error");
         aw_message[static_cast<std::size_t>(n - 1)] = static_cast<int>(*m);
+      } else if (n != 0 && key == fmt::format("aw{}_message16", n)) {
+        // ID 32785 = 32897 (Config-AW message16 = analog input A1): the scenario gives its words.
+        auto schedule = parse_analog_schedule(value);
+        if (!schedule)
+          return fail(key, fmt::format("the analog input A1 of AW{} (message16), raw words held from their time: {}", n,
+                                       schedule.error()));
+        setup.aw_message16[static_cast<std::size_t>(n - 1)] = std::move(*schedule);
       } else if (n != 0 && (key == fmt::format("aw{}_id32893", n) || key == fmt::format("aw{}_id32892", n))) {
         const bool divider = key.ends_with("32892");
         const auto v = whole(value);
@@ -328,7 +336,7 @@ void register_amkasyn(ControllerRegistry& registry) {
     };
     for (std::size_t k = 0; k < 8; ++k) {
       if (aw_axis[k].empty()) {
-        if (aw_mode[k] || aw_message[k] != 0 || aw_mul[k] != 1 || aw_div[k] != 1)
+        if (aw_mode[k] || aw_message[k] != 0 || aw_mul[k] != 1 || aw_div[k] != 1 || !setup.aw_message16[k].empty())
           return fail(fmt::format("aw{}", k + 1),
                       fmt::format("aw{}_... configure a drive: name its axis, aw{}: NAME", k + 1, k + 1));
         continue;

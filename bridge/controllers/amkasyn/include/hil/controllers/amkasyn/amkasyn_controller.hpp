@@ -37,6 +37,7 @@
 #include <string>
 #include <vector>
 
+#include "hil/controllers/amkasyn/analog_schedule.hpp"
 #include "hil/controllers/amkasyn/db_text.hpp"
 #include "hil/controllers/amkasyn/sf_runtime.hpp"
 #include "hil/controllers/controller.hpp"
@@ -84,6 +85,8 @@ struct AmkasynSetup {
   std::vector<std::pair<int, std::string>> fbs;  ///< APSF function blocks: FB number, AWL listing (parsed)
   std::array<std::optional<AwChannel>, 8> aw;
   std::array<std::optional<AzChannel>, 4> az;
+  /// AW1..AW8 message16 (the analog input, key awN_message16): empty = no input, reads 0.
+  std::array<AnalogSchedule, 8> aw_message16;
   std::int64_t resolution = 20000;  ///< increments per revolution (speed conversions)
   bool auto_start = true;
 };
@@ -132,7 +135,7 @@ class AmkasynController final : public Controller {
   void command(int sf, int code, TimePoint now) noexcept;
   void report_dfkt_status(TimePoint now) noexcept;
   [[nodiscard]] int axis_of(const SfFile& file) const noexcept;
-  void read_image() noexcept;
+  void read_image(Duration since_first_cycle) noexcept;
   void write_image() noexcept;
   void drive_axes(double dt_s) noexcept;
 
@@ -144,6 +147,7 @@ class AmkasynController final : public Controller {
   std::vector<int> aa_used_;                         ///< analog outputs that are SF sinks (0..3)
   std::array<std::uint16_t, max_sf> dfkt_status_{};  ///< Tab7 DW1 as last reported, per SF
   bool enabled_ = false;
+  std::optional<TimePoint> first_cycle_;  ///< the time origin of the awN_message16 schedules
   bool started_ = false;
   const profiles::ErrorCatalogue* sf_status_ = nullptr;
   const profiles::ErrorCatalogue* dfkt_catalogue_ = nullptr;
