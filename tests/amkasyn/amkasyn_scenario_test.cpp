@@ -177,5 +177,48 @@ program:
   EXPECT_NE(e.text.find("amkasyn-fipw-sf0.txt"), std::string::npos) << e.text;
 }
 
+const std::string regl_head = R"(
+period: 1ms
+duration: 12ms
+cut_off: expected
+controller:
+  device: amkasyn-sf
+  parameters: amkasyn-regl-sf0.txt
+  cycle: 1ms
+  aw1: S
+  aw1_mode: 3C0043
+  resolution: 600000
+machine:
+  axes:
+    - {name: S, drive: {transport: sim, kv: 0.000001, feedforward: 1.0, velocity_lag: 0, max_velocity: 100000000}}
+expect:
+  - {axis: S, position: 19875, at: 9ms, tolerance: 0.5}
+)";
+
+TEST(AmkasynScenario, ReglReadsTheAnalogInputOfTheScenario) {
+  // Vector 6.9: F = 60 N (2108) gives y = 5100000, 5120000, 5140000, 5160000 from t = 4 ms (the
+  // shipped amkasyn-regl.yaml); without the analog input message16 reads 0 (-2048 N): y = y_max +
+  // n_command every cycle, and the position expectation fails.
+  std::string text = regl_head;
+  text.replace(text.find("  resolution"), 2, "  aw1_message16: \"0ms=2108\"\n  ");
+  auto r = run_text(text);
+  ASSERT_TRUE(r) << r.error().describe();
+  EXPECT_TRUE(r->ok) << (r->failures.empty() ? "" : r->failures.front());
+  r = run_text(regl_head);
+  ASSERT_TRUE(r) << r.error().describe();
+  EXPECT_FALSE(r->ok);
+}
+
+TEST(AmkasynScenario, AnalogInputErrorsNameTheFileLineAndKey) {
+  std::string text = regl_head;
+  text.replace(text.find("  resolution"), 2, "  aw1_message16: \"0ms=2108, 1ms\"\n  ");
+  const auto r = run_text(text);
+  ASSERT_FALSE(r);
+  EXPECT_EQ(r.error().file, "examples/controllers/test.yaml");
+  EXPECT_EQ(r.error().key, "controller.aw1_message16");
+  EXPECT_GT(r.error().line, 0);
+  EXPECT_NE(r.error().message.find("'1ms': write TIME=WORD"), std::string::npos) << r.error().describe();
+}
+
 }  // namespace
 }  // namespace hil::runtime
