@@ -5,6 +5,9 @@
 
 #include <algorithm>
 #include <charconv>
+#include <optional>
+#include <string_view>
+#include <vector>
 
 #include "hil/controllers/amkasyn/amkasyn_controller.hpp"
 #include "hil/controllers/amkasyn/awl.hpp"
@@ -27,6 +30,33 @@ std::optional<std::int64_t> whole(const std::string& text) {
   const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), n);
   if (ec != std::errc{} || end != text.data() + text.size()) return std::nullopt;
   return n;
+}
+
+/// The items of a comma-separated option value, trimmed; empty items are skipped.
+std::vector<std::string> list_items(const std::string& value) {
+  std::vector<std::string> items;
+  std::size_t pos = 0;
+  while (pos < value.size()) {
+    const auto comma = value.find(',', pos);
+    std::string item = trim(value.substr(pos, comma == std::string::npos ? std::string::npos : comma - pos));
+    pos = comma == std::string::npos ? value.size() : comma + 1;
+    if (!item.empty()) items.push_back(std::move(item));
+  }
+  return items;
+}
+
+/// One "N=FILE" item of `tables:` / `fb:`, the number optionally written with its block prefix
+/// ("DB16=...", "fb10=..."): the number (none unless whole) and the file (empty when missing).
+struct NumberedFile {
+  std::optional<std::int64_t> number;
+  std::string file;
+};
+NumberedFile numbered_file(const std::string& item, std::string_view upper, std::string_view lower) {
+  const auto eq = item.find('=');
+  if (eq == std::string::npos) return {};
+  std::string n = trim(item.substr(0, eq));
+  if (n.starts_with(upper) || n.starts_with(lower)) n = n.substr(upper.size());
+  return {whole(n), trim(item.substr(eq + 1))};
 }
 
 std::filesystem::path beside(const ControllerSpec& spec, const std::string& file) {
@@ -151,49 +181,25 @@ void register_amkasyn(ControllerRegistry& registry) {
         if (!r || *r < 1 || *r > 100000) return fail(key, "max_rpm: the drives' maximum speed in rpm, 1..100000");
         max_rpm = static_cast<double>(*r);
       } else if (key == "tables") {
-        std::size_t pos = 0;
-        while (pos < value.size()) {
-          const auto comma = value.find(',', pos);
-          const std::string item =
-              trim(value.substr(pos, comma == std::string::npos ? std::string::npos : comma - pos));
-          pos = comma == std::string::npos ? value.size() : comma + 1;
-          if (item.empty()) continue;
-          const auto eq = item.find('=');
-          std::string db = eq == std::string::npos ? "" : trim(item.substr(0, eq));
-          if (db.starts_with("DB") || db.starts_with("db")) db = db.substr(2);
-          const auto n = whole(db);
-          if (!n || *n < 1 || *n > 255 || trim(item.substr(eq + 1)).empty())
+        for (const auto& item : list_items(value)) {
+          const auto [n, file] = numbered_file(item, "DB", "db");
+          if (!n || *n < 1 || *n > 255 || file.empty())
             return fail(
                 key, fmt::format("'{}': write DB=FILE, e.g. tables: \"16=db16.txt, 17=db17.txt\" (DB 1..255)", item));
-          table_files.emplace_back(static_cast<int>(*n), trim(item.substr(eq + 1)));
+          table_files.emplace_back(static_cast<int>(*n), file);
         }
       } else if (key == "fb") {
-        std::size_t pos = 0;
-        while (pos < value.size()) {
-          const auto comma = value.find(',', pos);
-          const std::string item =
-              trim(value.substr(pos, comma == std::string::npos ? std::string::npos : comma - pos));
-          pos = comma == std::string::npos ? value.size() : comma + 1;
-          if (item.empty()) continue;
-          const auto eq = item.find('=');
-          std::string fb = eq == std::string::npos ? "" : trim(item.substr(0, eq));
-          if (fb.starts_with("FB") || fb.starts_with("fb")) fb = fb.substr(2);
-          const auto n = whole(fb);
-          if (!n || *n < 0 || *n > 63 || trim(item.substr(eq + 1)).empty())
+        for (const auto& item : list_items(value)) {
+          const auto [n, file] = numbered_file(item, "FB", "fb");
+          if (!n || *n < 0 || *n > 63 || file.empty())
             return fail(key,
                         fmt::format("'{}': write FB=FILE, e.g. fb: \"10=fb10.awl\" (the APSF's DW4, FB 0..63)", item));
           if (std::any_of(fb_files.begin(), fb_files.end(), [&](const auto& f) { return f.first == *n; }))
             return fail(key, fmt::format("FB{} is given twice", *n));
-          fb_files.emplace_back(static_cast<int>(*n), trim(item.substr(eq + 1)));
+          fb_files.emplace_back(static_cast<int>(*n), file);
         }
       } else if (key == "value_new") {
-        std::size_t pos = 0;
-        while (pos < value.size()) {
-          const auto comma = value.find(',', pos);
-          std::string item = trim(value.substr(pos, comma == std::string::npos ? std::string::npos : comma - pos));
-          pos = comma == std::string::npos ? value.size() : comma + 1;
-          if (!item.empty()) value_new_files.push_back(std::move(item));
-        }
+        for (auto& item : list_items(value)) value_new_files.push_back(std::move(item));
       } else if (const int n = number("aw", 8); n != 0 && key.size() == 3) {
         aw_axis[static_cast<std::size_t>(n - 1)] = value;
       } else if (n != 0 && key == fmt::format("aw{}_mode", n)) {
