@@ -257,15 +257,7 @@ void AmkasynController::drive_axes(double dt_s) noexcept {
 
 void AmkasynController::on_cycle(const CycleTime& cycle) noexcept {
   // Power-up: the PS enables its drives (controller enable), then the SFs are commanded.
-  if (!enabled_) {
-    for (std::size_t i = 0; i < axis_count(); ++i) (void)axis(i).enable();
-    enabled_ = true;
-  }
-  bool ready = true;
-  for (std::size_t i = 0; i < axis_count(); ++i) {
-    const auto s = axis(i).status().state;
-    ready = ready && s != motion::AxisState::disabled && s != motion::AxisState::enabling;
-  }
+  const bool ready = power_up_axes();
   if (!first_cycle_) first_cycle_ = cycle.now;
   read_image(cycle.now - *first_cycle_);
   if (!started_ && ready) {

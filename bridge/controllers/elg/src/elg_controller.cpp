@@ -132,15 +132,7 @@ void ElgController::on_cycle(const CycleTime& cycle) noexcept {
     machine_ = std::make_unique<HobbingMachine>(program_, config_, axes);
   }
   // Power-up: enable the axes (the PC's controller enables), then start the NC program.
-  if (!enabled_) {
-    for (std::size_t i = 0; i < axis_count(); ++i) (void)axis(i).enable();
-    enabled_ = true;
-  }
-  bool ready = true;
-  for (std::size_t i = 0; i < axis_count(); ++i) {
-    const auto s = axis(i).status().state;
-    ready = ready && s != motion::AxisState::disabled && s != motion::AxisState::enabling;
-  }
+  const bool ready = power_up_axes();
   if (!started_ && ready && (auto_start_ || io().rising(BitAddress{IoArea::input, in_byte, 0}))) {
     machine_->start();
     started_ = true;

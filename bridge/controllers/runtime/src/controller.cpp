@@ -3,6 +3,8 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
+
 namespace hil::controllers {
 namespace {
 
@@ -56,6 +58,17 @@ std::expected<void, std::string> Controller::bind_axes(std::span<motion::Axis* c
 std::expected<BitAddress, std::string> Controller::resolve_bit(std::string_view text) const {
   if (auto a = io_.find_bit(text)) return *a;
   return std::unexpected(fmt::format("'{}' is not an I/O name of the {} controller", text, device()));
+}
+
+bool Controller::power_up_axes() noexcept {
+  if (!axes_enabled_) {
+    for (motion::Axis* a : axes_) (void)a->enable();
+    axes_enabled_ = true;
+  }
+  return std::all_of(axes_.begin(), axes_.end(), [](const motion::Axis* a) {
+    const auto s = a->status().state;
+    return s != motion::AxisState::disabled && s != motion::AxisState::enabling;
+  });
 }
 
 const profiles::ErrorCatalogue* Controller::catalogue(std::string_view id) const noexcept {

@@ -175,6 +175,10 @@ class Controller {
   bool clear_error(const profiles::ErrorCatalogue& catalogue, int code, int axis = -1) noexcept {
     return errors_.clear(catalogue, code, axis);
   }
+  /// Power-up of a device that enables its own drives (the PS, the ELG's PC): the first call enables
+  /// every axis; each call returns whether every axis has left disabled / enabling, i.e. takes
+  /// set-points. Enabling moves nothing.
+  [[nodiscard]] bool power_up_axes() noexcept;
   /// The catalogue `id` of this device's profile; nullptr when it has none by that id.
   [[nodiscard]] const profiles::ErrorCatalogue* catalogue(std::string_view id) const noexcept;
 
@@ -191,6 +195,7 @@ class Controller {
   std::vector<std::error_code> seen_fault_;  ///< per axis: the fault already turned into an error
   std::vector<std::uint8_t> limit_hit_;      ///< per axis: bit 0 negative, bit 1 positive active
   DeviceErrorLatch errors_;
+  bool axes_enabled_ = false;  ///< power_up_axes() has enabled the axes
 };
 
 }  // namespace hil::controllers

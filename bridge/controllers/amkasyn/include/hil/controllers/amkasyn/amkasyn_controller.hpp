@@ -146,8 +146,7 @@ class AmkasynController final : public Controller {
   std::array<AxisDrive, 8> drives_{};
   std::vector<int> aa_used_;                         ///< analog outputs that are SF sinks (0..3)
   std::array<std::uint16_t, max_sf> dfkt_status_{};  ///< Tab7 DW1 as last reported, per SF
-  bool enabled_ = false;
-  std::optional<TimePoint> first_cycle_;  ///< the time origin of the awN_message16 schedules
+  std::optional<TimePoint> first_cycle_;             ///< the time origin of the awN_message16 schedules
   bool started_ = false;
   const profiles::ErrorCatalogue* sf_status_ = nullptr;
   const profiles::ErrorCatalogue* dfkt_catalogue_ = nullptr;

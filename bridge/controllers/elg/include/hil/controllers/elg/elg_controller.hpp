@@ -50,7 +50,6 @@ class ElgController final : public Controller {
   NcProgram program_;
   std::unique_ptr<HobbingMachine> machine_;
   bool auto_start_ = true;
-  bool enabled_ = false;
   bool started_ = false;
   std::vector<Alarm> reported_;  ///< the ELG's alarms as last reported as device errors
   std::vector<int> circuits_;    ///< measuring circuit per axis, -1: none
