@@ -12,7 +12,15 @@ TEST(YamlConfig, UnknownKeyNamesLineAndAllowedKeys) {
   ASSERT_FALSE(r);
   EXPECT_EQ(r.error().line, 3);
   EXPECT_EQ(r.error().key, "axis.kvv");
-  EXPECT_NE(r.error().message.find("allowed: kv, lag"), std::string::npos);
+  EXPECT_NE(r.error().message.find("unknown key 'kvv'; allowed here: kv, lag"), std::string::npos);
+}
+
+TEST(YamlConfig, KeyGivenTwiceIsRefused) {
+  auto doc = hil::yaml::load_string("axis:\n  kv: 30\n  kv: 4\n", "m.yaml");
+  ASSERT_TRUE(doc);
+  auto r = hil::yaml::check_keys((*doc)["axis"], Where{"m.yaml", "axis"}, {"kv", "lag"});
+  ASSERT_FALSE(r);
+  EXPECT_EQ(r.error().describe(), "m.yaml:3:3: axis.kv: key 'kv' appears twice");
 }
 
 TEST(YamlConfig, TypedGetReportsBadValue) {

@@ -7,6 +7,7 @@
 
 #include "hil/profiles/bcd.hpp"
 #include "hil/profiles/bit_field.hpp"
+#include "hil/profiles/db_integer_text.hpp"
 #include "hil/profiles/decimal_text.hpp"
 #include "hil/profiles/fixed_point.hpp"
 #include "hil/profiles/twos_complement.hpp"
@@ -262,4 +263,23 @@ TEST(FixedPoint, AmkasynFormats) {
     const auto raw = d(rng);
     EXPECT_EQ(*hp::make_fixed_point(*hp::parse_fixed_point(raw, q8), q8), raw);
   }
+}
+
+TEST(DbIntegerText, DecimalAndBothHexSpellings) {
+  using hil::profiles::parse_db_integer;
+  EXPECT_EQ(parse_db_integer("120"), 120);
+  EXPECT_EQ(parse_db_integer("+120"), 120);
+  EXPECT_EQ(parse_db_integer("-32768"), -32768);
+  EXPECT_EQ(parse_db_integer("0x1F"), 31);
+  EXPECT_EQ(parse_db_integer("0X1f"), 31);
+  EXPECT_EQ(parse_db_integer("1Fh"), 31);
+  EXPECT_EQ(parse_db_integer("-0x10"), -16);
+  EXPECT_EQ(parse_db_integer("FFFFFFFFh"), 0xFFFFFFFFLL);
+}
+
+TEST(DbIntegerText, RefusesEverythingElse) {
+  using hil::profiles::parse_db_integer;
+  for (const char* bad : {"", "+", "-", "h", "0x", "--5", "+-5", "0x-5", "1F", "12a", " 12", "12 ", "1.5",
+                          "99999999999999999999", "0x10000000000000000"})
+    EXPECT_FALSE(parse_db_integer(bad).has_value()) << "'" << bad << "'";
 }

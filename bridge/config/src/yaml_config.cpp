@@ -4,6 +4,7 @@
 #include <cmath>
 #include <fstream>
 #include <sstream>
+#include <vector>
 
 #include <fmt/format.h>
 
@@ -24,18 +25,24 @@ ConfigError error_at(const YAML::Node& node, const Where& where, std::string mes
   return e;
 }
 
+std::string unknown_key_message(std::string_view key, std::initializer_list<std::string_view> allowed) {
+  std::string list;
+  for (auto a : allowed) list += (list.empty() ? "" : ", ") + std::string(a);
+  return fmt::format("unknown key '{}'; allowed here: {}", key, list);
+}
+
 std::expected<void, ConfigError> check_keys(const YAML::Node& node, const Where& where,
                                             std::initializer_list<std::string_view> allowed) {
   if (!node.IsMap()) return std::unexpected(error_at(node, where, "expected a map of keys"));
+  std::vector<std::string> seen;
   for (const auto& kv : node) {
     const auto k = kv.first.as<std::string>("");
     bool ok = false;
     for (auto a : allowed) ok = ok || a == k;
-    if (!ok) {
-      std::string list;
-      for (auto a : allowed) list += (list.empty() ? "" : ", ") + std::string(a);
-      return std::unexpected(error_at(kv.first, where.key(k), fmt::format("unknown key '{}' (allowed: {})", k, list)));
-    }
+    if (!ok) return std::unexpected(error_at(kv.first, where.key(k), unknown_key_message(k, allowed)));
+    for (const auto& s : seen)
+      if (s == k) return std::unexpected(error_at(kv.first, where.key(k), fmt::format("key '{}' appears twice", k)));
+    seen.push_back(k);
   }
   return {};
 }

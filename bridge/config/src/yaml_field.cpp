@@ -64,11 +64,7 @@ std::vector<std::string> Field::expect_map(std::initializer_list<std::string_vie
     const Field named(kv.first, where_.key(name), mark());
     bool ok = false;
     for (auto a : allowed) ok = ok || a == name;
-    if (!ok) {
-      std::string list;
-      for (auto a : allowed) list += (list.empty() ? "" : ", ") + std::string(a);
-      named.fail(fmt::format("unknown key '{}'; allowed here: {}", name, list));
-    }
+    if (!ok) named.fail(unknown_key_message(name, allowed));
     for (const auto& s : seen)
       if (s == name) named.fail(fmt::format("key '{}' appears twice", name));
     seen.push_back(name);

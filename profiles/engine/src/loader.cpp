@@ -1,9 +1,10 @@
 // SPDX-License-Identifier: MIT
-// YAML → Profile. Internally a LoadFailure exception carries a ConfigError up to the boundary,
-// where it becomes the std::expected error; nothing escapes.
+// YAML → Profile. Internally a hil::yaml::Failure carries a ConfigError up to the boundary (the
+// same read_document as the scenario loader), where it becomes the std::expected error; nothing escapes.
 #include "hil/profiles/loader.hpp"
 
 #include "hil/config/yaml_config.hpp"
+#include "hil/config/yaml_field.hpp"
 #include "hil/core/data_dir.hpp"
 #include "hil/core/text_file.hpp"
 
@@ -24,17 +25,13 @@
 namespace hil::profiles {
 namespace {
 
-struct LoadFailure {
-  hil::ConfigError error;
-};
-
 class Reader {
  public:
   explicit Reader(std::string file) : file_(std::move(file)) {}
 
   [[noreturn]] void fail(const YAML::Node& n, const std::string& key, const std::string& msg) const {
     // A null node (absent key) has no position of its own: the error then names the key only.
-    throw LoadFailure{hil::yaml::error_at(!n.IsDefined() || n.IsNull() ? YAML::Node() : n, {file_, key}, msg)};
+    throw hil::yaml::Failure{hil::yaml::error_at(!n.IsDefined() || n.IsNull() ? YAML::Node() : n, {file_, key}, msg)};
   }
 
   std::string str(const YAML::Node& n, const std::string& key, bool required = false) const {
@@ -576,7 +573,7 @@ std::shared_ptr<Profile> load_impl(const YAML::Node& root, const std::string& na
       doc = YAML::Load(*text);
     } catch (const YAML::Exception& e) {
       hil::ConfigError ce{path.string(), e.mark.line + 1, e.mark.column + 1, "", e.msg};
-      throw LoadFailure{ce};
+      throw hil::yaml::Failure{ce};
     }
     Reader ri(path.string());
     ri.document(doc, *p, false, includes);
@@ -590,30 +587,22 @@ std::shared_ptr<Profile> load_impl(const YAML::Node& root, const std::string& na
 
 std::expected<std::shared_ptr<const Profile>, hil::ConfigError> load_profile_text(std::string_view yaml,
                                                                                   std::string_view name) {
+  const std::string file(name);
   try {
-    const auto root = YAML::Load(std::string(yaml));
-    return std::shared_ptr<const Profile>(load_impl(root, std::string(name), nullptr));
-  } catch (const LoadFailure& f) {
-    return std::unexpected(f.error);
-  } catch (const YAML::Exception& e) {
-    return std::unexpected(hil::ConfigError{std::string(name), e.mark.line + 1, e.mark.column + 1, "", e.msg});
+    return hil::yaml::read_document(
+        file, [&] { return std::shared_ptr<const Profile>(load_impl(YAML::Load(std::string(yaml)), file, nullptr)); });
   } catch (const std::exception& e) {
-    return std::unexpected(hil::ConfigError{std::string(name), 0, 0, "", e.what()});
+    return std::unexpected(hil::ConfigError{file, 0, 0, "", e.what()});
   }
 }
 
 std::expected<std::shared_ptr<const Profile>, hil::ConfigError> load_profile(const std::filesystem::path& file) {
+  const auto text = hil::read_text_file(file);
+  if (!text) return std::unexpected(hil::ConfigError{file.string(), 0, 0, "", text.error()});
   try {
-    const auto text = hil::read_text_file(file);
-    if (!text) return std::unexpected(hil::ConfigError{file.string(), 0, 0, "", text.error()});
-    const auto root = YAML::Load(*text);
-    return std::shared_ptr<const Profile>(load_impl(root, file.string(), &file));
-  } catch (const LoadFailure& f) {
-    return std::unexpected(f.error);
-  } catch (const YAML::BadFile&) {
-    return std::unexpected(hil::ConfigError{file.string(), 0, 0, "", "cannot open the profile file"});
-  } catch (const YAML::Exception& e) {
-    return std::unexpected(hil::ConfigError{file.string(), e.mark.line + 1, e.mark.column + 1, "", e.msg});
+    return hil::yaml::read_document(file.string(), [&] {
+      return std::shared_ptr<const Profile>(load_impl(YAML::Load(*text), file.string(), &file));
+    });
   } catch (const std::exception& e) {
     return std::unexpected(hil::ConfigError{file.string(), 0, 0, "", e.what()});
   }

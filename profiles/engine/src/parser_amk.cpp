@@ -11,8 +11,8 @@
 
 #include <algorithm>
 #include <cctype>
-#include <charconv>
 
+#include "hil/profiles/db_integer_text.hpp"
 #include "parsers.hpp"
 
 namespace hil::profiles::detail {
@@ -24,27 +24,6 @@ struct RawItem {
   int line = 0;
   std::string text;
 };
-
-std::optional<std::int64_t> parse_raw(std::string_view t) {
-  bool neg = false;
-  if (!t.empty() && (t.front() == '+' || t.front() == '-')) {
-    neg = t.front() == '-';
-    t.remove_prefix(1);
-  }
-  int base = 10;
-  if (t.starts_with("0x") || t.starts_with("0X")) {
-    base = 16;
-    t.remove_prefix(2);
-  } else if (!t.empty() && (t.back() == 'h' || t.back() == 'H')) {
-    base = 16;
-    t.remove_suffix(1);
-  }
-  std::int64_t v = 0;
-  if (t.empty()) return std::nullopt;
-  auto [p, ec] = std::from_chars(t.data(), t.data() + t.size(), v, base);
-  if (ec != std::errc{} || p != t.data() + t.size()) return std::nullopt;
-  return neg ? -v : v;
-}
 
 bool is_header(std::string_view id) {
   return id.starts_with("INIT") || id == "DR0" || id == "DL0" || id == "DR1" || id == "DL1";
@@ -97,7 +76,7 @@ class AmkParser final : public ParameterSetParser {
                 fmt::format("{} is outside the {} DB", addr, init ? "10-word init" : "34-word commanding"));
         continue;
       }
-      auto raw = parse_raw(t);
+      auto raw = parse_db_integer(t);
       if (!raw) {
         problem(addr, std::string(t), fmt::format("'{}' is not an integer (decimal, 0x… or …h)", t));
         continue;

@@ -5,8 +5,9 @@
 #include <fmt/format.h>
 
 #include <cctype>
-#include <charconv>
 #include <optional>
+
+#include "hil/profiles/db_integer_text.hpp"
 
 namespace hil::controllers::amkasyn {
 namespace {
@@ -15,27 +16,6 @@ std::string_view trim(std::string_view t) {
   while (!t.empty() && std::isspace(static_cast<unsigned char>(t.front()))) t.remove_prefix(1);
   while (!t.empty() && std::isspace(static_cast<unsigned char>(t.back()))) t.remove_suffix(1);
   return t;
-}
-
-std::optional<std::int64_t> parse_value(std::string_view t) {
-  bool neg = false;
-  if (!t.empty() && (t.front() == '+' || t.front() == '-')) {
-    neg = t.front() == '-';
-    t.remove_prefix(1);
-  }
-  int base = 10;
-  if (t.starts_with("0x") || t.starts_with("0X")) {
-    base = 16;
-    t.remove_prefix(2);
-  } else if (!t.empty() && (t.back() == 'h' || t.back() == 'H')) {
-    base = 16;
-    t.remove_suffix(1);
-  }
-  if (t.empty() || t.size() > 12) return std::nullopt;
-  std::int64_t v = 0;
-  const auto [p, ec] = std::from_chars(t.data(), t.data() + t.size(), v, base);
-  if (ec != std::errc{} || p != t.data() + t.size()) return std::nullopt;
-  return neg ? -v : v;
 }
 
 enum class Kind : std::uint8_t { dr, dl, dw, dd };
@@ -86,7 +66,7 @@ std::expected<std::optional<Item>, DbTextError> parse_line(std::string_view line
                                 it.init ? "init DB" : (max_words == 34 ? "commanding DB" : "table DB"))});
   t = trim(t.substr(i));
   if (t.starts_with("=") || t.starts_with(":")) t = trim(t.substr(1));
-  const auto v = parse_value(t);
+  const auto v = profiles::parse_db_integer(t);
   if (!v)
     return std::unexpected(
         DbTextError{number, it.name, fmt::format("'{}' is not an integer (decimal, 0x... or ...h)", t)});

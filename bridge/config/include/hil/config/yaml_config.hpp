@@ -28,8 +28,12 @@ struct Where {
 /// Error located at `node` (its line/column when yaml-cpp knows it).
 [[nodiscard]] ConfigError error_at(const YAML::Node& node, const Where& where, std::string message);
 
-/// Every key of map `node` must be one of `allowed`; the first unknown key is an error that
-/// lists the allowed ones (typos must not be silently ignored).
+/// The one message for a key that is not allowed, in every loader:
+/// "unknown key 'kvv'; allowed here: kv, lag".
+[[nodiscard]] std::string unknown_key_message(std::string_view key, std::initializer_list<std::string_view> allowed);
+
+/// Every key of map `node` must be one of `allowed` and appear once; the first unknown key is an
+/// error that lists the allowed ones (typos must not be silently ignored).
 [[nodiscard]] std::expected<void, ConfigError> check_keys(const YAML::Node& node, const Where& where,
                                                           std::initializer_list<std::string_view> allowed);
 
