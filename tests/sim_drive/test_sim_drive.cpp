@@ -209,7 +209,8 @@ TEST(SimDriveSwitches, BadSwitchesNameTheKey) {
   };
   const Case cases[] = {
       {"switches: 5", "s.yaml:1:11: drive.switches: expected a map of switch positions"},
-      {"switches: {neg: 1}", "s.yaml:1:12: drive.switches.neg: unknown key 'neg'; allowed here: negative, positive, home"},
+      {"switches: {neg: 1}",
+       "s.yaml:1:12: drive.switches.neg: unknown key 'neg'; allowed here: negative, positive, home"},
       {"switches: {negative: x}", "s.yaml:1:22: drive.switches.negative: expected a number"},
       {"switches: {positive: 2e15}",
        "drive.switches.positive: must be a position in [-1e15, 1e15] inc, got 2000000000000000"},
