@@ -110,14 +110,48 @@ void HobbingMachine::step(const hil::CycleTime& cycle) noexcept {
     latched_c_ = st.c_set;
   }
   const double period_s = hil::to_seconds(cycle.period);
+  const auto& ratio = axes_.c->config().inc_per_unit;
+  auto to_deg = [&](double counts) { return counts * static_cast<double>(ratio.den) / static_cast<double>(ratio.num); };
   switch (st.c_mode) {
     case CMode::follow: {
-      const double v = period_s > 0 ? static_cast<double>(st.c_set - previous_set) / period_s : 0.0;
+      // The first coupled cycle starts from standstill: the set value before it may be a stale one
+      // of a setting-up motion, not a speed.
+      const double v = period_s > 0 && was_coupled_ ? static_cast<double>(st.c_set - previous_set) / period_s : 0.0;
       if (auto ec = axes_.c->follow(st.c_set, v, 0.0)) error_ = "table C: " + ec.message();
       indexing_ = false;
+      setup_motion_ = false;
       break;
     }
+    case CMode::velocity:
+      // JOG / REF: issued again only when the speed changes (override, rapid key, cam).
+      if (!setup_motion_ || st.c_velocity != issued_velocity_) {
+        const auto ec = st.c_velocity == 0.0 ? (cs.busy ? axes_.c->stop() : std::error_code{})
+                                             : axes_.c->move_velocity(to_deg(st.c_velocity));
+        if (ec) error_ = "table C: " + ec.message();
+        issued_velocity_ = st.c_velocity;
+        setup_motion_ = true;
+      }
+      indexing_ = false;
+      break;
     case CMode::position:
+      if (st.setup_step) {
+        // INC: the step's target at MD 300* x override; 0 % holds C until the override rises.
+        if (!setup_motion_ || st.c_set != issued_target_ || st.c_velocity != issued_velocity_) {
+          std::error_code ec;
+          if (st.c_velocity == 0.0) {
+            if (cs.busy) ec = axes_.c->stop();
+          } else {
+            motion::Limits limits = axes_.c->config().limits;
+            limits.velocity = std::min(limits.velocity, to_deg(st.c_velocity));
+            ec = axes_.c->move_absolute(axes_.c->scaling().to_units(st.c_set), motion::Direction::shortest, limits);
+          }
+          if (ec) error_ = "table C: " + ec.message();
+          issued_target_ = st.c_set;
+          issued_velocity_ = st.c_velocity;
+          setup_motion_ = true;
+        }
+        break;
+      }
       if (!indexing_) {
         const double deg = axes_.c->scaling().to_units(st.c_set);
         motion::Limits limits = axes_.c->config().limits;
@@ -130,10 +164,12 @@ void HobbingMachine::step(const hil::CycleTime& cycle) noexcept {
     case CMode::stop:
       if (cs.busy) axes_.c->quick_stop();
       indexing_ = false;
+      setup_motion_ = false;
       break;
     case CMode::hold:
-      if (was_coupled_) axes_.c->stop();
+      if (was_coupled_ || (setup_motion_ && cs.busy)) axes_.c->stop();
       indexing_ = false;
+      setup_motion_ = false;
       break;
   }
   if (st.coupled) {

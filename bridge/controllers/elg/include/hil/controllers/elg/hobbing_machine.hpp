@@ -54,6 +54,8 @@ class HobbingMachine final : public NcMachine {
   void step(const hil::CycleTime& cycle) noexcept;
 
   [[nodiscard]] const Gearbox& gearbox() const noexcept { return gearbox_; }
+  /// The gearbox itself, for the ELG's other interfaces (PC data channel, V.24: 2214).
+  [[nodiscard]] Gearbox& gearbox() noexcept { return gearbox_; }
   [[nodiscard]] const NcInterpreter& nc() const noexcept { return nc_; }
   [[nodiscard]] const PcInterface& pc() const noexcept { return pc_; }
   /// The PC's signals the NC does not drive (FE monitoring, RESET): set before step().
@@ -90,6 +92,9 @@ class HobbingMachine final : public NcMachine {
   bool was_coupled_ = false;
   int couplings_ = 0;
   bool indexing_ = false;
+  bool setup_motion_ = false;  ///< a JOG/INC/REF command was issued to C
+  double issued_velocity_ = 0.0;
+  std::int64_t issued_target_ = 0;
   std::int64_t latched_b_ = 0, latched_z_ = 0, latched_y_ = 0, latched_c_ = 0;
   double linkage_error_ = 0.0, worst_linkage_error_ = 0.0, c_linkage_error_deg_ = 0.0;
   double now_s_ = 0.0;
