@@ -259,6 +259,7 @@ std::expected<ElgSetup, ConfigError> elg_setup_from_tape(const LoadedParameters&
   md.n00 = *n00;
   md.n02 = *n02;
   config.gearbox.setup.zero_mark_counts = 4 * *n02;  // [I] one zero mark per revolution of C
+  config.ssfk.revolution = 4 * *n02;
   md.ms_z_nm = md.ms_y_nm = *ms;
   md.contour_factor_c = static_cast<std::int32_t>(*kv);
   md.hae_speed = static_cast<std::int32_t>(*md170);
@@ -283,6 +284,34 @@ std::expected<ElgSetup, ConfigError> elg_setup_from_tape(const LoadedParameters&
   su.inc_speed = *md300;
   su.ref_minus = *ref_minus != 0;
   su.axis_index = static_cast<int>(drive_i);
+  // SSFK of C (ssfk.hpp): MD 5016 bits 1-2, MD 316*-328*, the flags MD 6000-6249.
+  {
+    auto& k = config.ssfk;
+    auto active = get("MD5016.ssfk"), dir = get("MD5016.ssfk_direction"), p_plus = per_axis("MD316", drive_i),
+         p_minus = per_axis("MD320", drive_i), dist = per_axis("MD324", drive_i), step = per_axis("MD328", drive_i);
+    for (auto* v : {&active, &dir, &p_plus, &p_minus, &dist, &step})
+      if (!*v) return std::unexpected(v->error());
+    k.active = *active != 0;
+    k.direction_dependent = *dir != 0;
+    k.pointer_plus = *p_plus;
+    k.pointer_minus = *p_minus;
+    k.distance = *dist;
+    k.step = *step;
+    if (k.active) {  // the 250 flag bytes are read only when SSFK is on
+      for (std::size_t b = 0; b < k.flags.size(); ++b) {
+        std::uint8_t byte = 0;
+        for (int point = 1; point <= 4; ++point) {
+          auto no = get(fmt::format("MD{}.p{}_no", 6000 + b, point)),
+               plus = get(fmt::format("MD{}.p{}_plus", 6000 + b, point));
+          if (!no) return std::unexpected(no.error());
+          if (!plus) return std::unexpected(plus.error());
+          byte = static_cast<std::uint8_t>(byte | (*no != 0 ? 1 : 0) << (2 * (point - 1)) |
+                                           (*plus != 0 ? 1 : 0) << (2 * (point - 1) + 1));
+        }
+        k.flags[b] = byte;
+      }
+    }
+  }
   config.gearbox.gearing_on_tolerance = *md166;
   config.gearbox.fe_tolerance_min = *md169;
   config.gearbox.cycle_s = hil::to_seconds(cycle);

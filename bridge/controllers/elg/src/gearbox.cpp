@@ -57,6 +57,7 @@ void Gearbox::power_on_reset() {
   index_count_ = 0;
   hae_offset_ = 0.0;
   setup_ = SetupModes(config_.setup);  // the reference point is lost with the power
+  setup_moved_c_ = false;
 }
 
 void Gearbox::on_compute() {
@@ -86,6 +87,7 @@ void Gearbox::engage(const AxisFeedback& axes, bool single_pitch) {
   // standing following error never shifts the index position from gap to gap.
   const std::int64_t c0 = indexing_ ? status_.c_set : axes.c + axes.c_following_error;
   linkage_ = Linkage(*constants_, axes.b, axes.z, axes.y, c0, !single_pitch);
+  setup_moved_c_ = false;
   indexing_ = false;
   hae_offset_ = 0.0;
   hae_target_ = 0;
@@ -213,6 +215,7 @@ void Gearbox::run_indexing(const Signals& s, const AxisFeedback& axes) {
   status_.c_set = index_base_ + counts;
   status_.c_mode = CMode::position;
   indexing_ = true;
+  setup_moved_c_ = false;
   const std::int32_t z2 = input_.z2;
   status_.tooth += plus ? 1 : -1;
   if (status_.tooth > z2) status_.tooth = 1;
@@ -230,18 +233,20 @@ void Gearbox::run_setup(const Signals& s, const AxisFeedback& axes) {
   const auto& cmd = setup_.command();
   switch (cmd.kind) {
     case SetupCommand::Kind::none:
-      // After a JOG/REF motion the set value is where C was stopped, not where the motion began.
-      if (status_.c_velocity != 0.0 || status_.c_mode == CMode::velocity)
-        status_.c_set = axes.c + axes.c_following_error;
+      // After a JOG/INC/REF motion the set value follows C while it stops and stands (its own
+      // command), until an index or the coupling takes C again.
+      if (setup_moved_c_) status_.c_set = axes.c + axes.c_following_error;
       status_.c_mode = CMode::hold;
       status_.c_velocity = 0.0;
       break;
     case SetupCommand::Kind::velocity:
+      setup_moved_c_ = true;
       status_.c_mode = CMode::velocity;
       status_.c_velocity = cmd.velocity_counts_per_s;
       status_.c_set = axes.c + axes.c_following_error;
       break;
     case SetupCommand::Kind::position:
+      setup_moved_c_ = true;
       status_.c_mode = CMode::position;
       status_.c_set = cmd.target;
       status_.c_velocity = cmd.velocity_counts_per_s;

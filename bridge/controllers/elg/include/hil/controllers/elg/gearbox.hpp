@@ -167,6 +167,7 @@ class Gearbox {
   std::int64_t last_c_set_ = 0;
 
   SetupModes setup_;
+  bool setup_moved_c_ = false;  ///< C's set value is its own since a setting-up motion
 };
 
 }  // namespace hil::controllers::elg
