@@ -273,3 +273,25 @@ TEST(ElgSetupModes, EmergencyOffEndsAMotionAndResetEndsItQuietly) {
   EXPECT_EQ(box.status().c_mode, elg::CMode::stop);
   EXPECT_FALSE(box.setup().moving());
 }
+
+TEST(ElgSetupModes, HaeOffsetStepsFollowTheIncSelectorInInc) {
+  elg::Gearbox box(elg::GearboxConfig{});  // configured n = 1000, MD 170 = 1 rpm: 24 counts per cycle
+  ASSERT_TRUE(box.set_input({1, 40, *elg::Decimal5::parse("0"), *elg::Decimal5::parse("0")}));
+  elg::Signals s;
+  elg::AxisFeedback axes;
+  s.compute = true;
+  box.step(s, axes);
+  s.compute = false;
+  s.gearing_on = true;
+  box.step(s, axes);
+  ASSERT_TRUE(box.status().coupled);
+  const std::int64_t c0 = box.status().c_set;
+  s.hae = true;
+  s.panel.mode = PanelMode::inc;
+  s.panel.inc_factor = 10;  // the selector at 10: 20 counts
+  s.inc_plus = true;
+  box.step(s, axes);
+  s.inc_plus = false;
+  box.step(s, axes);
+  EXPECT_EQ(box.status().c_set, c0 + 20);
+}

@@ -266,7 +266,9 @@ void Gearbox::run_hae(const Signals& s, const AxisFeedback& axes) {
   if (status_.hae == HaeState::idle) status_.hae = HaeState::approach;
   status_.actual_value_transferred = s.transfer_actual && status_.actual_value_transferred;
   // INC motion of the operator, superimposed on the coupling: dS = n * 2 MS (7.2).
-  const std::int64_t step = config_.inc_increments * 2;
+  // With the mode switch at INC the panel's selector gives n (7.2); else the configured n.
+  const std::int64_t n = s.panel.mode == PanelMode::inc ? s.panel.inc_factor : config_.inc_increments;
+  const std::int64_t step = n * 2;
   if (status_.hae == HaeState::approach || status_.hae == HaeState::one_point) {
     if (rising(s.inc_plus, last_.inc_plus)) hae_target_ += step;
     if (rising(s.inc_minus, last_.inc_minus)) hae_target_ -= step;
