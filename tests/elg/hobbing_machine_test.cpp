@@ -101,3 +101,62 @@ TEST(ElgHobbingMachine, AnnexProgramOnSimulatedDrives) {
   EXPECT_LT(worst_c_lag, 1.0);  // deg: the table follows the coupling inside its window
   EXPECT_NEAR(z->status().position, 10.0, 0.001);
 }
+
+TEST(ElgHobbingMachine, ReferenceThenIncWithSsfkOnSimulatedDrives) {
+  // C is referenced (REF on the cam: the zero mark every 2000 counts, MD 240* = 0), then INC steps of
+  // 1000 increments (2000 counts) land on the target plus the SSFK compensation: every point "+",
+  // one point per 1000 counts, MD 328* = 10 counts.
+  auto program = elg::parse_nc_program("%1\nN5 M30\n");
+  ASSERT_TRUE(program);
+  elg::HobbingConfig config;
+  config.gearbox.setup.zero_mark_counts = 2000;
+  config.ssfk.active = true;
+  config.ssfk.distance = 1000;
+  config.ssfk.step = 10;
+  config.ssfk.flags = elg::SsfkData::filled(0xAA);
+  auto b = make_axis("B", elg::rotary_counts_per_degree(180000), 3600.0, 36000.0, 5.0);
+  auto c = make_axis("C", elg::rotary_counts_per_degree(180000), 360.0, 3600.0, 1.0);
+  auto x = make_axis("X", elg::linear_counts_per_mm(500), 100.0, 1000.0, 1.0);
+  auto z = make_axis("Z", elg::linear_counts_per_mm(500), 100.0, 1000.0, 1.0);
+  elg::HobbingMachine machine(std::move(*program), config, {b.get(), c.get(), z.get(), x.get(), nullptr});
+  hil::TimePoint now{};
+  const auto period = milliseconds(2);
+  std::vector<motion::Axis*> axes{b.get(), c.get(), x.get(), z.get()};
+  auto cycle = [&] {
+    now += period;
+    for (auto* axis : axes) axis->update(hil::CycleTime{now, period});
+    machine.step(hil::CycleTime{now, period});
+  };
+  cycle();
+  for (auto* axis : axes) ASSERT_FALSE(axis->enable());
+  for (int i = 0; i < 20; ++i) cycle();
+  auto& panel = machine.pc_signals().panel;
+  panel.override_position = 14;  // 100 %
+  panel.mode = elg::PanelMode::ref;
+  panel.ref_cam = true;
+  panel.key_plus = true;
+  cycle();
+  panel.key_plus = false;
+  for (int i = 0; i < 1000 && !machine.gearbox().status().referenced; ++i) cycle();
+  ASSERT_TRUE(machine.gearbox().status().referenced);
+  EXPECT_EQ(machine.gearbox().status().c_offset, -2000);  // the mark at 2000 counts is MD 240* = 0
+  for (int i = 0; i < 200; ++i) cycle();
+  ASSERT_FALSE(c->status().busy);
+  panel.mode = elg::PanelMode::inc;
+  panel.inc_factor = 1000;
+  for (int step = 1; step <= 3; ++step) {
+    const std::int64_t before = machine.c_set();
+    panel.key_plus = true;
+    cycle();
+    panel.key_plus = false;
+    for (int i = 0; i < 1000 && machine.gearbox().setup().moving(); ++i) cycle();
+    ASSERT_FALSE(machine.gearbox().setup().moving()) << "step " << step;
+    const std::int64_t target = machine.c_set();
+    EXPECT_EQ(target, before + 2000);
+    // ELG position from the reference point, one "+" point per 1000 counts passed.
+    const std::int64_t expected_comp = (target - 2000) / 1000 * 10;
+    EXPECT_EQ(machine.ssfk_compensation(), expected_comp) << "step " << step;
+    EXPECT_EQ(c->status().command_inc, target + expected_comp) << "step " << step;
+  }
+  EXPECT_TRUE(machine.gearbox().alarms().empty());
+}

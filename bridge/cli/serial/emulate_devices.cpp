@@ -7,6 +7,7 @@
 
 #include <cstdio>
 #include <fstream>
+#include <functional>
 #include <optional>
 #include <sstream>
 
@@ -14,10 +15,13 @@
 #include "hil/cli/context.hpp"
 #include "hil/cli/duration_option.hpp"
 #include "hil/controllers/clm14/motion_axis_port.hpp"
+#include "hil/controllers/elg/elg_controller.hpp"
+#include "hil/controllers/parameter_file.hpp"
 #include "hil/controllers/s5/ip247_module_endpoint.hpp"
 #include "hil/core/clock.hpp"
 #include "hil/core/text_file.hpp"
 #include "hil/mocks/legacy/clm14_line.hpp"
+#include "hil/mocks/legacy/elg_run_endpoint.hpp"
 #include "hil/mocks/legacy/elg_tape_endpoint.hpp"
 #include "hil/mocks/legacy/s5_block_endpoint.hpp"
 #include "hil/runtime/machine.hpp"
@@ -25,6 +29,7 @@
 #include "hil/serial/clm14/device_data.hpp"
 #include "hil/serial/file_lock.hpp"
 #include "hil/serial/profile_checks.hpp"
+#include "hil/serial/tape/elg_tape.hpp"
 
 namespace hil::cli::serial_cli {
 
@@ -70,19 +75,32 @@ struct Retrofit {
   std::vector<std::unique_ptr<hil::controllers::clm14::MotionAxisPort>> ports;
 };
 
-std::expected<std::unique_ptr<Retrofit>, std::string> make_retrofit(const std::string& file,
-                                                                    const TransportRegistry& registry) {
+/// The machine of a machine file (a scenario with only `machine:`), built on its transports.
+std::expected<std::unique_ptr<Retrofit>, std::string> load_machine(
+    const std::string& file, const TransportRegistry& registry,
+    const std::function<std::string(const hil::runtime::Scenario&)>& check) {
   auto r = std::make_unique<Retrofit>();
   auto sc = hil::runtime::load_scenario(file);
   if (!sc) return std::unexpected(sc.error().describe());
   r->scenario = std::move(*sc);
-  if (r->scenario.axes.empty() || r->scenario.axes.size() > 4)
-    return std::unexpected(fmt::format("{}: machine.axes: give 1 to 4 axes (CLM axes 1..4, in IU)", file));
+  if (auto why = check(r->scenario); !why.empty()) return std::unexpected(why);
   r->env = std::make_unique<RunEnvironment>(
       RunEnvironment{r->clock, false, &r->io, r->scenario.file, r->scenario.period, false, {}});
   auto m = hil::runtime::Machine::build(r->scenario, registry, *r->env);
   if (!m) return std::unexpected(m.error().describe());
   r->machine.emplace(std::move(*m));
+  return r;
+}
+
+std::expected<std::unique_ptr<Retrofit>, std::string> make_retrofit(const std::string& file,
+                                                                    const TransportRegistry& registry) {
+  auto loaded = load_machine(file, registry, [&](const hil::runtime::Scenario& sc) {
+    return sc.axes.empty() || sc.axes.size() > 4
+               ? fmt::format("{}: machine.axes: give 1 to 4 axes (CLM axes 1..4, in IU)", file)
+               : std::string();
+  });
+  if (!loaded) return std::unexpected(loaded.error());
+  auto r = std::move(*loaded);
   for (auto& a : r->machine->axes())
     r->ports.push_back(std::make_unique<hil::controllers::clm14::MotionAxisPort>(*a.axis));
   return r;
@@ -230,43 +248,184 @@ void register_emulators(Context& ctx) {
     });
   });
 
-  // --- ELG tape reader/punch -----------------------------------------------------------------
-  auto eo = std::make_shared<EmulateOptions>();
-  eo->link.format = "8N2";
-  eo->link.baud = 4800;
+  // --- ELG tape reader/punch, and the running ELG ------------------------------------------
+  struct ElgOpts {
+    EmulateOptions e;
+    std::string tape;
+    std::string program;
+    std::string machine;
+    Duration cycle = std::chrono::milliseconds(2);
+    bool hold = false;
+  };
+  auto eo = std::make_shared<ElgOpts>();
+  eo->e.link.format = "8N2";
+  eo->e.link.baud = 4800;
   auto* elg = ctx.emulate.add_subcommand("elg-tape",
                                          "Emulated SINUMERIK ELG universal interface: reads %TEA1 / %SEA tapes (ISO, "
                                          "even parity in bit 7) and punches them on "
-                                         "Data Start (a DC2 byte from the peer).");
-  add_emulate_options(*elg, *eo);
+                                         "Data Start (a DC2 byte from the peer). With --program the gearbox runs: "
+                                         "NC program, PC and ELG on the host's time, and the interface answers "
+                                         "from the running model (Data Start while coupled: alarm 2214).");
+  add_emulate_options(*elg, eo->e);
+  elg->add_option("--tape", eo->tape,
+                  "The %TEA1 machine-data tape (text) that configures the running gearbox and fills its MD store")
+      ->check(CLI::ExistingFile);
+  elg->add_option("--program", eo->program, "Run the ELG: the System 3 NC program (FILE.nc) of the hobbing cycle")
+      ->check(CLI::ExistingFile);
+  elg->add_option("--machine", eo->machine,
+                  "Retrofit mode: a machine file (scenario with machine.axes B, C, Z, X [, Y]; their scaling as the "
+                  "tape's MD 396*/5002 give it) whose axes are the ELG's on real-transport drives")
+      ->check(CLI::ExistingFile);
+  const DurationRange elg_cycle{std::chrono::microseconds(500), std::chrono::milliseconds(100)};
+  add_duration_option(*elg, "--cycle", eo->cycle, "ELG cycle with --program (default 2ms)", "ms", elg_cycle);
+  elg->add_flag("--hold", eo->hold, "With --program: wait for the console command 'start' (NC start)");
   elg->footer(
-      "Console commands: 'alarm', 'clear', 'quit'. Data Start (MD tape, then SD tape) is a DC2 byte from the peer.");
+      "Console commands: 'alarm', 'clear', 'quit'; with --program also 'status', 'start', 'reset' (ELG-RESET "
+      "pulse), 'fe on|off' (A67.1), 'pc read CODING ADDRESS', 'pc write CODING ADDRESS VALUE' (PC data channel, "
+      "12.5: coding 9 R, 10 MD word/service, 12 actual value, 27 alarms, 28 MD bits, 29 SD bits). Data Start "
+      "(MD tape, then SD tape) is a DC2 byte from the peer.\n"
+      "Examples: hilbridge emulate elg-tape --pty\n"
+      "          hilbridge emulate elg-tape --pty --tape md.tape.txt --program hobbing.nc\n"
+      "          hilbridge emulate elg-tape --port /dev/ttyUSB0 --tape md.tape.txt --program hobbing.nc "
+      "--machine machine.yaml   (retrofit mode)");
   elg->callback([&ctx, eo] {
+    auto fail = [&](const std::string& what) {
+      fmt::print(stderr, "error: {}\n", what);
+      ctx.exit_code = 2;
+    };
     auto check = hil::serial::load_elg_check();
-    if (!check) {
-      fmt::print(stderr, "error: device profile: {}\n", check.error());
-      ctx.exit_code = 2;
+    if (!check) return fail("device profile: " + check.error());
+    if (eo->program.empty()) {
+      if (!eo->tape.empty() || !eo->machine.empty())
+        return fail("--tape and --machine run the gearbox: give the NC program with --program");
+      lg::ElgTapeEndpoint ep(*check);
+      const auto locked = resolve_state(eo->e, "elg");
+      if (!locked) return fail(locked.error());
+      const auto& state = *locked;
+      if (auto text = read_file(state))
+        if (auto r = ep.load_state(*text); !r) fmt::print(stderr, "warning: {}\n", r.error());
+      ctx.exit_code = serve(ep, eo->e, state, [](lg::Endpoint& e, const std::string& cmd) -> std::string {
+        auto& t = static_cast<lg::ElgTapeEndpoint&>(e);
+        if (cmd == "alarm")
+          return t.alarm() == 0 ? std::string("no alarm") : fmt::format("alarm {}: {}", t.alarm(), t.alarm_text());
+        if (cmd == "clear") {
+          t.clear_alarm();
+          return "ok";
+        }
+        return "error: unknown command (alarm, clear, quit); Data Start is a DC2 byte from the peer";
+      });
       return;
     }
-    lg::ElgTapeEndpoint ep(*check);
-    const auto locked = resolve_state(*eo, "elg");
-    if (!locked) {
-      fmt::print(stderr, "error: {}\n", locked.error());
-      ctx.exit_code = 2;
-      return;
+    // The running ELG: configured from its MD tape, the NC program on simulated or real axes.
+    namespace ce = hil::controllers::elg;
+    if (eo->tape.empty()) return fail("--program needs --tape FILE: the %TEA1 machine-data tape of the gearbox");
+    auto loaded = hil::controllers::load_parameter_file("sinumerik-elg", eo->tape);
+    if (!loaded) return fail(loaded.error().describe());
+    auto setup = ce::elg_setup_from_tape(*loaded, ce::HobbingConfig{}, eo->cycle);
+    if (!setup) return fail(setup.error().describe());
+    auto text = read_text_file(eo->program);
+    if (!text) return fail(text.error());
+    auto program = ce::parse_nc_program(*text);
+    if (!program) return fail(fmt::format("{}:{}: {}", eo->program, program.error().line, program.error().what()));
+    auto tape_text = read_text_file(eo->tape);
+    if (!tape_text) return fail(tape_text.error());
+    auto sections = hil::serial::tape::parse_elg_text(*tape_text);
+    if (!sections) return fail(fmt::format("{}: {}", eo->tape, sections.error().message));
+    std::vector<std::pair<std::string, motion::Ratio>> wanted;
+    for (const auto& a : setup->axes) wanted.emplace_back(a.name, a.config.inc_per_unit);
+    std::unique_ptr<Retrofit> retrofit;
+    std::vector<motion::Axis*> real_axes;
+    if (!eo->machine.empty()) {
+      auto r = load_machine(eo->machine, ctx.transports, [&](const hil::runtime::Scenario& sc) -> std::string {
+        for (const auto& [name, ratio] : wanted) {
+          const auto it = std::find_if(sc.axes.begin(), sc.axes.end(), [&](const auto& a) { return a.name == name; });
+          if (it == sc.axes.end())
+            return fmt::format("{}: machine.axes: the ELG needs axis {} (B, C, Z, X{})", eo->machine, name,
+                               wanted.size() > 4 ? ", Y" : "");
+        }
+        return {};
+      });
+      if (!r) return fail("--machine: " + r.error());
+      retrofit = std::move(*r);
+      for (const auto& [name, ratio] : wanted) {
+        for (auto& a : retrofit->machine->axes()) {
+          if (a.axis->config().name != name) continue;
+          const auto& have = a.axis->config().inc_per_unit;
+          if (have.num * ratio.den != ratio.num * have.den)
+            return fail(
+                fmt::format("--machine: axis {}: {}/{} increments per unit, the tape's MD give {}/{} (counts "
+                            "of the ELG: rotary 4 x MD 396* per 360 deg, linear 1e6 / MS[nm] per mm)",
+                            name, have.num, have.den, ratio.num, ratio.den));
+          real_axes.push_back(a.axis.get());
+        }
+      }
     }
+    lg::ElgRunOptions run;
+    run.auto_start = !eo->hold;
+    lg::ElgRunEndpoint ep(*check, std::move(*setup), std::move(*program), eo->cycle, {}, run);
+    if (retrofit) {
+      auto* rf = retrofit.get();
+      ep.use_axes(real_axes, [rf](const CycleTime& c) {
+        rf->io.poll();
+        rf->machine->cycle(c);
+      });
+    }
+    const auto locked = resolve_state(eo->e, "elg");
+    if (!locked) return fail(locked.error());
     const auto& state = *locked;
-    if (auto text = read_file(state))
-      if (auto r = ep.load_state(*text); !r) fmt::print(stderr, "warning: {}\n", r.error());
-    ctx.exit_code = serve(ep, *eo, state, [](lg::Endpoint& e, const std::string& cmd) -> std::string {
-      auto& t = static_cast<lg::ElgTapeEndpoint&>(e);
-      if (cmd == "alarm")
-        return t.alarm() == 0 ? std::string("no alarm") : fmt::format("alarm {}: {}", t.alarm(), t.alarm_text());
+    if (auto t = read_file(state))
+      if (auto r = ep.load_state(*t); !r) fmt::print(stderr, "warning: {}\n", r.error());
+    // The store holds what the gearbox runs with: the tape's data over the saved state.
+    for (const auto& sec : *sections)
+      for (const auto& en : sec.entries) ep.tape().set_datum(sec.kind, en.number, en.value);
+    ctx.exit_code = serve(ep, eo->e, state, [](lg::Endpoint& e, const std::string& cmd) -> std::string {
+      auto& r = static_cast<lg::ElgRunEndpoint&>(e);
+      if (cmd == "status") return r.status();
+      if (cmd == "alarm") {
+        const auto alarms = r.alarms();
+        if (alarms.empty()) return "no alarm";
+        std::string out;
+        for (int a : alarms)
+          out += fmt::format(
+              "{}alarm {}: {}", out.empty() ? "" : "\n", a,
+              a == r.tape().alarm() ? r.tape().alarm_text() : std::string(ce::alarm_text(static_cast<ce::Alarm>(a))));
+        return out;
+      }
       if (cmd == "clear") {
-        t.clear_alarm();
+        r.tape().clear_alarm();
         return "ok";
       }
-      return "error: unknown command (alarm, clear, quit); Data Start is a DC2 byte from the peer";
+      if (cmd == "start") {
+        r.start();
+        return "ok start";
+      }
+      if (cmd == "reset") {
+        r.pulse_reset();
+        return "ok reset";
+      }
+      if (cmd == "fe on" || cmd == "fe off") {
+        r.set_fe_monitor(cmd == "fe on");
+        return "ok " + cmd;
+      }
+      if (cmd.starts_with("pc ")) {
+        std::istringstream in(cmd.substr(3));
+        std::string op, value;
+        int coding = -1, address = -1;
+        in >> op >> coding >> address >> value;
+        const bool write = op == "write";
+        const auto v = write ? ce::parse_pc_value(value) : std::optional<ce::PcValue>(ce::PcValue{});
+        if ((op != "read" && op != "write") || coding < 0 || coding > 63 || address < 0 || address > 9999 || !v)
+          return "error: pc read CODING ADDRESS | pc write CODING ADDRESS VALUE (e.g. pc read 10 3961, pc write 9 40 "
+                 "500)";
+        ce::PcRequest req{write, static_cast<std::uint8_t>(coding), static_cast<std::uint8_t>(address % 100),
+                          static_cast<std::uint8_t>(address / 100), *v};
+        const auto reply = r.pc_request(req);
+        if (!reply.performed)
+          return fmt::format("acknowledged, not performed: alarm {} {}", static_cast<int>(*reply.alarm),
+                             ce::alarm_text(*reply.alarm));
+        return fmt::format("ok {}", ce::to_string(reply.value));
+      }
+      return "error: unknown command (status, alarm, clear, start, reset, fe on|off, pc read|write, quit)";
     });
   });
 

@@ -6,7 +6,17 @@
 namespace hil::controllers::elg {
 
 std::string_view alarm_text(Alarm alarm) noexcept {
+  const auto n = static_cast<int>(alarm);
+  if (n >= 1840 && n <= 1843) return "STOP BEHIND REFERENCE CAMS";
   switch (alarm) {
+    case Alarm::stop_behind_reference_cams:
+      return "STOP BEHIND REFERENCE CAMS";
+    case Alarm::program_speed_too_high:
+      return "PROGRAM SPEED TOO HIGH";
+    case Alarm::pc_data_channel_error:
+      return "ERROR PC-ELG DATA CHANNEL";
+    case Alarm::pc_datum_not_present:
+      return "DATUM NOT PRESENT, PC-ELG DATA CHANNEL";
     case Alarm::emergency_off:
       return "EMERGENCY OFF";
     case Alarm::power_on_error:

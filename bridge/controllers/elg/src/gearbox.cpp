@@ -13,7 +13,7 @@ bool rising(bool now, bool before) {
 }
 }  // namespace
 
-Gearbox::Gearbox(GearboxConfig config) : config_(config) {
+Gearbox::Gearbox(GearboxConfig config) : config_(config), setup_(config.setup) {
   r40_ = config_.fe_tolerance_min;
   status_.fe_limit = r40_;
 }
@@ -56,6 +56,8 @@ void Gearbox::power_on_reset() {
   ezt_base_valid_ = false;
   index_count_ = 0;
   hae_offset_ = 0.0;
+  setup_ = SetupModes(config_.setup);  // the reference point is lost with the power
+  setup_moved_c_ = false;
 }
 
 void Gearbox::on_compute() {
@@ -74,7 +76,8 @@ void Gearbox::on_compute() {
 
 void Gearbox::engage(const AxisFeedback& axes, bool single_pitch) {
   // Preconditions of 4.1; violation: 2207, partial set value 0.
-  const bool approach_ok = std::llabs(axes.c_following_error) <= config_.gearing_on_tolerance;
+  // A setting-up motion of C still under way is no approach condition either (decision).
+  const bool approach_ok = std::llabs(axes.c_following_error) <= config_.gearing_on_tolerance && !setup_.moving();
   if (!constants_ || has_alarm(Alarm::power_on_error) || has_alarm(Alarm::constants_error) || !approach_ok) {
     raise(Alarm::gearing_not_permissible);
     return;
@@ -84,6 +87,7 @@ void Gearbox::engage(const AxisFeedback& axes, bool single_pitch) {
   // standing following error never shifts the index position from gap to gap.
   const std::int64_t c0 = indexing_ ? status_.c_set : axes.c + axes.c_following_error;
   linkage_ = Linkage(*constants_, axes.b, axes.z, axes.y, c0, !single_pitch);
+  setup_moved_c_ = false;
   indexing_ = false;
   hae_offset_ = 0.0;
   hae_target_ = 0;
@@ -114,6 +118,7 @@ const GearboxStatus& Gearbox::step(const Signals& s, const AxisFeedback& axes) {
     std::erase_if(alarms_, [](Alarm a) { return !needs_power_on_reset(a); });
     stopped_ = false;
     status_.contact_closed = true;
+    setup_.abort();
   }
   if (s.emergency_off) {
     raise(Alarm::emergency_off);
@@ -146,9 +151,13 @@ const GearboxStatus& Gearbox::step(const Signals& s, const AxisFeedback& axes) {
 
   if (status_.coupled) {
     run_coupled(s, axes);
+    (void)setup_.step(s.panel, status_.c_set, axes.c, axes.c_in_position, true, true);
   } else {
     run_indexing(s, axes);
+    run_setup(s, axes);
   }
+  status_.referenced = setup_.referenced();
+  status_.c_offset = setup_.offset();
   monitor_following_error(s, axes);
   if (stopped_) status_.c_mode = CMode::stop;
   status_.alarm = !alarms_.empty();
@@ -206,10 +215,44 @@ void Gearbox::run_indexing(const Signals& s, const AxisFeedback& axes) {
   status_.c_set = index_base_ + counts;
   status_.c_mode = CMode::position;
   indexing_ = true;
+  setup_moved_c_ = false;
   const std::int32_t z2 = input_.z2;
   status_.tooth += plus ? 1 : -1;
   if (status_.tooth > z2) status_.tooth = 1;
   if (status_.tooth < 1) status_.tooth = z2;
+}
+
+void Gearbox::run_setup(const Signals& s, const AxisFeedback& axes) {
+  // JOG/INC/REF of C with the coupling OFF (ch. 7); an index under way or the STOP reaction
+  // holds them (the EMERGENCY OFF of this cycle included).
+  const bool blocked = stopped_ || s.emergency_off || indexing_;
+  if (auto alarm = setup_.step(s.panel, axes.c + axes.c_following_error, axes.c, axes.c_in_position, false, blocked))
+    raise(*alarm);
+  status_.setup_step = false;
+  if (indexing_) return;
+  const auto& cmd = setup_.command();
+  switch (cmd.kind) {
+    case SetupCommand::Kind::none:
+      // After a JOG/INC/REF motion the set value follows C while it stops and stands (its own
+      // command), until an index or the coupling takes C again.
+      if (setup_moved_c_) status_.c_set = axes.c + axes.c_following_error;
+      status_.c_mode = CMode::hold;
+      status_.c_velocity = 0.0;
+      break;
+    case SetupCommand::Kind::velocity:
+      setup_moved_c_ = true;
+      status_.c_mode = CMode::velocity;
+      status_.c_velocity = cmd.velocity_counts_per_s;
+      status_.c_set = axes.c + axes.c_following_error;
+      break;
+    case SetupCommand::Kind::position:
+      setup_moved_c_ = true;
+      status_.c_mode = CMode::position;
+      status_.c_set = cmd.target;
+      status_.c_velocity = cmd.velocity_counts_per_s;
+      status_.setup_step = true;
+      break;
+  }
 }
 
 void Gearbox::run_hae(const Signals& s, const AxisFeedback& axes) {
@@ -223,7 +266,9 @@ void Gearbox::run_hae(const Signals& s, const AxisFeedback& axes) {
   if (status_.hae == HaeState::idle) status_.hae = HaeState::approach;
   status_.actual_value_transferred = s.transfer_actual && status_.actual_value_transferred;
   // INC motion of the operator, superimposed on the coupling: dS = n * 2 MS (7.2).
-  const std::int64_t step = config_.inc_increments * 2;
+  // With the mode switch at INC the panel's selector gives n (7.2); else the configured n.
+  const std::int64_t n = s.panel.mode == PanelMode::inc ? s.panel.inc_factor : config_.inc_increments;
+  const std::int64_t step = n * 2;
   if (status_.hae == HaeState::approach || status_.hae == HaeState::one_point) {
     if (rising(s.inc_plus, last_.inc_plus)) hae_target_ += step;
     if (rising(s.inc_minus, last_.inc_minus)) hae_target_ -= step;

@@ -25,7 +25,8 @@ HobbingMachine::HobbingMachine(NcProgram program, HobbingConfig config, HobbingA
       axes_(axes),
       nc_(std::move(program)),
       pc_(config_.m_functions),
-      gearbox_(config_.gearbox) {}
+      gearbox_(config_.gearbox),
+      ssfk_(config_.ssfk) {}
 
 void HobbingMachine::move(const NcTargets& t, bool rapid, double feed_mm_per_s) {
   auto start = [&](motion::Axis* axis, const std::optional<double>& target) {
@@ -94,7 +95,7 @@ void HobbingMachine::step(const hil::CycleTime& cycle) noexcept {
   if (axes_.z) fb.z = axes_.z->status().position_inc;
   if (axes_.y) fb.y = axes_.y->status().position_inc;
   const auto& cs = axes_.c->status();
-  fb.c = cs.position_inc;
+  fb.c = cs.position_inc - ssfk_comp_;  // the ELG works in SSFK-compensated coordinates
   fb.c_following_error = cs.command_inc - cs.position_inc;
   fb.c_in_position = !cs.busy;
   const std::size_t alarms_before = gearbox_.alarms().size();
@@ -110,16 +111,63 @@ void HobbingMachine::step(const hil::CycleTime& cycle) noexcept {
     latched_c_ = st.c_set;
   }
   const double period_s = hil::to_seconds(cycle.period);
+  // SSFK (ssfk.hpp): the compensation at C's set position, once C is referenced.
+  {
+    const std::int64_t here = fb.c + fb.c_following_error;
+    const bool positioned = st.c_mode == CMode::follow || st.c_mode == CMode::position;
+    const std::int64_t at = positioned ? st.c_set : here;
+    const double moving = st.c_mode == CMode::follow     ? static_cast<double>(st.c_set - previous_set)
+                          : st.c_mode == CMode::position ? static_cast<double>(st.c_set - here)
+                          : st.c_mode == CMode::velocity ? st.c_velocity
+                                                         : 0.0;
+    if (moving != 0.0) ssfk_direction_ = moving > 0 ? 1 : -1;
+    ssfk_comp_ = ssfk_.active() && st.referenced ? ssfk_.compensation(at + st.c_offset, ssfk_direction_) : 0;
+  }
+  const auto& ratio = axes_.c->config().inc_per_unit;
+  auto to_deg = [&](double counts) { return counts * static_cast<double>(ratio.den) / static_cast<double>(ratio.num); };
   switch (st.c_mode) {
     case CMode::follow: {
-      const double v = period_s > 0 ? static_cast<double>(st.c_set - previous_set) / period_s : 0.0;
-      if (auto ec = axes_.c->follow(st.c_set, v, 0.0)) error_ = "table C: " + ec.message();
+      // The first coupled cycle starts from standstill: the set value before it may be a stale one
+      // of a setting-up motion, not a speed.
+      const double v = period_s > 0 && was_coupled_ ? static_cast<double>(st.c_set - previous_set) / period_s : 0.0;
+      if (auto ec = axes_.c->follow(st.c_set + ssfk_comp_, v, 0.0)) error_ = "table C: " + ec.message();
       indexing_ = false;
+      setup_motion_ = false;
       break;
     }
+    case CMode::velocity:
+      // JOG / REF: issued again only when the speed changes (override, rapid key, cam).
+      if (!setup_motion_ || st.c_velocity != issued_velocity_) {
+        const auto ec = st.c_velocity == 0.0 ? (cs.busy ? axes_.c->stop() : std::error_code{})
+                                             : axes_.c->move_velocity(to_deg(st.c_velocity));
+        if (ec) error_ = "table C: " + ec.message();
+        issued_velocity_ = st.c_velocity;
+        setup_motion_ = true;
+      }
+      indexing_ = false;
+      break;
     case CMode::position:
+      if (st.setup_step) {
+        // INC: the step's target at MD 300* x override; 0 % holds C until the override rises.
+        if (!setup_motion_ || st.c_set != issued_target_ || st.c_velocity != issued_velocity_) {
+          std::error_code ec;
+          if (st.c_velocity == 0.0) {
+            if (cs.busy) ec = axes_.c->stop();
+          } else {
+            motion::Limits limits = axes_.c->config().limits;
+            limits.velocity = std::min(limits.velocity, to_deg(st.c_velocity));
+            ec = axes_.c->move_absolute(axes_.c->scaling().to_units(st.c_set + ssfk_comp_), motion::Direction::shortest,
+                                        limits);
+          }
+          if (ec) error_ = "table C: " + ec.message();
+          issued_target_ = st.c_set;
+          issued_velocity_ = st.c_velocity;
+          setup_motion_ = true;
+        }
+        break;
+      }
       if (!indexing_) {
-        const double deg = axes_.c->scaling().to_units(st.c_set);
+        const double deg = axes_.c->scaling().to_units(st.c_set + ssfk_comp_);
         motion::Limits limits = axes_.c->config().limits;
         limits.velocity = std::min(limits.velocity, config_.index_speed_deg_per_s);
         if (auto ec = axes_.c->move_absolute(deg, motion::Direction::shortest, limits))
@@ -130,10 +178,12 @@ void HobbingMachine::step(const hil::CycleTime& cycle) noexcept {
     case CMode::stop:
       if (cs.busy) axes_.c->quick_stop();
       indexing_ = false;
+      setup_motion_ = false;
       break;
     case CMode::hold:
-      if (was_coupled_) axes_.c->stop();
+      if (was_coupled_ || (setup_motion_ && cs.busy)) axes_.c->stop();
       indexing_ = false;
+      setup_motion_ = false;
       break;
   }
   if (st.coupled) {

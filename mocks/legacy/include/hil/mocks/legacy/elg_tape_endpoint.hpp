@@ -51,6 +51,15 @@ class ElgTapeEndpoint final : public Endpoint {
   [[nodiscard]] const std::map<int, std::string>& machine_data() const noexcept { return md_; }
   [[nodiscard]] const std::map<int, std::string>& setting_data() const noexcept { return sd_; }
   void set_datum(serial::tape::ElgSectionKind k, int number, std::string value);
+  /// The ELG's MD or SD store itself (the PC data channel writes it); mark_dirty() after a change.
+  [[nodiscard]] std::map<int, std::string>& store(serial::tape::ElgSectionKind k) noexcept {
+    return k == serial::tape::ElgSectionKind::machine_data ? md_ : sd_;
+  }
+  void mark_dirty() noexcept { dirty_ = true; }
+  /// A tape is being read in (Data Start bytes are data then).
+  [[nodiscard]] bool reading() const noexcept { return reading_; }
+  /// An alarm of the running ELG on its V.24 side (2214: transfer refused while coupled).
+  void report(int alarm, std::string text) { raise(alarm, std::move(text)); }
 
  private:
   void finish_tape();

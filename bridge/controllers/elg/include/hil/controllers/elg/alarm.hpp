@@ -10,7 +10,9 @@
 namespace hil::controllers::elg {
 
 enum class Alarm : std::uint16_t {
+  stop_behind_reference_cams = 1840,    ///< 184*: REF stopped between cam and zero mark (+ axis index)
   emergency_off = 2000,                 ///< PC outputs EMERGENCY OFF
+  program_speed_too_high = 2035,        ///< JOG/INC/REF set speed above MD 280* (coupling OFF)
   power_on_error = 2200,                ///< constants cannot be computed (MD 252*, 396*, 170, 5020/5021)
   compensation_not_possible = 2201,     ///< partial set value too high for FE compensation
   partial_set_value_overflow = 2202,    ///< overflow computing the partial set value
@@ -20,6 +22,8 @@ enum class Alarm : std::uint16_t {
   gearing_not_permissible = 2207,       ///< Gearing ON without computed constants / approach condition
   v24_not_permitted = 2214,             ///< Data Start while coupled
   following_error_exceeded = 2215,      ///< C following error > max(MD 169, R40) while monitored
+  pc_data_channel_error = 3016,         ///< PC-ELG data channel: wrong code, value too high, dimension
+  pc_datum_not_present = 3018,          ///< PC-ELG data channel: unknown MD/SD number
 };
 
 /// The manual's alarm text (12.3), upper case as on the VDU.

@@ -15,7 +15,13 @@
 //
 // I/O image (names): inputs `cycle_start`, `fe_monitor` (A67.1), `reset` (ELG-RESET);
 // outputs `computed` (E66.6), `coupled` (E66.7), `tooth_gap_reached` (E66.3), `elg_alarm`
-// (E65.5), `contact_closed` (FE relay), `program_running`; marker byte `tooth` (TOOTH NO.).
+// (E65.5), `contact_closed` (FE relay), `program_running`, `referenced` (E69..72.1 of C),
+// `c_traversing` (a JOG/INC/REF motion of C); marker byte `tooth` (TOOTH NO.).
+// Machine control panel (12.4.3; setup_modes.hpp): inputs `key_plus`, `key_minus`, `rapid`,
+// `rapid_override`, `ref_cam` (C's deceleration cam actuated), the override code
+// `override_1/_2/_4/_8` (position = code + 1; code 0 = 0 %), the mode code `mode_1/_2/_4`
+// (1 JOG, 2 INC, 3 REF), the INC selector code `inc_1/_2/_4` (0..4 = 1, 10, 100, 1000, 10000
+// increments) and `data_start` (V.24 Data Start: 2214 while coupled).
 
 #include <memory>
 
@@ -42,6 +48,7 @@ class ElgController final : public Controller {
 
  protected:
   void on_cycle(const CycleTime& cycle) noexcept override;
+  [[nodiscard]] PanelSignals read_panel() const noexcept;
   [[nodiscard]] std::optional<DeviceErrorCode> map_axis_fault(std::size_t axis, const hil::Fault& fault,
                                                               const motion::AxisStatus& status) const noexcept override;
 
@@ -55,6 +62,19 @@ class ElgController final : public Controller {
   std::vector<int> circuits_;    ///< measuring circuit per axis, -1: none
   const profiles::ErrorCatalogue* alarms_ = nullptr;
 };
+
+/// What the MD tape configures: the gearbox and setting-up data, the axes B, C, Z, X (Y) with
+/// their scaling and speeds, and each axis' measuring circuit (-1: none).
+struct ElgSetup {
+  HobbingConfig config;
+  std::vector<ControllerAxis> axes;
+  std::vector<int> circuits;
+};
+/// Reads the %TEA1 tape (MD 396*, 5002, 5020/5021, 252*, 166, 169, 170, 100-114, 240*, 280*-300*,
+/// 564*) onto `options` (the controller's M functions, R numbers, index option). `cycle` is the
+/// ELG cycle. Error: the datum that is missing or wrong, with the tape's file.
+std::expected<ElgSetup, ConfigError> elg_setup_from_tape(const LoadedParameters& loaded, const HobbingConfig& options,
+                                                         Duration cycle);
 
 /// Registers `sinumerik-elg` in `registry`.
 void register_elg(ControllerRegistry& registry);

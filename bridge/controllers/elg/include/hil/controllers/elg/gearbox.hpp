@@ -13,6 +13,7 @@
 // - The approach condition of Gearing ON is |C following error| <= MD 166.
 // - A following error exactly equal to the limit keeps the contact closed.
 // - Single-pitch indexes land on a grid counted from EZT selection (index_on_grid).
+// - Gearing ON while a JOG/INC/REF motion of C runs fails the approach condition: 2207.
 
 #include <cstdint>
 #include <optional>
@@ -20,6 +21,7 @@
 
 #include "hil/controllers/elg/alarm.hpp"
 #include "hil/controllers/elg/gear.hpp"
+#include "hil/controllers/elg/setup_modes.hpp"
 
 namespace hil::controllers::elg {
 
@@ -39,6 +41,7 @@ struct Signals {
   bool inc_plus = false;         ///< INC key + (HAE offset motion while coupled)
   bool inc_minus = false;        ///< INC key -
   bool data_start = false;       ///< V.24 Data Start
+  PanelSignals panel;            ///< machine control panel: JOG/INC/REF of C (setup_modes.hpp)
 };
 
 /// Actual values of the axes in encoder counts (quadrupled) and C's following error.
@@ -64,6 +67,7 @@ struct GearboxConfig {
   /// [I] Single-pitch indexes land on the grid start + k * pitch counted from EZT selection (true),
   /// or move one pitch from wherever C stands (false: the manual's literal "moves C by one pitch").
   bool index_on_grid = true;
+  SetupMachineData setup;  ///< MD 100-114, 240*, 280*-300*, 564* of C (JOG/INC/REF)
 };
 
 enum class CMode : std::uint8_t {
@@ -71,6 +75,7 @@ enum class CMode : std::uint8_t {
   follow,    ///< coupled: C follows `c_set` every cycle
   position,  ///< single-pitch index: move C to `c_set` (positioning at the jog speed)
   stop,      ///< STOP reaction: set value 0, C stops
+  velocity,  ///< JOG / REF: C traverses at `c_velocity` counts/s (0: stands)
 };
 
 enum class HaeState : std::uint8_t { idle, approach, one_point, centring, gap_reached };
@@ -88,6 +93,13 @@ struct GearboxStatus {
   CMode c_mode = CMode::hold;
   std::int64_t c_set = 0;     ///< C set value / target, counts
   std::int64_t fe_limit = 0;  ///< max(MD 169, R40)
+  /// velocity: C's speed (counts/s, signed); position: the speed limit (counts/s, 0 = the machine's
+  /// index speed for a single-pitch index; a setting-up INC step at 0 % override also gives 0 and
+  /// C stands until the override rises: `setup_step` tells the two apart).
+  double c_velocity = 0.0;
+  bool setup_step = false;    ///< position: the move is an INC step (else a single-pitch index)
+  bool referenced = false;    ///< C's "Reference point reached" (E69..E72 bit 1)
+  std::int64_t c_offset = 0;  ///< ELG actual value of C = counts + c_offset (MD 240* after REF)
 };
 
 class Gearbox {
@@ -104,6 +116,10 @@ class Gearbox {
   /// One ELG cycle. Never throws.
   const GearboxStatus& step(const Signals& signals, const AxisFeedback& axes);
 
+  /// An alarm of another ELG function that is a message only (the PC data channel's 3016/3018):
+  /// latched like the others, cleared by RESET with the coupling OFF.
+  void raise_message(Alarm alarm) { raise(alarm); }
+
   /// POWER ON RESET: clears every alarm including 2200, uncouples, forgets the constants.
   void power_on_reset();
 
@@ -113,6 +129,8 @@ class Gearbox {
   bool has_alarm(Alarm alarm) const noexcept;
   const GearInput& input() const noexcept { return input_; }
   const std::optional<GearConstants>& constants() const noexcept { return constants_; }
+  const SetupModes& setup() const noexcept { return setup_; }
+  const GearboxConfig& config() const noexcept { return config_; }
 
  private:
   void raise(Alarm alarm);
@@ -122,6 +140,7 @@ class Gearbox {
   void run_coupled(const Signals& signals, const AxisFeedback& axes);
   void run_indexing(const Signals& signals, const AxisFeedback& axes);
   void run_hae(const Signals& signals, const AxisFeedback& axes);
+  void run_setup(const Signals& signals, const AxisFeedback& axes);
   void monitor_following_error(const Signals& signals, const AxisFeedback& axes);
 
   GearboxConfig config_;
@@ -146,6 +165,9 @@ class Gearbox {
   std::int64_t p1_ = 0;
   std::int64_t last_partial_ = 0;
   std::int64_t last_c_set_ = 0;
+
+  SetupModes setup_;
+  bool setup_moved_c_ = false;  ///< C's set value is its own since a setting-up motion
 };
 
 }  // namespace hil::controllers::elg

@@ -17,6 +17,7 @@
 #include "hil/controllers/elg/gearbox.hpp"
 #include "hil/controllers/elg/nc_interpreter.hpp"
 #include "hil/controllers/elg/pc_interface.hpp"
+#include "hil/controllers/elg/ssfk.hpp"
 #include "hil/core/clock.hpp"
 #include "hil/motion/axis.hpp"
 
@@ -38,6 +39,7 @@ struct HobbingConfig {
   int r_z0 = 20, r_z2 = 21, r_ud_z = 12, r_ud_y = 13, r_toler = 40;
   double rapid_mm_per_s = 50.0;       ///< G0 speed of X/Y/Z
   double index_speed_deg_per_s = 30;  ///< C speed of a single-pitch index
+  SsfkData ssfk;                      ///< C's SSFK (ssfk.hpp): added to C's position commands once referenced
 };
 
 /// Axis configuration helpers: increments per unit for the ELG's counts.
@@ -54,6 +56,8 @@ class HobbingMachine final : public NcMachine {
   void step(const hil::CycleTime& cycle) noexcept;
 
   [[nodiscard]] const Gearbox& gearbox() const noexcept { return gearbox_; }
+  /// The gearbox itself, for the ELG's other interfaces (PC data channel, V.24: 2214).
+  [[nodiscard]] Gearbox& gearbox() noexcept { return gearbox_; }
   [[nodiscard]] const NcInterpreter& nc() const noexcept { return nc_; }
   [[nodiscard]] const PcInterface& pc() const noexcept { return pc_; }
   /// The PC's signals the NC does not drive (FE monitoring, RESET): set before step().
@@ -69,6 +73,8 @@ class HobbingMachine final : public NcMachine {
   /// (the ELG's set-value error plus C's following error); 0 while uncoupled.
   [[nodiscard]] double c_linkage_error_deg() const noexcept { return c_linkage_error_deg_; }
   [[nodiscard]] const std::string& error() const noexcept { return error_; }
+  /// The SSFK compensation (counts) in C's last command; 0 when SSFK is off or C not referenced.
+  [[nodiscard]] std::int64_t ssfk_compensation() const noexcept { return ssfk_comp_; }
 
   // NcMachine
   void move(const NcTargets& targets, bool rapid, double feed_mm_per_s) override;
@@ -90,6 +96,12 @@ class HobbingMachine final : public NcMachine {
   bool was_coupled_ = false;
   int couplings_ = 0;
   bool indexing_ = false;
+  Ssfk ssfk_;
+  std::int64_t ssfk_comp_ = 0;
+  int ssfk_direction_ = 1;
+  bool setup_motion_ = false;  ///< a JOG/INC/REF command was issued to C
+  double issued_velocity_ = 0.0;
+  std::int64_t issued_target_ = 0;
   std::int64_t latched_b_ = 0, latched_z_ = 0, latched_y_ = 0, latched_c_ = 0;
   double linkage_error_ = 0.0, worst_linkage_error_ = 0.0, c_linkage_error_deg_ = 0.0;
   double now_s_ = 0.0;

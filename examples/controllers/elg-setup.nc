@@ -1,0 +1,8 @@
+%200 (Couple C after setting it up: spur gear, Z0 = 1, Z2 = 40)
+N5 R20 1 R21 40 R12 0 R13 0
+N10 M52 G04 F.25
+N15 M50 G04 F.25
+N20 S100 M03 G04 F2
+N25 M05 G04 F.5
+N30 M51 G04 F.25
+N35 M30
