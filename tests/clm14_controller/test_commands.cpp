@@ -360,6 +360,29 @@ TEST(ClmCommands, PbkDiscardsTheRemainingDistance) {
   EXPECT_NEAR(r.pos(), stopped + 50.0, 0.02);
 }
 
+TEST(ClmCommands, PbkThenPoiAddsToTheBrakingEndWithoutAStop) {
+  // vector #33: CON 1 1 +999, WAI 02.000, PBK 1, POI 1 +000050.000 100: the axis travels the
+  // braking distance (99.9 IU/s at 1000 IU/s²: 4.99 IU) + 50 IU from the PBK point, and never stops
+  // in between (a continuous transition 99.9 % -> 10 %).
+  Rig r;
+  r.program({{0, "CON 1 1 +999"}, {1, "WAI 02.000"}, {2, "PBK 1"}, {3, "POI 1 +000050.000 100"}, {4, "JMP 0004"}});
+  r.start_auto();
+  ASSERT_TRUE(r.run_until([&] { return r.clm.task(1).pc == 2; }, 5s));
+  const double at_pbk = r.motion_axes[0]->status().command_position;  // PBK reads it in the next cycle
+  const double end = at_pbk + 99.9 * 99.9 / 2000.0 + 50.0;
+  double slowest = 1e9;
+  ASSERT_TRUE(r.run_until(
+      [&] {
+        const auto& st = r.motion_axes[0]->status();
+        // before the feed's own final braking (10 IU/s: 0.05 IU)
+        if (st.busy && st.command_position < end - 0.1) slowest = std::min(slowest, std::abs(st.command_velocity));
+        return !st.busy;
+      },
+      20s));
+  EXPECT_NEAR(r.pos(), end, 0.05);
+  EXPECT_GT(slowest, 9.9) << "no stop between the braking and the 10 % feed";
+}
+
 TEST(ClmCommands, ConRunsUntilStopped) {
   Rig r;
   r.program({{0, "CON 1 1 +500"}, {1, "WAI 01.000"}, {2, "CON 1 0 +000"}, {3, "JMP 0003"}});

@@ -222,7 +222,7 @@ TEST(ClmExamples, MultitaskingTask2CountsTask3Supervises) {
   EXPECT_TRUE(r.get(bit("Q1.00.7")));
 }
 
-TEST(ClmExamples, DISABLED_RestartProgramsOneAndTwo) {
+TEST(ClmExamples, RestartProgramsOneAndTwo) {
   for (const bool wait_for_input : {false, true}) {
     Rig r({{"B016", "2000"}});
     std::vector<std::pair<int, std::string>> p{{0, "AEA Q1.00.3 1"}, {1, "PSI 1 +000100.000 999"}, {2, "JMP 0002"}};

@@ -74,6 +74,33 @@ TEST(ClmRuntime, RunsAProgramFromFilesOnTheRuntimesImageAndAxes) {
   EXPECT_NEAR(axis.status().position, 25.0, 0.011);
   EXPECT_TRUE(ctl.resolve_bit("M2.00.0").has_value());
   EXPECT_TRUE(ctl.errors().active().empty());
+
+  // The CLM's values by name, as a scenario's `expect: {controller: NAME, value: V}` reads them.
+  const auto value = [&](std::string_view name) {
+    auto h = ctl.resolve_value(name);
+    EXPECT_TRUE(h.has_value()) << name << ": " << (h ? "" : h.error());
+    return h ? ctl.value(*h) : -1.0;
+  };
+  EXPECT_EQ(value("task1.line"), 0.0) << "JST 0000";
+  EXPECT_EQ(value("run"), 2.0) << "stopped by JST";
+  EXPECT_EQ(value("mode"), 2.0) << "Automatic";
+  EXPECT_NEAR(value("axis1.position"), 25.0, 0.011);
+  EXPECT_NEAR(value("V100"), 25.0, 0.011);
+  EXPECT_EQ(value("V002"), 0.0);
+  EXPECT_EQ(value("error"), 0.0);
+  EXPECT_EQ(value("Q0.00"), static_cast<double>(ctl.io().get(hc::ByteAddress{hc::IoArea::output, 0})));
+  EXPECT_EQ(value("Q1.00"), 0.0);
+  EXPECT_EQ(value("task1.depth"), 0.0);
+  ASSERT_TRUE(dynamic_cast<RuntimeController&>(ctl).model().set_variable(600, -87654321654321));
+  EXPECT_EQ(value("V600"), -87654321.654321) << "exact to the millionth";
+  for (const auto* bad : {"V6000", "V60", "counter.0001", "counter.3000", "task6.line", "task1.pc", "axis2.position",
+                          "axis1.speed", "Q9.00", "nonsense"}) {
+    auto h = ctl.resolve_value(bad);
+    ASSERT_FALSE(h.has_value()) << bad;
+    EXPECT_NE(h.error().find("the CLM shows: V000..V999"), std::string::npos) << h.error();
+  }
+  EXPECT_NE(ctl.resolve_value("counter.0001").error().find("line 0001 of the program holds no COU or BAC"),
+            std::string::npos);
 }
 
 TEST(ClmRuntime, BadProgramFileNamesTheDevicesError) {

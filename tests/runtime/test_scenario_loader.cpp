@@ -339,3 +339,61 @@ TEST(ScenarioLoader, CouplingMistakes) {
     EXPECT_NE(e.message.find(c.part), std::string::npos) << e.describe() << "\n---\n" << c.text;
   }
 }
+
+TEST(ScenarioLoader, ControllerExpectationsAndMoves) {
+  const std::string ctl = "controller: {device: clm14, parameters: clm.par, program: clm.prg}\n";
+  auto r = parse_scenario(ctl + axes_header() +
+                              "expect:\n"
+                              "  - {controller: V600, value: -87654321.654321}\n"
+                              "  - {controller: Q1.02, value: 0b0111_0011, at: 2s}\n"
+                              "  - {controller: error, value: 0x73, by: 1s}\n"
+                              "  - {controller: V601, value: 300, tolerance: 0.011}\n"
+                              "  - {device_error: \"clm14.diagnostic:0E\", by: 500ms}\n"
+                              "  - {axis: x, moves: 10}\n",
+                          "t.yaml");
+  ASSERT_TRUE(r.has_value()) << r.error().describe();
+  ASSERT_EQ(r->controller->programs.size(), 1u) << "program: FILE is programs: [FILE]";
+  const auto& c = r->controller_expectations;
+  ASSERT_EQ(c.size(), 5u);
+  EXPECT_EQ(c[0].name, "V600");
+  EXPECT_EQ(c[0].value, -87654321.654321);
+  EXPECT_EQ(c[0].tolerance, 0.0);
+  EXPECT_EQ(c[1].value, 0x73);
+  EXPECT_EQ(c[1].value_text, "0b0111_0011");
+  EXPECT_EQ(c[1].at, 2s);
+  EXPECT_EQ(c[2].value, 0x73);
+  EXPECT_EQ(c[2].by, 1s);
+  EXPECT_DOUBLE_EQ(c[3].tolerance, 0.011);
+  EXPECT_EQ(c[4].kind, ControllerExpectation::Kind::device_error);
+  EXPECT_EQ(c[4].code, "clm14.diagnostic:0E");
+  EXPECT_EQ(c[4].by, 500ms);
+  ASSERT_EQ(r->expectations.size(), 1u);
+  EXPECT_EQ(std::get<MovesExpectation>(r->expectations[0].kind).count, 10u);
+
+  struct Case {
+    std::string text;
+    std::string key;
+    std::string part;
+  };
+  const std::vector<Case> cases = {
+      {axes_header() + "expect:\n  - {controller: V600, value: 1}\n", "expect[0].controller", "'controller:' block"},
+      {ctl + axes_header() + "expect:\n  - {controller: V600}\n", "expect[0].value", "missing key 'value'"},
+      {ctl + axes_header() + "expect:\n  - {controller: V600, value: 0x}\n", "expect[0].value", "0x.. (hex)"},
+      {ctl + axes_header() + "expect:\n  - {controller: V600, value: 1, at: 1, by: 2}\n", "expect[0].by",
+       "either 'at'"},
+      {ctl + axes_header() + "expect:\n  - {controller: V600, value: 1, edges: 2}\n", "expect[0].edges", "unknown key"},
+      {ctl + axes_header() + "expect:\n  - {device_error: motion:1}\n", "expect[0].device_error",
+       "as the manual writes it"},
+      {ctl + axes_header() + "expect:\n  - {device_error: \"clm14.diagnostic:0E\", at: 1}\n", "expect[0].at",
+       "unknown key"},
+      {axes_header() + "expect:\n  - {axis: x, moves: 2.5}\n", "expect[0].moves", "whole number of moves"},
+  };
+  for (const auto& k : cases) {
+    const auto e = error_of(k.text);
+    EXPECT_EQ(e.key, k.key) << e.describe() << "\n---\n" << k.text;
+    EXPECT_NE(e.message.find(k.part), std::string::npos) << e.describe() << "\n---\n" << k.text;
+  }
+  const auto twice =
+      error_of(axes_header() + "controller: {device: clm14, parameters: a, program: b, programs: [c]}\n");
+  EXPECT_EQ(twice.key, "controller.program") << twice.describe();
+}

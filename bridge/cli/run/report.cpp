@@ -51,7 +51,7 @@ void print_summary(std::FILE* out, const runtime::RunResult& r) {
   if (!r.expectations.empty()) {
     fmt::print(out, "expectations:\n");
     for (const auto& e : r.expectations)
-      fmt::print(out, "  {} axis {}: {}{}\n", e.passed ? "pass" : "FAIL", e.axis, e.description,
+      fmt::print(out, "  {} {}: {}{}\n", e.passed ? "pass" : "FAIL", e.subject(), e.description,
                  e.passed ? "" : ": " + e.detail);
   }
   for (const auto& w : r.warnings) fmt::print(out, "warning: {}\n", w);

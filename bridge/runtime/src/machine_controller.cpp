@@ -216,6 +216,11 @@ std::optional<ConfigError> Machine::attach_io(const Scenario& scenario, const Cl
     if (!bit) return bit.error();
     report_signal(e.signal, *bit);
   }
+  for (const ControllerExpectation& e : scenario.controller_expectations) {
+    if (e.kind != ControllerExpectation::Kind::value) continue;
+    if (auto h = controller_->resolve_value(e.name); !h)
+      return ConfigError{scenario.file, e.source.line, 0, e.source.path + ".controller", h.error()};
+  }
   return std::nullopt;
 }
 

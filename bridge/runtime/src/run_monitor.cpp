@@ -52,6 +52,10 @@ bool code_matches(const FaultEvent& e, const std::string& code) {
 
 }  // namespace
 
+bool fault_matches(const FaultEvent& e, const std::string& code) {
+  return code_matches(e, code);
+}
+
 std::string fault_code_text(const FaultEvent& e) {
   if (e.source != "device") return fmt::format("{}:{}", e.fault.code.category().name(), e.fault.code.value());
   return fmt::format("{}:{}", e.fault.code.category().name(), device_code(e.fault));
@@ -79,12 +83,15 @@ std::string describe(const Expectation& e, const AxisSpec& axis) {
           [&](const MaxFollowingErrorExpectation& m) {
             return fmt::format("following error at most {:.{}f} {}", m.value, decimals(m.value), axis.units);
           },
+          [&](const MovesExpectation& m) {
+            return fmt::format("{} move{} over the run", m.count, m.count == 1 ? "" : "s");
+          },
       },
       e.kind);
 }
 
 RunMonitor::RunMonitor(const Scenario& scenario, const Machine& machine)
-    : scenario_(scenario), machine_(machine), io_(scenario, machine) {
+    : scenario_(scenario), machine_(machine), io_(scenario, machine), ctl_(scenario, machine) {
   link_outages_seen_.assign(machine.modbus_links().size(), 0);
   gpio_outages_seen_.assign(machine.gpio_links().size(), 0);
   for (const auto& a : machine.axes()) tracks_.push_back(AxisTrack{&a, 0.0, {}, {}, {}});
@@ -179,6 +186,13 @@ void RunMonitor::observe(Duration t) noexcept {
       tr.max_fe = fe;
       tr.max_fe_t = t;
     }
+    // A move starts when the axis enters `moving` from rest; a new command while it still brakes
+    // (stopping -> moving) continues the motion.
+    if (st.state == motion::AxisState::moving && (!tr.state_seen || (tr.last_state != motion::AxisState::moving &&
+                                                                     tr.last_state != motion::AxisState::stopping)))
+      ++tr.moves;
+    tr.state_seen = true;
+    tr.last_state = st.state;
     if (st.fault.code != tr.last_axis_fault) {
       tr.last_axis_fault = st.fault.code;
       if (st.fault) faults_.push_back(FaultEvent{t, tr.axis->spec->name, "axis", st.fault});
@@ -214,6 +228,7 @@ void RunMonitor::observe(Duration t) noexcept {
   outages(machine_.modbus_links(), link_outages_seen_);
   outages(machine_.gpio_links(), gpio_outages_seen_);
   io_.observe(t);
+  ctl_.observe(t);
   for (auto& s : states_) {
     const auto& st = machine_.axes()[s.axis].axis->status();
     track_start(s, st);
@@ -313,6 +328,12 @@ void RunMonitor::finish(Duration t_end, RunResult& r) const {
                                               decimals(m.value), spec.units, to_seconds(tr.max_fe_t),
                                               tr.max_fe - m.value, decimals(m.value), spec.units);
                    },
+                   [&](const MovesExpectation& m) {
+                     s.decided = true;
+                     const AxisTrack& tr = tracks_[s.axis];
+                     s.passed = tr.moves == m.count;
+                     if (!s.passed) s.detail = fmt::format("saw {} move{}", tr.moves, tr.moves == 1 ? "" : "s");
+                   },
                },
                s.e->kind);
     ExpectationResult er{name, describe(*s.e, spec), s.passed, s.detail, s.e->source.line, s.e->source.path};
@@ -330,6 +351,13 @@ void RunMonitor::finish(Duration t_end, RunResult& r) const {
     }
     r.expectations.push_back(std::move(er));
   }
+  // A `device_error:` expectation accounts for the device errors it names (on an axis or the controller).
+  const auto device_expected = [&](const FaultEvent& ev) {
+    return ev.source == "device" &&
+           std::ranges::any_of(scenario_.controller_expectations, [&](const ControllerExpectation& e) {
+             return e.kind == ControllerExpectation::Kind::device_error && code_matches(ev, e.code);
+           });
+  };
   // Faults nobody expected fail the run.
   for (const auto& tr : tracks_) {
     const std::string& name = tr.axis->spec->name;
@@ -341,7 +369,7 @@ void RunMonitor::finish(Duration t_end, RunResult& r) const {
     // number is what the user looks up), else the first fault.
     const FaultEvent* first = nullptr;
     for (const auto& ev : faults_) {
-      if (ev.axis != name) continue;
+      if (ev.axis != name || device_expected(ev)) continue;
       if (first == nullptr || (ev.source == "device" && first->source != "device")) first = &ev;
       if (first->source == "device") break;
     }
@@ -353,10 +381,10 @@ void RunMonitor::finish(Duration t_end, RunResult& r) const {
   // Device errors of the whole controller: expected when some fault expectation matches them.
   for (const auto& ev : faults_) {
     if (ev.axis != "controller") continue;
-    const bool expected = std::ranges::any_of(scenario_.expectations, [&](const Expectation& e) {
-      const auto* f = std::get_if<FaultExpectation>(&e.kind);
-      return f != nullptr && !f->code.empty() && code_matches(ev, f->code);
-    });
+    const bool expected = device_expected(ev) || std::ranges::any_of(scenario_.expectations, [&](const Expectation& e) {
+                            const auto* f = std::get_if<FaultExpectation>(&e.kind);
+                            return f != nullptr && !f->code.empty() && code_matches(ev, f->code);
+                          });
     if (expected) continue;
     r.ok = false;
     r.failures.push_back(
@@ -375,6 +403,7 @@ void RunMonitor::finish(Duration t_end, RunResult& r) const {
     r.device_errors = device_events_;
   }
   io_.finish(t_end, r);
+  ctl_.finish(t_end, r);
 }
 
 }  // namespace hil::runtime

@@ -11,6 +11,7 @@
 
 #include <fmt/format.h>
 
+#include "controller_expectation_loader.hpp"
 #include "coupling_loader.hpp"
 #include "hil/config/yaml_field.hpp"
 #include "hil/core/duration_text.hpp"
@@ -91,6 +92,10 @@ class Loader {
         if (f.node().IsMap() && f.child("io").present()) {
           if (!s.controller) f.child("io").fail("an I/O expectation needs a 'controller:' block");
           s.io_expectations.push_back(load_io_expectation(f));
+        } else if (f.node().IsMap() && (f.child("controller").present() || f.child("device_error").present())) {
+          const std::string key = f.child("controller").present() ? "controller" : "device_error";
+          if (!s.controller) f.child(key).fail("a controller expectation needs a 'controller:' block");
+          s.controller_expectations.push_back(detail::load_controller_expectation(f));
         } else {
           load_expectation(f, s.expectations);
         }
@@ -256,7 +261,10 @@ class Loader {
     c.device = f.required("device", "the device profile name, e.g. wf725-726, ip247, clm14").as_string("a device");
     c.parameters =
         resolve_path(f.required("parameters", "the device's parameter file (its own format)").as_string("a file path"));
-    if (auto p = f.child("programs"); p.present()) {
+    if (f.child("program").present() && f.child("programs").present())
+      f.child("program").fail("give the program files either as 'program: FILE' or as 'programs: [FILES]'");
+    // `program: FILE` (one file) and `programs: [FILE, ...]` are the same key.
+    if (auto p = f.child(f.child("program").present() ? "program" : "programs"); p.present()) {
       if (p.node().IsScalar()) {
         c.programs.push_back(resolve_path(p.as_string("a file path")));
       } else {
@@ -269,7 +277,7 @@ class Loader {
     }
     for (const auto& kv : f.node()) {
       const std::string key = kv.first.Scalar();
-      if (key == "device" || key == "parameters" || key == "programs" || key == "cycle") continue;
+      if (key == "device" || key == "parameters" || key == "program" || key == "programs" || key == "cycle") continue;
       const Field v = f.child(key);
       if (!v.node().IsScalar()) v.fail(fmt::format("controller option '{}' takes a single value", key));
       c.options[key] = v.node().Scalar();
@@ -726,7 +734,7 @@ class Loader {
 
   void load_expectation(const Field& f, std::vector<Expectation>& out) {
     const auto keys = f.expect_map(
-        {"axis", "position", "tolerance", "at", "by", "fault", "state", "no_fault", "max_following_error"});
+        {"axis", "position", "tolerance", "at", "by", "fault", "state", "no_fault", "max_following_error", "moves"});
     const auto axes = axis_list(f.required("axis", "an axis name, a list or 'all'"));
     std::string kind;
     for (const auto& k : keys) {
@@ -734,7 +742,10 @@ class Loader {
       if (!kind.empty()) f.child(k).fail(fmt::format("one expectation per entry; got '{}' and '{}'", kind, k));
       kind = k;
     }
-    if (kind.empty()) f.fail("an expectation needs one of: position, fault, state, no_fault, max_following_error");
+    if (kind.empty())
+      f.fail(
+          "an expectation needs one of: position, fault, state, no_fault, max_following_error, moves (or io:, "
+          "controller:, device_error: with a controller)");
     auto only = [&](std::initializer_list<std::string_view> allowed) {
       for (std::string_view k : {"tolerance", "at", "by"}) {
         if (std::find(allowed.begin(), allowed.end(), k) != allowed.end()) continue;
@@ -764,6 +775,11 @@ class Loader {
       only({});
       if (!x.as_bool()) x.fail("'no_fault' takes 'true' only (use 'fault:' to expect a fault)");
       e = NoFaultExpectation{};
+    } else if (kind == "moves") {
+      only({});
+      const double n = x.as_non_negative("a number of moves");
+      if (n != std::floor(n) || n > 1e12) x.fail(fmt::format("expected a whole number of moves, got {}", x.describe()));
+      e = MovesExpectation{static_cast<std::uint64_t>(n)};
     } else {
       only({});
       e = MaxFollowingErrorExpectation{x.as_positive("a following error in units")};

@@ -479,8 +479,11 @@ Controller::Flow Controller::exec(int t, Task& k, const Instruction& in, TimePoi
             write_byte({Area::output, 1, static_cast<std::uint8_t>(b)}, restart_.outputs[b]);
         return Flow::next;
       }
+      // restore_restart() put task 1 back where the program was interrupted, a PSI/PSA still
+      // waiting for its window included (its phase): Flow::wait leaves that state untouched, so
+      // the interrupted feed completes to its saved absolute target (§7.11) and is not fed again.
       restore_restart(outputs);
-      return Flow::halt;
+      return Flow::wait;
     }
     case Op::eos:
     case Op::fol:

@@ -321,10 +321,26 @@ Controller::Flow Controller::exec_motion(int t, Task& k, const Instruction& in, 
       a.has_target = a.feeding = false;
       a.port->home();
       return Flow::next;
-    case Op::pbk:
-      a.port->stop();
-      a.has_target = a.feeding = a.held = a.con = false;
+    case Op::pbk: {
+      // PBK brakes with the current deceleration and discards the rest of the motion (§5.7 PBK):
+      // the target becomes the point where that braking ends, so a POI that follows adds to it
+      // and runs on from the braking without a stop (vector 33: decel distance + 50 IU, a
+      // continuous transition from 99.9 % to 10 %).
+      const double v = a.fb.command_velocity;
+      a.held = a.con = false;
+      if (!a.fb.busy || v == 0.0) {
+        a.port->stop();
+        a.has_target = a.feeding = false;
+        return Flow::next;
+      }
+      const MoveLimits l = limits_for(ax, std::abs(v));
+      double d = v * v / (2.0 * l.acceleration);
+      if (std::isfinite(l.jerk)) d += std::abs(v) * (l.acceleration / l.jerk) / 2.0;  // the jerk ramp
+      a.target = a.fb.command_position + a.base + a.sac + (v > 0.0 ? d : -d);
+      a.has_target = a.feeding = true;
+      a.port->move_to(raw_of(ax, a.target), l);
       return Flow::next;
+    }
     case Op::poa:
     case Op::psa:
     case Op::poi:

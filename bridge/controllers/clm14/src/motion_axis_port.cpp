@@ -30,6 +30,8 @@ AxisFeedback MotionAxisPort::feedback() const {
   f.position = s.position;
   f.velocity = s.velocity;
   f.following_error = s.following_error;
+  f.command_position = s.command_position;
+  f.command_velocity = s.command_velocity;
   f.busy = s.busy;
   f.in_position = s.in_position;
   f.enabled = s.state == motion::AxisState::standstill || s.state == motion::AxisState::moving ||

@@ -146,11 +146,19 @@ void RuntimeController::on_cycle(const CycleTime& cycle) noexcept {
       io().set(hc::ByteAddress{hc::IoArea::marker, g * hc::clm_group_stride + b}, im.byte({Area::marker, g, b}));
   const int e = model_.error();
   if (e != shown_error_) {
+    // An axis' error (codes 40-6F / 70-9F / A0-CF / D0-FF, §11.1) is reported on that axis, so a
+    // scenario expects it there (`{axis: "2", fault: "clm14.diagnostic:73"}`); 00-3F are the
+    // whole controller's.
+    const int clm_axis = e < 0x40 ? 0 : 1 + (e - 0x40) / 0x30;
+    int axis_index = -1;
+    for (std::size_t i = 0; i < axis_specs().size(); ++i)
+      if (clm_axis != 0 && axis_specs()[i].name == std::to_string(clm_axis)) axis_index = static_cast<int>(i);
     if (const auto* cat = catalogue("diagnostic")) {
-      if (shown_error_ != 0) (void)clear_error(*cat, shown_error_);
-      if (e != 0) raise(*cat, e, cycle.now, -1, model_.error_message());
+      if (shown_error_ != 0) (void)clear_error(*cat, shown_error_, shown_axis_);
+      if (e != 0) raise(*cat, e, cycle.now, axis_index, model_.error_message());
     }
     shown_error_ = e;
+    shown_axis_ = axis_index;
   }
 }
 

@@ -60,6 +60,17 @@ std::expected<BitAddress, std::string> Controller::resolve_bit(std::string_view 
   return std::unexpected(fmt::format("'{}' is not an I/O name of the {} controller", text, device()));
 }
 
+std::expected<std::size_t, std::string> Controller::resolve_value(std::string_view name) const {
+  const auto names = trace_signals();
+  std::string list;
+  for (std::size_t i = 0; i < names.size(); ++i) {
+    if (names[i] == name) return i;
+    list += (list.empty() ? "" : ", ") + names[i];
+  }
+  if (list.empty()) return std::unexpected(fmt::format("the {} controller shows no values by name", device()));
+  return std::unexpected(fmt::format("'{}' is not a value of the {} controller (it shows: {})", name, device(), list));
+}
+
 bool Controller::power_up_axes() noexcept {
   if (!axes_enabled_) {
     for (motion::Axis* a : axes_) (void)a->enable();

@@ -4,9 +4,11 @@
 // following error, and the scenario's expectations, evaluated online so nothing per cycle is
 // stored. Thread: the cycle thread.
 
+#include <algorithm>
 #include <optional>
 #include <vector>
 
+#include "hil/runtime/controller_monitor.hpp"
 #include "hil/runtime/io_monitor.hpp"
 #include "hil/runtime/machine.hpp"
 #include "hil/runtime/run_result.hpp"
@@ -22,7 +24,7 @@ class RunMonitor {
   void observe(Duration t) noexcept;
   /// The latest `at:`/`by:` time of any expectation (a run lasts at least this long).
   [[nodiscard]] Duration latest_expectation_time() const noexcept {
-    return std::max(latest_, io_.latest_expectation_time());
+    return std::max({latest_, io_.latest_expectation_time(), ctl_.latest_expectation_time()});
   }
   /// Fill axes, faults and expectations of `result`; adds failures for failed expectations and
   /// for faults no `fault:` expectation of their axis accounts for.
@@ -37,6 +39,9 @@ class RunMonitor {
     Duration max_fe_t{};
     std::error_code last_axis_fault;
     std::error_code last_drive_fault;
+    std::uint64_t moves = 0;  ///< entries into state `moving`
+    bool state_seen = false;
+    motion::AxisState last_state{};
   };
   struct ExpectationState {
     const Expectation* e = nullptr;
@@ -66,6 +71,7 @@ class RunMonitor {
   std::vector<FaultEvent> faults_;
   Duration latest_{};
   IoMonitor io_;
+  ControllerMonitor ctl_;
   std::size_t device_errors_seen_ = 0;
   std::vector<std::uint64_t> link_outages_seen_;  ///< per Machine::modbus_links() entry
   std::vector<std::uint64_t> gpio_outages_seen_;  ///< per Machine::gpio_links() entry
@@ -74,6 +80,9 @@ class RunMonitor {
 
 /// "wf725-726.traversing:96" for a device error event, "motion:5" otherwise.
 [[nodiscard]] std::string fault_code_text(const FaultEvent& e);
+/// Whether `e` is a fault with this code as scenarios write it ("motion:1", a device error
+/// "clm14.diagnostic:0E" by the manual's text; "" matches any).
+[[nodiscard]] bool fault_matches(const FaultEvent& e, const std::string& code);
 
 /// "position 100.000 +/- 0.010 mm at t=2.000 s" (what was expected, for reports).
 [[nodiscard]] std::string describe(const Expectation& e, const AxisSpec& axis);

@@ -64,8 +64,12 @@ struct ExpectationResult {
   int line = 0;
   std::string path;  ///< "expect[3]"
   bool io = false;   ///< an I/O expectation (`{io: SIGNAL, ...}`), not an axis'
-  /// "axis x" or "I/O", as reports name what was expected on.
-  [[nodiscard]] std::string subject() const { return io ? std::string("I/O") : "axis " + axis; }
+  /// A controller expectation (`{controller: NAME, value: V}`, `{device_error: CODE}`); axis "controller".
+  bool controller = false;
+  /// "axis x", "I/O" or "controller", as reports name what was expected on.
+  [[nodiscard]] std::string subject() const {
+    return io ? std::string("I/O") : controller ? std::string("controller") : "axis " + axis;
+  }
 };
 
 struct RunResult {

@@ -182,8 +182,15 @@ struct MaxFollowingErrorExpectation {
   double value = 0.0;
 };
 
+/// `moves: N`: the axis started exactly N moves over the run (entries into state `moving` from
+/// rest, i.e. from a state other than `moving` and `stopping`: a stop and a resume are two moves;
+/// a move commanded on top of a running one, or while the axis still brakes, is none).
+struct MovesExpectation {
+  std::uint64_t count = 0;
+};
+
 using ExpectationKind = std::variant<PositionExpectation, FaultExpectation, StateExpectation, NoFaultExpectation,
-                                     MaxFollowingErrorExpectation>;
+                                     MaxFollowingErrorExpectation, MovesExpectation>;
 struct Expectation {
   std::string axis;  ///< one axis (a list in the file becomes one expectation per axis)
   ExpectationKind kind;
@@ -227,6 +234,22 @@ struct IoExpectation {
   std::optional<Duration> at;         ///< state: at this time (default: end of run)
   std::uint64_t count = 0;            ///< edges: exact number over the run
   std::optional<Duration> after, by;  ///< first_edge: inside [after, by]
+  SourceRef source;
+};
+
+/// A controller entry of `expect:` (needs a `controller:` block): `{controller: NAME, value: V}`
+/// checks a value the device shows by name (Controller::resolve_value: a variable, a counter, a
+/// task's program line, an I/O byte); `{device_error: CODE}` that the device raised this error
+/// (on any of its axes or on the whole controller).
+struct ControllerExpectation {
+  enum class Kind : std::uint8_t { value, device_error } kind = Kind::value;
+  std::string name;            ///< value: the device's name of the value ("V600", "task1.line")
+  double value = 0.0;          ///< value: expected (exact unless `tolerance`)
+  std::string value_text;      ///< value: as the file writes it ("0x73", "-87654321.654321")
+  double tolerance = 0.0;      ///< value: |actual - value| <= tolerance passes
+  std::optional<Duration> at;  ///< value: at this time (default: the end of the run)
+  std::optional<Duration> by;  ///< value: at some cycle up to this time; device_error: raised by then
+  std::string code;            ///< device_error: "clm14.diagnostic:0E" (as the manual writes it)
   SourceRef source;
 };
 
@@ -307,6 +330,7 @@ struct Scenario {
   std::vector<IoStimulus> io;
   std::vector<IoLink> io_links;
   std::vector<IoExpectation> io_expectations;
+  std::vector<ControllerExpectation> controller_expectations;
   YAML::Node document;  ///< keeps the drive nodes' document alive
 
   [[nodiscard]] const AxisSpec* find_axis(const std::string& name) const noexcept;

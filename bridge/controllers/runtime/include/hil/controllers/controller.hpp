@@ -147,6 +147,17 @@ class Controller {
   [[nodiscard]] virtual std::vector<std::string> trace_signals() const { return {}; }
   [[nodiscard]] virtual double trace_value(std::size_t) const noexcept { return 0.0; }
 
+  /// A value the device shows by name, for a scenario's `expect: {controller: NAME, value: V}`
+  /// (docs/scenarios.md): a variable, a counter, the program line of a task, an I/O byte, in the
+  /// device's own names (the CLM: "V600", "counter.0002", "task1.line", "Q1.02"). Returns a handle
+  /// for value(), or what is wrong with the name (listing what the device names). Called once
+  /// before the run. The default knows the trace_signals() names.
+  [[nodiscard]] virtual std::expected<std::size_t, std::string> resolve_value(std::string_view name) const;
+  /// The value of a resolve_value() handle now, in the device's units (exact for integers and for
+  /// decimals of up to 15 significant digits); read after every controller step. NaN when the
+  /// device cannot show it now. Cycle thread; never throws.
+  [[nodiscard]] virtual double value(std::size_t handle) const noexcept { return trace_value(handle); }
+
   /// Latched and past device errors.
   [[nodiscard]] const DeviceErrorLatch& errors() const noexcept { return errors_; }
   /// Clears what `how` may clear; axes in error whose device errors are all gone are reset

@@ -18,14 +18,16 @@ struct MoveLimits {
 };
 
 struct AxisFeedback {
-  double position = 0.0;         ///< actual, IU (axis coordinates)
-  double velocity = 0.0;         ///< actual, IU/s
-  double following_error = 0.0;  ///< IU
-  bool busy = false;             ///< a move or stop profile is running
-  bool in_position = false;      ///< the profile ended and the axis settled at its target
-  bool enabled = false;          ///< operation enabled
-  bool referenced = false;       ///< the drive's homing completed
-  bool fault = false;            ///< the axis holds a fault (following error, drive fault, lost drive)
+  double position = 0.0;          ///< actual, IU (axis coordinates)
+  double velocity = 0.0;          ///< actual, IU/s
+  double following_error = 0.0;   ///< IU
+  double command_position = 0.0;  ///< the trajectory's set-point, IU (axis coordinates)
+  double command_velocity = 0.0;  ///< the trajectory's velocity, IU/s
+  bool busy = false;              ///< a move or stop profile is running
+  bool in_position = false;       ///< the profile ended and the axis settled at its target
+  bool enabled = false;           ///< operation enabled
+  bool referenced = false;        ///< the drive's homing completed
+  bool fault = false;             ///< the axis holds a fault (following error, drive fault, lost drive)
 };
 
 class AxisPort {

@@ -31,6 +31,15 @@ class RuntimeController final : public hil::controllers::Controller {
 
   [[nodiscard]] std::expected<hil::controllers::BitAddress, std::string> resolve_bit(
       std::string_view text) const override;
+  /// The CLM's values for `expect: {controller: NAME, value: V}` (runtime_values.cpp,
+  /// docs/clm14.md "Scenarios"): "V000".."V999" (variables, exact millionths), "I1.02" / "Q1.02" /
+  /// "M2.00" (a byte, 0..255), "counter.0002" (the count of the COU/BAC on line 0002),
+  /// "task1.line" / "task1.depth" / "task1.active" (tasks 1..5: current instruction, subroutine
+  /// levels, running), "error" (the current error number, 0 = none: write 0x43 for error 43),
+  /// "axis1.position" / "axis1.latched" (CLM coordinates in IU: status 00 and the SRM latch of
+  /// status 41), "mode" (0 Parameter, 1 Manual, 2 Automatic), "run" (0 idle, 1 running, 2 stopped).
+  [[nodiscard]] std::expected<std::size_t, std::string> resolve_value(std::string_view name) const override;
+  [[nodiscard]] double value(std::size_t handle) const noexcept override;
   [[nodiscard]] clm14::Controller& model() noexcept { return model_; }
 
   RuntimeController(std::shared_ptr<const profiles::Profile> profile, std::map<std::string, std::string> parameters,
@@ -46,6 +55,7 @@ class RuntimeController final : public hil::controllers::Controller {
   clm14::Controller model_;
   std::vector<std::unique_ptr<MotionAxisPort>> ports_;
   int shown_error_ = 0;
+  int shown_axis_ = -1;  ///< the runtime axis index shown_error_ was raised on (-1: the controller)
 };
 
 /// Registers "clm14" in `registry`.

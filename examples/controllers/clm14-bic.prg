@@ -1,0 +1,15 @@
+; CLM1.4 BIC computed jumps, vectors/clm14.md 19 (binary) and 21 (BCD). Each target records the
+; line it runs on (V002, task 1's current instruction) in a variable.
+0000 APE M2.03 22222011
+0001 APE M2.02 01101011
+0002 BIC 0500 11 M2.02.4 5 0
+0003 JST 0003
+0675 JST 0675
+0676 SET V601 = V002
+0677 JST 0677
+0741 JST 0741
+0742 SET V600 = V002
+0743 APE M2.03 22222101
+0744 APE M2.02 01100111
+0745 BIC 0500 11 M2.02.4 5 1
+0746 JST 0746

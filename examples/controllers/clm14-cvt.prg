@@ -1,0 +1,5 @@
+; CLM1.4 CVT, vectors/clm14.md 23: V600 to an 8-byte BCD field at M2.00 and back into V601.
+0000 SET V600 = -87654321.654321
+0001 CVT V600 M2.00 0 0
+0002 CVT V601 M2.00 0 1
+0003 JST 0003

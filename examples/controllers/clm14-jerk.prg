@@ -1,0 +1,5 @@
+; CLM1.4 Ax10 jerk (vectors/clm14.md 43): one 300 IU feed at 99.9 %.
+0000 AEA Q1.00.0 1
+0001 PSI 1 +000300.000 999
+0002 AEA Q1.00.0 0
+0003 JST 0003

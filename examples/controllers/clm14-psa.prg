@@ -1,0 +1,10 @@
+; CLM1.4 PSA, vectors/clm14.md 31: from 100, PSA 200 with Ax27 = 0.20 continues inside
+; 199.80..200.20; the next line records where (V601).
+0000 HOM 1
+0001 AKN Q1.00.1 1
+0002 PSA 1 +000100.000 999
+0003 WAI 00.200
+0004 SET V600 = V100
+0005 PSA 1 +000200.000 999
+0006 SET V601 = V100
+0007 JST 0007

@@ -1,0 +1,9 @@
+; CLM1.4 restart program 3 (manual §7.11, digest clm14.md §4.4): restore the outputs and continue,
+; wait for I1.00.4 and 1 s, then restore everything except the outputs.
+0000 AEA Q1.00.3 1
+0001 PSI 1 +000100.000 999
+0002 JMP 0002
+2000 RSV 0 0000 10000
+2001 AKN I1.00.4 1
+2002 WAI 01.000
+2003 RSV 1 0000 00000

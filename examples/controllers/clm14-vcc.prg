@@ -1,0 +1,8 @@
+; CLM1.4 manual §5.7 VCC (digest clm14.md §4.4): velocity changes inside a move (mode 0 0).
+0000 POI 1 +000100.000 999
+0001 VCC 1 +000050.000 250 0 0
+0002 VCC 1 +000075.000 500 0 0
+0003 VCC 1 +000090.000 100 0 0
+0004 AKN M2.00.0 1
+0005 WAI 01.000
+0006 JMP 0000

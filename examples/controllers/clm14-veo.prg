@@ -1,0 +1,12 @@
+; CLM1.4 manual §5.7 VEO, program C (digest clm14.md §4.4, Figs 5-34..36); the program selection of
+; lines 0000-0007 is lost in the manual: here line 0000 selects C.
+0000 JMP 0008
+0008 VEO 1 4 1 500 0
+0009 POI 1 +000100.000 999
+0010 VCC 1 +000035.000 800 0 0
+0011 VCC 1 +000050.000 600 0 0
+0012 VCC 1 +000065.000 400 0 0
+0013 VCC 1 +000080.000 200 0 0
+0014 AKN M2.02.4 1
+0015 WAI 01.000
+0016 JMP 0000
