@@ -109,6 +109,28 @@ TEST(ClmFol, SlaveOfMasterEncoderWithARampedEngageAndASuperimposedMove) {
   EXPECT_NEAR(var(r, 11), 0.0, 1e-9) << "V011 master encoder velocity at rest";
 }
 
+TEST(ClmFol, Mode2RampsDownAtImmediateStopAndResynchronisesOnStart) {
+  Rig r({{"A200", "1 2 5 0 0"}, {"C000", "01250 0000"}, {"C002", "0020.00000"}}, 2);
+  auto& material = r.add_master_encoder();
+  r.program({{0, "FOL 2 2 +0.500000"}, {1, "WAI 09.000"}, {2, "JMP 0002"}});
+  r.run_for(20ms);
+  ASSERT_FALSE(material.move_velocity(20.0, material_limits(20.0)));
+  r.run_for(200ms);
+  r.start_auto();
+  r.run_for(300ms);
+  EXPECT_NEAR(r.clm.velocity(2), 10.0, 0.16);
+  r.set(sys::immediate_stop_ok, false);  // Immediate Stop: the material runs on, the slave ramps out
+  r.run_for(300ms);
+  EXPECT_EQ(r.clm.run_state(), RunState::stopped);
+  EXPECT_NEAR(r.clm.velocity(2), 0.0, 0.16);
+  EXPECT_TRUE(r.clm.coupled(2));
+  r.set(sys::immediate_stop_ok, true);
+  r.pulse(sys::start);
+  r.run_for(300ms);
+  EXPECT_EQ(r.clm.error(), 0) << r.clm.error_message();
+  EXPECT_NEAR(r.clm.velocity(2), 10.0, 0.16) << "re-synchronised";
+}
+
 TEST(ClmFol, FactorOnANormalAxisOnlySetsTheVeoMultiplier) {
   Rig r({{"C002", "0020.00000"}});
   auto& material = r.add_master_encoder();

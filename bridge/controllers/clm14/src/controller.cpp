@@ -518,7 +518,10 @@ void Controller::resume_program() {
   run_ = RunState::running;
   for (std::size_t t = 0; t < 5; ++t)
     if (t != 2 && tasks_[t].used) tasks_[t].active = true;
-  for (int ax = 1; ax <= 4; ++ax) resume_axis(ax);
+  for (int ax = 1; ax <= 4; ++ax) {
+    resume_axis(ax);
+    pause_follow(ax, false);  // FOL mode 2 re-synchronises on Start
+  }
 }
 
 void Controller::stop_program(bool keep_position) {
@@ -540,7 +543,10 @@ void Controller::stop_program(bool keep_position) {
     auto& a = axes_[static_cast<std::size_t>(ax - 1)];
     a.con = false;
     a.srm = false;
-    if (follow_[static_cast<std::size_t>(ax - 1)].active) continue;  // FOL keeps following (§5.7)
+    if (follow_[static_cast<std::size_t>(ax - 1)].active) {
+      if (keep_position) pause_follow(ax, true);  // mode 2 ramps down; mode 1 keeps following (§5.7)
+      continue;
+    }
     if (keep_position) {
       hold_axis(ax);
     } else {

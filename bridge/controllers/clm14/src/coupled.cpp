@@ -168,6 +168,31 @@ bool Controller::coupled(int axis) const noexcept {
   return axis >= 1 && axis <= 4 && follow_[static_cast<std::size_t>(axis - 1)].active;
 }
 
+std::int64_t Controller::follow_ramp(int axis, double dr) const {
+  // FOL mode 2: the ratio changes over the master travel in which the slave reaches the new
+  // velocity at its acceleration (Ax08 × ACC/Ax09 ‰): L = |Δr|·v_m² / a_slave.
+  const auto& as = settings_.axes[static_cast<std::size_t>(axis - 1)];
+  double vm = 0.0;
+  if (as.master == 5)
+    vm = me1_.velocity;
+  else if (as.master >= 1 && as.master < axis)
+    vm = axes_[static_cast<std::size_t>(as.master - 1)].fb.velocity * inc_per_iu(as.master);
+  const double acc = limits_for(axis, as.vmax).acceleration * inc_per_iu(axis);
+  const double l = std::abs(dr) * vm * vm / acc;
+  return static_cast<std::int64_t>(std::min(std::ceil(l), static_cast<double>(std::int64_t{1} << 30)));
+}
+
+void Controller::pause_follow(int axis, bool pause) {
+  // FOL mode 2 (§5.7): ramps down on Immediate Stop / JST, re-synchronises on Start.
+  auto& f = follow_[static_cast<std::size_t>(axis - 1)];
+  if (!f.active || !f.fol || f.mode != 2 || f.ending || f.paused == pause) return;
+  auto& g = f.coupling.gear();
+  if (g.phase() == motion::GearPhase::ramping) return;  // [decided] a running ratio ramp is not interrupted
+  const auto ratio = pause ? std::optional<motion::GearRatio>{motion::GearRatio{0, 1}} : follow_ratio(axis, f.factor);
+  if (!ratio) return;
+  if (!g.change({*ratio, follow_ramp(axis, ratio->value() - g.ratio().value()), {}})) f.paused = pause;
+}
+
 void Controller::end_coupling(int axis, bool stop_axis) {
   auto& f = follow_[static_cast<std::size_t>(axis - 1)];
   if (!f.active) return;
@@ -371,19 +396,7 @@ Controller::Flow Controller::exec_coupled(int t, Task& k, const Instruction& in)
                          ax, as.master));
         return Flow::halt;
       }
-      // Mode 2 ramps: the ratio changes over the master travel in which the slave reaches the
-      // new velocity at its acceleration (Ax08 × ACC/Ax09): L = |Δr|·v_m² / a_slave.
-      const auto ramp = [&](double dr) -> std::int64_t {
-        if (*m != 2) return 0;
-        double vm = 0.0;
-        if (as.master == 5)
-          vm = me1_.velocity;
-        else
-          vm = axes_[static_cast<std::size_t>(as.master - 1)].fb.velocity * inc_per_iu(as.master);
-        const double acc = limits_for(ax, as.vmax).acceleration * inc_per_iu(ax);
-        const double l = std::abs(dr) * vm * vm / acc;
-        return static_cast<std::int64_t>(std::min(std::ceil(l), static_cast<double>(std::int64_t{1} << 30)));
-      };
+      const auto ramp = [&](double dr) -> std::int64_t { return *m == 2 ? follow_ramp(ax, dr) : 0; };
       if (*m == 0) {
         if (!f.active) return Flow::next;
         if (f.mode == 2 && f.coupling.gear().phase() != motion::GearPhase::ramping) {

@@ -382,6 +382,8 @@ class Controller {
   Flow exec_coupled(int t, Task& task, const Instruction& in);
   void step_couplings(TimePoint now);
   void end_coupling(int axis, bool stop_axis);
+  [[nodiscard]] std::int64_t follow_ramp(int axis, double ratio_change) const;
+  void pause_follow(int axis, bool pause);
   void reset_coupled_state();
   [[nodiscard]] bool master_available() const noexcept;
   [[nodiscard]] double me_iu_per_count() const noexcept;
