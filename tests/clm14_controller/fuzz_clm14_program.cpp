@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: MIT
 // Fuzz the CLM1.4 program-line parser and the logic-task compiler: any bytes give a parsed
-// line or a ProgramError with a device error number, never a crash.
+// line or a ProgramError with a device error number, never a crash. The corpus has every
+// command's syntax, including the master-encoder and flying-cutoff commands (FOL, FUN, LMK, LMR,
+// LML, MLO, MLT, EOS, AEO, VEO 5, FAK 5, SRP).
 #include <cstddef>
 #include <cstdint>
 #include <string>
@@ -25,6 +27,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     }
   }
   lines.push_back(cur);
+  for (const auto& l : lines) (void)parse_instruction(l);  // a multi-line input: each line as a program line
   if (auto p = LogicProgram::compile(lines)) {
     Image image;
     p->run(image);

@@ -93,6 +93,30 @@ class Rig {
     now += period;
     clm.cycle(now);
     for (auto& a : motion_axes) a->update(CycleTime{now, period});
+    if (material) material->update(CycleTime{now, period});
+  }
+  /// Master encoder 1 (C000/C001/C002) on a simulated drive: a motion::Axis in IU whose
+  /// increments are the encoder's quadrature counts - the material of a flying cutoff, the
+  /// master of a FOL slave. It is enabled here; move it with material->move_velocity(...).
+  motion::Axis& add_master_encoder() {
+    auto settings = make_settings([this](std::string_view n) {
+      const auto it = params.find(std::string(n));
+      return it != params.end() ? it->second : data->parameter_default(n);
+    });
+    EXPECT_TRUE(settings.has_value());
+    mocks::SimDriveConfig dc;
+    dc.name = "sim:me1";
+    dc.plant.kv_per_s = 200.0;
+    dc.plant.max_velocity_inc_per_s = 1e8;
+    dc.plant.velocity_feedforward = 1.0;
+    auto cfg = master_encoder_config(settings->me1, settings->axes[0], "me1");
+    auto v = motion::validate(cfg);
+    EXPECT_TRUE(v.has_value()) << (v ? "" : v.error());
+    material = std::make_unique<motion::Axis>(cfg, std::make_unique<mocks::SimDrive>(dc));
+    encoder = std::make_unique<MotionMasterEncoder>(*material);
+    clm.attach_master_encoder(encoder.get());
+    (void)material->enable();
+    return *material;
   }
   void run_for(Duration d) {
     const TimePoint end = now + d;
@@ -134,6 +158,8 @@ class Rig {
   Controller clm;
   std::vector<std::unique_ptr<motion::Axis>> motion_axes;
   std::vector<std::unique_ptr<MotionAxisPort>> ports;
+  std::unique_ptr<motion::Axis> material;
+  std::unique_ptr<MotionMasterEncoder> encoder;
   TimePoint now{};
   Duration period{std::chrono::milliseconds(2)};
 };

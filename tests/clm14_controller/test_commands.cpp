@@ -534,14 +534,15 @@ TEST(ClmCommands, TxtTextsForStatus53And63) {
   EXPECT_EQ(r.clm.status_text(), "") << "cleared on Auto -> Manual";
 }
 
-TEST(ClmCommands, UnmodelledCommandsStopWith0A) {
-  for (const std::string line :
-       {"FOL 1 1 1.000000", "LML 1 001000.000", "EOS", "VEO 1 5 1 500 0", "AEO 1 1 1 500 100"}) {
-    Rig r;
-    r.program({{0, line}});
+TEST(ClmCommands, MasterEncoderCommandsWithoutTheEncoderStopWith0A) {
+  // No master encoder attached: the commands that need it stop the program with 0A and say so.
+  for (const std::string line : {"LML 1 001000.000", "VEO 1 5 1 500 0", "MLT 1 000010.000 Q1.00.0", "FUN 2222022"}) {
+    Rig r({{"C002", "0020.00000"}, {"A100", "1 5 0 0 0"}});
+    r.program({{0, "NOP"}, {1, line}});
     r.start_auto();
+    r.run_for(std::chrono::milliseconds(10));
     EXPECT_EQ(r.clm.error(), 0x0A) << line;
-    EXPECT_NE(r.clm.error_message().find("master encoder"), std::string::npos) << r.clm.error_message();
+    EXPECT_NE(r.clm.error_message().find("master encoder 1"), std::string::npos) << r.clm.error_message();
   }
 }
 

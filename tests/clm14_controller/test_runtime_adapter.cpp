@@ -123,5 +123,98 @@ TEST(ClmRuntime, BadProgramFileNamesTheDevicesError) {
   EXPECT_NE(c.error().describe().find("CLM error 16"), std::string::npos) << c.error().describe();
 }
 
+TEST(ClmRuntime, MasterEncoderKeyDeclaresTheMaterialAxisAndTheFlyingCutoffCuts) {
+  const auto dir = std::filesystem::temp_directory_path() / "clm14_runtime_master";
+  std::filesystem::create_directories(dir);
+  {
+    std::ofstream par(dir / "clm.par");
+    par << "B000 0 0 0\nB010 2.0\nB011 0000 0000 0\nB012 0000 0000\nA100 1 5 0 0 0\nA101 0010.00000\nA106 "
+           "000100.000\nA108 001000\nA109 000 000\n"
+           "A119 01024 1024\nA127 M2.00.0 0000.010\nC000 01250 0000\nC001 5 0 00 0 0 0\nC002 0020.00000\n";
+    std::ofstream prg(dir / "clm.prg");
+    prg << "0000 NOP\n0001 LML 1 000050.000\n0002 AEA Q1.00.0 1\n0003 WAI 00.050\n0004 AEA Q1.00.0 0\n0005 EOS\n"
+           "0006 JMP 0001\n";
+  }
+  hc::ControllerRegistry registry;
+  register_clm14(registry);
+  hc::ControllerSpec spec;
+  spec.device = "clm14";
+  spec.parameters = dir / "clm.par";
+  spec.programs = {dir / "clm.prg"};
+  spec.options.emplace("master_encoder", "M");
+  auto c = registry.create(spec);
+  ASSERT_TRUE(c) << c.error().describe();
+  auto& ctl = **c;
+  ASSERT_EQ(ctl.axis_specs().size(), 2u);
+  EXPECT_EQ(ctl.axis_specs()[1].name, "M");
+  EXPECT_EQ(ctl.axis_specs()[1].config.inc_per_unit.num * 20, ctl.axis_specs()[1].config.inc_per_unit.den * 5000)
+      << "1250 x 4 counts per 20 IU";
+  mocks::SimDriveConfig dc;
+  dc.plant.kv_per_s = 200.0;
+  dc.plant.velocity_feedforward = 1.0;
+  motion::Axis carriage(ctl.axis_specs()[0].config, std::make_unique<mocks::SimDrive>(dc));
+  motion::Axis material(ctl.axis_specs()[1].config, std::make_unique<mocks::SimDrive>(dc));
+  std::array<motion::Axis*, 2> axes{&carriage, &material};
+  ASSERT_TRUE(ctl.bind_axes(axes));
+  auto& io = ctl.io();
+  io.set(at("I0.00.2"), true);
+  io.set(at("I0.00.4"), true);
+  io.set(at("I0.00.5"), true);
+  TimePoint now{};
+  const auto step = [&] {
+    now += 2ms;
+    carriage.update(CycleTime{now, 2ms});
+    material.update(CycleTime{now, 2ms});
+    ctl.step(CycleTime{now, 2ms});
+  };
+  ASSERT_FALSE(material.enable());
+  for (int i = 0; i < 20; ++i) step();
+  io.set(at("I0.00.1"), true);  // Automatic: the flying cutoff starts its program at once
+  step();
+  motion::Limits l;
+  l.velocity = 40.0;
+  l.acceleration = 400.0;
+  ASSERT_FALSE(material.move_velocity(40.0, l));
+  int cuts = 0;
+  bool knife = false;
+  for (int i = 0; i < 4000 && cuts < 3; ++i) {
+    step();
+    const bool q = io.get(at("Q1.00.0"));
+    cuts += q && !knife;
+    knife = q;
+  }
+  EXPECT_EQ(cuts, 3) << "three parts of 50 IU in 4000 cycles at 40 IU/s";
+  auto& model = static_cast<RuntimeController&>(ctl).model();
+  EXPECT_NEAR(model.last_cut_point(), 150.0, 0.0045);
+  EXPECT_EQ(model.error(), 0) << model.error_message();
+  EXPECT_TRUE(ctl.errors().active().empty());
+}
+
+TEST(ClmRuntime, UnknownControllerKeyAndUnusedEncoderAreConfigErrors) {
+  const auto dir = std::filesystem::temp_directory_path() / "clm14_runtime_keys";
+  std::filesystem::create_directories(dir);
+  {
+    std::ofstream par(dir / "clm.par");
+    par << "B000 0 0 0\nC002 0000.00000\n";
+    std::ofstream prg(dir / "clm.prg");
+    prg << "0000 NOP\n";
+  }
+  hc::ControllerRegistry registry;
+  register_clm14(registry);
+  hc::ControllerSpec spec;
+  spec.device = "clm14";
+  spec.parameters = dir / "clm.par";
+  spec.programs = {dir / "clm.prg"};
+  spec.options.emplace("master_encodr", "M");
+  auto c = registry.create(spec);
+  ASSERT_FALSE(c);
+  EXPECT_NE(c.error().describe().find("known: master_encoder"), std::string::npos) << c.error().describe();
+  spec.options.clear();
+  spec.options.emplace("master_encoder", "M");
+  c = registry.create(spec);
+  ASSERT_FALSE(c);
+  EXPECT_NE(c.error().describe().find("C002 = 0"), std::string::npos) << c.error().describe();
+}
+
 }  // namespace
 }  // namespace hil::controllers::clm14

@@ -39,6 +39,37 @@ bool fits(const BitAddress& start, int n) {
 
 }  // namespace
 
+bool Controller::forbidden_in_cutoff(const Instruction& in) const {
+  // §7.12: ACC AEO CON CPL FOL HOM JST PBK POA PSA REP RMI RSV RTM SAC SRM SRP VCC on axis 1.
+  switch (in.op) {
+    case Op::jst:
+    case Op::rsv:
+      return true;
+    case Op::acc:
+    case Op::aeo:
+    case Op::con:
+    case Op::cpl:
+    case Op::fol:
+    case Op::hom:
+    case Op::pbk:
+    case Op::poa:
+    case Op::psa:
+    case Op::rmi:
+    case Op::rtm:
+    case Op::sac:
+    case Op::srm:
+    case Op::srp:
+    case Op::vcc:
+    case Op::rep: {
+      const Num& n = in.op == Op::rep ? in.n[1] : in.n[0];
+      const Micro v = n.is_var() ? vars_[static_cast<std::size_t>(n.var)] : n.value;
+      return v / micro_one == 1;
+    }
+    default:
+      return false;
+  }
+}
+
 void Controller::fail(int t, int code, std::string why) {
   const Task& k = tasks_[static_cast<std::size_t>(t - 1)];
   raise(code, fmt::format("task {} NC line {:04d} {}: {}", t, k.pc, text_[static_cast<std::size_t>(k.pc)], why), 1,
@@ -119,6 +150,11 @@ Controller::Flow Controller::exec_counter(Task& task, const Instruction& in, int
 }
 
 Controller::Flow Controller::exec(int t, Task& k, const Instruction& in, TimePoint now) {
+  if (flying_cutoff() && forbidden_in_cutoff(in)) {
+    fail(t, static_cast<int>(ClmError::invalid_program_command),
+         fmt::format("{} is not allowed on axis 1 in flying cutoff mode (§7.12)", mnemonic(in.op)));
+    return Flow::halt;
+  }
   const auto jump = [&](const Num& target) {
     auto v = integer(target, t, 0, 2999);
     if (!v) return Flow::halt;
@@ -495,9 +531,7 @@ Controller::Flow Controller::exec(int t, Task& k, const Instruction& in, TimePoi
     case Op::mlt:
     case Op::aeo:
     case Op::srp:
-      fail(t, static_cast<int>(ClmError::invalid_program_command),
-           fmt::format("{} needs the master encoder / flying cutoff, which this model does not run", mnemonic(in.op)));
-      return Flow::halt;
+      return exec_coupled(t, k, in);
     default:
       return exec_motion(t, k, in, now);
   }

@@ -174,6 +174,7 @@ void Controller::power_up(TimePoint now) {
     a.override_permille = 1000;
     a.override_limit = false;
   }
+  reset_coupled_state();
   apply_parameters(now);
   compile_logic();
   run_ = RunState::idle;
@@ -194,11 +195,13 @@ void Controller::cycle(TimePoint now) {
   now_ = now;
   ++cycle_count_;
   update_axes_in(now);
+  update_master_in();
   update_mode(now);
   update_safety(now);
   jog(now);
   step_axis_functions(now);
   run_tasks(now);
+  step_couplings(now);
   if (logic_ok_ && mode_ != Mode::parameter && now >= logic_next_) {
     logic_.run(image_);
     logic_next_ = now + options_.logic_period;
@@ -242,12 +245,17 @@ void Controller::enter_mode(Mode m, TimePoint now) {
       a.fak = micro_one;
       a.override_permille = 1000;
       a.override_limit = false;
+      a.override_master = false;  // VEO: cancelled on Auto <-> Manual
+      a.aeo = false;
       a.rep = false;
     }
+    fak5_ = micro_one;
+    mlo_.on = false;  // MLO: leaving Automatic disables it
   }
   if (old == Mode::manual && m == Mode::parameter) txt53_.clear();
   if (m == Mode::parameter) {
     stop_program(false);
+    reset_coupled_state();  // FOL off, mode 1, factor 1 (§5.7 FOL)
     tasks_[2].active = false;
     for (int s = 0; s < 3; ++s) image_.clear_outputs(s);
     for (int g : {2, 4, 5}) image_.clear_markers(g);
@@ -268,6 +276,7 @@ void Controller::enter_mode(Mode m, TimePoint now) {
       a.rtm = 0;
       a.fak = micro_one;
     }
+    fak5_ = micro_one;
     if (tasks_[2].used && settings_ok_) {
       tasks_[2].active = true;
       tasks_[2].pc = tasks_[2].start;
@@ -286,6 +295,16 @@ void Controller::enter_mode(Mode m, TimePoint now) {
         raise(axis_code(ClmError::drive_not_ready, ax), fmt::format("Automatic selected without Enable axis {}", ax));
         break;
       }
+    }
+    if (flying_cutoff() && error_ == 0) {
+      // §7.12: the carriage must stand at its origin (error 36); task 1 then starts at once
+      // (Start has no function), at 0000 [decided].
+      const double window = std::max(settings_.axes[0].reached_window, 0.01);
+      if (std::abs(clm_position(1)) > window)
+        raise(static_cast<int>(ClmError::not_home_position),
+              fmt::format("flying cutoff: the carriage is at {:.3f} IU, not at its origin", clm_position(1)));
+      else
+        start_program(now);
     }
   }
 }
@@ -348,6 +367,7 @@ void Controller::update_safety(TimePoint now) {
   const bool restart_edge = image_.bit(sys::restart) && !previous_inputs_.bit(sys::restart);
   const bool imm_ok = image_.bit(sys::immediate_stop_ok);
   if (mode_ != Mode::automatic || error_ != 0) return;
+  if (flying_cutoff()) return;  // §7.12: Start, Immediate Stop and Restart have no function
   if (!imm_ok && run_ == RunState::running) stop_program(true);
   if (!imm_ok) return;
   if (restart_edge && restart_.valid && !restart_blocked_) {
@@ -382,6 +402,7 @@ void Controller::start_manual_vector() {
 }
 
 bool Controller::command_start() {
+  if (flying_cutoff()) return false;  // §7.12: !START has no function
   if (mode_ != Mode::automatic || error_ != 0 || !image_.bit(sys::immediate_stop_ok)) return false;
   stopped_by_command_ = false;
   if (run_ == RunState::idle)
@@ -392,7 +413,7 @@ bool Controller::command_start() {
 }
 
 void Controller::command_stop() {
-  if (run_ == RunState::running) {
+  if (run_ == RunState::running && !flying_cutoff()) {
     stop_program(true);
     stopped_by_command_ = true;
   }
@@ -411,6 +432,7 @@ void Controller::command_clear() {
   for (auto& e : error_item_) e.clear();
   for (std::size_t b = 0; b < 7; ++b)
     if (settings_.output_clear[b] == 1) write_byte({Area::output, 1, static_cast<std::uint8_t>(b)}, 0);
+  fak5_ = micro_one;
   for (auto& a : axes_) {
     a.sac = 0.0;
     a.fak = micro_one;
@@ -440,6 +462,7 @@ void Controller::raise(int code, std::string message, int item_kind, int item) {
   error_message_ = std::move(message);
   if (item_kind >= 0 && item_kind < 4) error_item_[static_cast<std::size_t>(item_kind)] = fmt::format("{:04d}", item);
   stop_program(false);
+  reset_coupled_state();  // couplings end; FOL back to mode 1, factor 1 (§5.7 FOL)
   for (std::size_t b = 0; b < 7; ++b)
     if (settings_.output_clear[b] != 2) {
       // 0 = clear on the fault; 1 = keep, clear when the fault is cleared (command_clear)
@@ -495,7 +518,10 @@ void Controller::resume_program() {
   run_ = RunState::running;
   for (std::size_t t = 0; t < 5; ++t)
     if (t != 2 && tasks_[t].used) tasks_[t].active = true;
-  for (int ax = 1; ax <= 4; ++ax) resume_axis(ax);
+  for (int ax = 1; ax <= 4; ++ax) {
+    resume_axis(ax);
+    pause_follow(ax, false);  // FOL mode 2 re-synchronises on Start
+  }
 }
 
 void Controller::stop_program(bool keep_position) {
@@ -511,10 +537,16 @@ void Controller::stop_program(bool keep_position) {
     }
   }
   if (mat_owner_ >= 0 && mat_owner_ != 2) mat_owner_ = -1;
+  if (!keep_position) end_cutoff();
+  srp_.measuring = srp_.missed = false;
   for (int ax = 1; ax <= 4; ++ax) {
     auto& a = axes_[static_cast<std::size_t>(ax - 1)];
     a.con = false;
     a.srm = false;
+    if (follow_[static_cast<std::size_t>(ax - 1)].active) {
+      if (keep_position) pause_follow(ax, true);  // mode 2 ramps down; mode 1 keeps following (§5.7)
+      continue;
+    }
     if (keep_position) {
       hold_axis(ax);
     } else {
@@ -527,7 +559,7 @@ void Controller::stop_program(bool keep_position) {
 }
 
 void Controller::save_restart() {
-  if (restart_blocked_) return;
+  if (restart_blocked_ || flying_cutoff()) return;  // §7.12: no restart in flying cutoff
   restart_.valid = true;
   for (std::size_t t = 0; t < 5; ++t) {
     restart_.pc[t] = tasks_[t].pc;
@@ -634,6 +666,7 @@ void Controller::update_system_variables() {
     vars_[b + 4] = clamp(a.fb.velocity);
     vars_[b + 10] = a.has_target ? clamp(a.target - clm_position(ax)) : 0;
   }
+  update_measurements();
   hours_ms_ += settings_.cycle_ms;
   vars_[19] = clamp(hours_ms_ / 3.6e6);
 }

@@ -51,8 +51,9 @@ double Controller::feed_velocity(int axis, int permille) const {
   const auto& a = axes_[static_cast<std::size_t>(axis - 1)];
   // ‰ of Ax06; 999 = 99.9 % (the PBK example). 000 runs at the slowest step, 1 ‰ [decided].
   double v = as.vmax * std::max(permille, 1) / 1000.0;
-  if (a.override_permille != 1000) {
-    const double ov = a.override_permille / 1000.0;
+  if (a.override_permille != 1000 || a.override_master) {
+    // VEO source 4: the command's value; source 5: master encoder 1 velocity / Vmax × FOL factor
+    const double ov = a.override_master ? a.master_override : a.override_permille / 1000.0;
     v = a.override_limit ? std::min(v, as.vmax * ov) : v * ov;  // VEO: "as limit" / "as factor"
   }
   return std::max(v, as.vmax / 1000.0);
@@ -65,6 +66,13 @@ MoveLimits Controller::limits_for(int axis, double velocity) const {
   MoveLimits l;
   l.velocity = std::abs(velocity);
   l.acceleration = as.acceleration * (pm == 0 ? 1000 : pm) / 1000.0;
+  if (a.aeo && master_available()) {
+    // AEO (§5.7): Ax08 × (v_ME1 / Ax06)² × sss ‰, at least mmm ‰ of Ax08 (and 1 ‰ [decided]):
+    // the acceleration path 0 -> material speed stays the same whatever the material speed.
+    const double r = master_velocity() / as.vmax;
+    l.acceleration = std::max({as.acceleration * r * r * a.aeo_scale / 1000.0, as.acceleration * a.aeo_min / 1000.0,
+                               as.acceleration / 1000.0});
+  }
   if (as.jerk_time_s > 0.0) {
     // Ax10 rounded up so that T / cycle = 2^n (§8.2); the acceleration builds up linearly over T.
     const double cycles = std::max(1.0, std::ceil(as.jerk_time_s * 1000.0 / settings_.cycle_ms - 1e-9));
@@ -120,7 +128,7 @@ bool Controller::command_move(int axis, double target, double velocity, int t) {
 
 void Controller::hold_axis(int axis) {
   auto& a = axes_[static_cast<std::size_t>(axis - 1)];
-  if (a.port == nullptr) return;
+  if (a.port == nullptr || follow_[static_cast<std::size_t>(axis - 1)].active) return;
   if (a.con) {
     a.port->stop();
     a.con = false;
@@ -226,7 +234,7 @@ void Controller::jog(TimePoint now) {
   for (int ax = 1; ax <= 4; ++ax) {
     auto& a = axes_[static_cast<std::size_t>(ax - 1)];
     const auto& as = settings_.axes[static_cast<std::size_t>(ax - 1)];
-    if (a.port == nullptr || !as.enabled) continue;
+    if (a.port == nullptr || !as.enabled || follow_[static_cast<std::size_t>(ax - 1)].active) continue;
     const bool allowed = mode_ == Mode::manual && error_ == 0 && a.drive_enable && !tasks_[0].manual_vector;
     const bool fwd = allowed && image_.bit(sys::jog_forward[static_cast<std::size_t>(ax - 1)]);
     const bool rev = allowed && image_.bit(sys::jog_reverse[static_cast<std::size_t>(ax - 1)]);
@@ -254,10 +262,20 @@ Controller::Flow Controller::exec_motion(int t, Task& k, const Instruction& in, 
     fail(t, static_cast<int>(ClmError::invalid_program_command), "the manual vector program must not contain feeds");
     return Flow::halt;
   }
-  if (in.op == Op::fak && !in.n[0].is_var() && in.n[0].value == 5 * micro_one) {
-    fail(t, static_cast<int>(ClmError::invalid_program_command),
-         "FAK 5 (master encoder 1) needs flying cutoff, which this model does not run");
-    return Flow::halt;
+  if (in.op == Op::fak && *value(in.n[0], t) == 5 * micro_one) {
+    // FAK 5: the measuring-wheel correction of the C002 feed constant (flying cutoff only).
+    if (!flying_cutoff()) {
+      fail(t, static_cast<int>(ClmError::invalid_program_command),
+           "FAK 5 (master encoder 1 feed constant) is for the flying cutoff only (A100 mode 5)");
+      return Flow::halt;
+    }
+    const Micro f = *value(in.n[1], t);
+    if (f <= 0 || f >= 10 * micro_one) {
+      fail(t, static_cast<int>(ClmError::variable_value), "FAK factor must be 0 < f < 10");
+      return Flow::halt;
+    }
+    fak5_ = f;  // applies from the next length instruction / FOL (its ratio and lengths)
+    return Flow::next;
   }
   // The axis operand: first, except REP tttt a dddddd.ddd.
   auto axis_or = integer(in.op == Op::rep ? in.n[1] : in.n[0], t, 1, 4);
@@ -270,6 +288,29 @@ Controller::Flow Controller::exec_motion(int t, Task& k, const Instruction& in, 
     return Flow::halt;
   }
   const auto permille = [&](const Num& n, int lo) { return integer(n, t, lo, 999); };
+  auto& fo = follow_[static_cast<std::size_t>(ax - 1)];
+  const bool feed = in.op == Op::poi || in.op == Op::psi;
+  if (feed && k.phase == 1 && k.aux == 2)  // a superimposed PSI on a following axis
+    return fo.active && fo.coupling.superimposed().busy() ? Flow::wait : Flow::next;
+  if (fo.active && in.op != Op::fak && in.op != Op::veo && in.op != Op::acc) {
+    if (!fo.fol || !feed) {
+      fail(t, static_cast<int>(ClmError::invalid_program_command),
+           fmt::format("{} on axis {} while it is coupled ({}): only POI/PSI add to a FOL coupling", mnemonic(in.op),
+                       ax, fo.fol ? "FOL" : "flying cutoff"));
+      return Flow::halt;
+    }
+    // §5.7 FOL: moves programmed for the slave are added (velocity-additive): the coupling's
+    // superimposed move.
+    auto len = length(in.n[1], t);
+    auto v = permille(in.n[2], 0);
+    if (!len || !v) return Flow::halt;
+    const double l = to_double(static_cast<Micro>(static_cast<i128>(*len) * a.fak / micro_one));
+    if (!superimpose(ax, l, feed_velocity(ax, *v), t)) return Flow::halt;
+    if (in.op == Op::poi) return Flow::next;
+    k.phase = 1;
+    k.aux = 2;
+    return Flow::wait;
+  }
   switch (in.op) {
     case Op::acc: {
       auto acc = permille(in.n[1], 0);
@@ -348,12 +389,34 @@ Controller::Flow Controller::exec_motion(int t, Task& k, const Instruction& in, 
       const bool absolute = in.op == Op::poa || in.op == Op::psa;
       const bool settle = in.op == Op::psa || in.op == Op::psi;
       // A feed suspended by RMI (task 2's offset move runs) is not reached until it resumes.
-      if (k.phase == 1) return reached(ax) && !(a.rmi_suspended && t != 2) ? Flow::next : Flow::wait;
+      if (k.phase == 1) {
+        if (!reached(ax) || (a.rmi_suspended && t != 2)) return Flow::wait;
+        if (ax == 1 && srp_.task == t && settle) {
+          srp_.measuring = false;
+          if (srp_.missed) {
+            // SRP: no mark in the window: continue at the line in Vbase+5
+            srp_.missed = false;
+            Num target;
+            target.var = static_cast<std::int16_t>(srp_.base + 5);
+            auto line = integer(target, t, 0, 2999);
+            if (!line) return Flow::halt;
+            k.jump_to = *line;
+            return Flow::jump;
+          }
+        }
+        return Flow::next;
+      }
       auto len = length(in.n[1], t);
       auto v = permille(in.n[2], 0);
       if (!len || !v) return Flow::halt;
-      const double l = to_double(static_cast<Micro>(static_cast<i128>(*len) * a.fak / micro_one));
-      double velocity = feed_velocity(ax, *v);
+      double l = to_double(static_cast<Micro>(static_cast<i128>(*len) * a.fak / micro_one));
+      if (ax == 1 && srp_.mode == 1 && !absolute) {
+        l += srp_.correction;  // SRP mode 1: the correction measured on the previous PSI
+        srp_.correction = 0.0;
+      }
+      // §7.12: POI/PSI of the flying cutoff carriage always run at Vmax.
+      double velocity = ax == 1 && flying_cutoff() ? as.vmax : feed_velocity(ax, *v);
+      a.feed_permille = *v;
       double target = 0.0;
       if (absolute) {
         if (!homed(ax)) {
@@ -384,8 +447,19 @@ Controller::Flow Controller::exec_motion(int t, Task& k, const Instruction& in, 
         target = (a.has_target ? a.target : clm_position(ax)) + l;
       }
       if (!command_move(ax, target, velocity, t)) return Flow::halt;
+      if (ax == 1 && srp_.mode != 0 && in.op == Op::psi) {
+        // SRP: this PSI measures the print mark (the flag and, in mode 3, Vbase+0 restart)
+        srp_.measuring = true;
+        srp_.missed = false;
+        srp_.task = t;
+        srp_.start = clm_position(1);
+        srp_.raster_last = image_.bit(sys::raster1);
+        image_.set_byte(srp_.flag, static_cast<std::uint8_t>(image_.byte(srp_.flag) & ~0x10U));
+        if (srp_.mode == 3) vars_[static_cast<std::size_t>(srp_.base)] = 0;
+      }
       if (!settle) return Flow::next;
       k.phase = 1;
+      k.aux = 0;
       return Flow::wait;
     }
     case Op::rep: {
@@ -553,11 +627,25 @@ Controller::Flow Controller::exec_motion(int t, Task& k, const Instruction& in, 
       auto v = permille(in.n[3], 0);
       auto lim = integer(in.n[4], t, 0, 1);
       if (!s || !v || !lim) return Flow::halt;
+      if (*s == 5) {
+        if (!master_available()) {
+          fail(t, static_cast<int>(ClmError::invalid_program_command),
+               "VEO source 5 needs master encoder 1 (C002 > 0 and an encoder attached)");
+          return Flow::halt;
+        }
+        a.override_master = true;
+        a.master_override = std::abs(master_velocity()) / as.vmax * to_double(fo.factor);
+        a.override_limit = *lim == 1;
+        return Flow::next;
+      }
       if (*s != 4) {
         fail(t, static_cast<int>(ClmError::invalid_program_command),
-             fmt::format("VEO source {} needs the master encoder (source 4 = value from the command is modelled)", *s));
+             fmt::format("VEO source {}: the B017 analog/binary/Gray override inputs are not modelled (4 = value "
+                         "from the command, 5 = master encoder 1)",
+                         *s));
         return Flow::halt;
       }
+      a.override_master = false;
       a.override_permille = *v;
       a.override_limit = *lim == 1;
       return Flow::next;

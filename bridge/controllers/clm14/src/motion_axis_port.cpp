@@ -38,6 +38,8 @@ AxisFeedback MotionAxisPort::feedback() const {
               s.state == motion::AxisState::stopping || s.state == motion::AxisState::homing;
   f.referenced = s.referenced;
   f.fault = s.state == motion::AxisState::error;
+  f.position_inc = s.position_inc;
+  f.command_inc = s.command_inc;
   return f;
 }
 
@@ -77,6 +79,26 @@ void MotionAxisPort::home() {
 
 void MotionAxisPort::reset() {
   (void)axis_.reset();
+}
+
+void MotionAxisPort::follow(std::int64_t position_inc, double velocity_inc_per_s, double acceleration_inc_per_s2) {
+  (void)axis_.follow(position_inc, velocity_inc_per_s, acceleration_inc_per_s2);
+}
+
+motion::AxisConfig master_encoder_config(const MasterEncoderSettings& me, const AxisSettings& axis1, std::string name) {
+  motion::AxisConfig c;
+  c.name = std::move(name);
+  const auto feed_e5 = static_cast<std::int64_t>(std::llround(me.feed_constant * 1e5));
+  c.inc_per_unit = {static_cast<std::int64_t>(std::max(1, me.pulses)) * 4 * 100000, std::max<std::int64_t>(1, feed_e5)};
+  c.limits.velocity = 2.0 * axis1.vmax;
+  c.limits.acceleration = 10.0 * axis1.acceleration;
+  c.quick_stop_deceleration = 20.0 * axis1.acceleration;
+  c.jog_velocity = axis1.jog_velocity;
+  c.following_error.static_window = std::max(1.0, axis1.vmax * 0.2);
+  c.standstill_window = 0.01;
+  c.in_position_window = 0.005;
+  c.in_position_timeout = std::chrono::seconds(2);
+  return c;
 }
 
 }  // namespace hil::controllers::clm14

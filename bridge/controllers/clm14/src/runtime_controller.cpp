@@ -83,6 +83,28 @@ std::expected<std::unique_ptr<hc::Controller>, ConfigError> RuntimeController::c
   if (!settings)
     return std::unexpected(ConfigError{spec.parameters.string(), 0, 0, "controller.parameters",
                                        fmt::format("CLM error 02: {}", settings.error().message)});
+  // Controller keys: master_encoder = the machine axis whose drive counts master encoder 1.
+  std::string master_name;
+  for (const auto& [key, value] : spec.options) {
+    if (key != "master_encoder")
+      return std::unexpected(
+          ConfigError{spec.file, spec.line, 0, fmt::format("controller.{}", key),
+                      fmt::format("unknown clm14 controller key '{}' (known: master_encoder)", key)});
+    master_name = value;
+  }
+  if (!master_name.empty()) {
+    if (!settings->me1.used())
+      return std::unexpected(
+          ConfigError{spec.file, spec.line, 0, "controller.master_encoder",
+                      fmt::format("master_encoder '{}': {} sets C002 = 0 (master encoder 1 not used)", master_name,
+                                  spec.parameters.string())});
+    for (int ax = 1; ax <= 4; ++ax)
+      if (master_name == std::to_string(ax))
+        return std::unexpected(ConfigError{
+            spec.file, spec.line, 0, "controller.master_encoder",
+            fmt::format("master_encoder '{}' is the name of CLM axis {}: give the encoder axis its own name",
+                        master_name, ax)});
+  }
   const Duration cycle = spec.cycle.value_or(
       std::chrono::duration_cast<Duration>(std::chrono::duration<double, std::milli>(settings->cycle_ms)));
   auto c = std::make_unique<RuntimeController>(*profile, std::move(params), cycle);
@@ -94,6 +116,17 @@ std::expected<std::unique_ptr<hc::Controller>, ConfigError> RuntimeController::c
     a.units = "IU";
     a.config = make_axis_config(as, a.name);
     c->add_axis(std::move(a));
+    ++c->clm_axes_;
+  }
+  if (!master_name.empty()) {
+    // Master encoder 1 (C000 × 4 counts per C002 IU): a machine axis the scenario moves (the
+    // material, the measuring wheel); the CLM reads its actual increments as the encoder count.
+    hc::ControllerAxis a;
+    a.name = master_name;
+    a.units = "IU";
+    a.config = master_encoder_config(settings->me1, settings->axes[0], master_name);
+    c->add_axis(std::move(a));
+    c->has_master_ = true;
   }
   std::vector<std::pair<int, std::string>> lines;
   for (const auto& prg : spec.programs) {
@@ -127,11 +160,16 @@ std::expected<hc::BitAddress, std::string> RuntimeController::resolve_bit(std::s
 }
 
 void RuntimeController::on_cycle(const CycleTime& cycle) noexcept {
-  if (ports_.empty())
-    for (std::size_t i = 0; i < axis_count(); ++i) {
+  if (ports_.empty()) {
+    for (std::size_t i = 0; i < clm_axes_; ++i) {
       ports_.push_back(std::make_unique<MotionAxisPort>(axis(i)));
       model_.attach_axis(static_cast<int>(i + 1), ports_.back().get());
     }
+    if (has_master_) {
+      master_ = std::make_unique<MotionMasterEncoder>(axis(clm_axes_));
+      model_.attach_master_encoder(master_.get());
+    }
+  }
   // The runtime's image holds CLM group x byte yy at x * 64 + yy (io_address_clm.hpp).
   auto& im = model_.image();
   for (std::uint8_t s = 0; s < 3; ++s)

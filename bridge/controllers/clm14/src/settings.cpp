@@ -86,6 +86,8 @@ std::expected<Settings, ProgramError> make_settings(const ParameterLookup& looku
     const auto x00 = r.fields(p(0), 2);
     a.motion = static_cast<MotionType>(std::clamp(r.integer(p(0), x00[0]), 0, 2));
     a.mode = r.integer(p(0), x00[1]);
+    a.master = x00.size() > 2 && !x00[2].empty() ? r.integer(p(0), x00[2]) : 0;
+    a.test_mode = x00.size() > 3 && x00[3] == "1";
     a.feed_constant = r.number(p(1), r.fields(p(1), 1)[0]);
     a.min_limit = r.number(p(3), r.fields(p(3), 1)[0]);
     a.max_limit = r.number(p(4), r.fields(p(4), 1)[0]);
@@ -124,9 +126,25 @@ std::expected<Settings, ProgramError> make_settings(const ParameterLookup& looku
     const auto x32 = r.fields(p(32), 2);
     a.velocity_reached_output = r.io(p(32), x32[0]);
     a.decelerating_output = r.io(p(32), x32[1]);
+    const auto x11 = r.fields(p(11), 0);
+    a.feedforward = x11.size() > 1 ? r.integer(p(11), x11[1]) : 0;
+    if (ax == 1) {
+      if (!lookup(p(35)).empty()) a.reverse_inhibit_input = r.io(p(35), r.fields(p(35), 1)[0]);
+      if (!lookup(p(41)).empty()) a.tool_width = r.number(p(41), r.fields(p(41), 1)[0]);
+    }
     if (r.failed.empty() && (a.feed_constant <= 0.0 || a.vmax <= 0.0 || a.acceleration <= 0.0))
       r.failed = fmt::format("{}: feed constant, Vmax (Ax06) and acceleration (Ax08) must be > 0", p(1));
   }
+  // Master encoder 1 (§8.4): absent parameters = the profile's defaults are not known here, so
+  // an empty C000/C002 means "not used".
+  if (!lookup("C000").empty()) s.me1.pulses = r.integer("C000", r.fields("C000", 1)[0]);
+  if (!lookup("C001").empty()) {
+    const auto c001 = r.fields("C001", 6);
+    s.me1.inverted = c001[4] == "1";
+    s.me1.averaging = std::clamp(r.integer("C001", c001[5]), 0, 7);
+  }
+  s.me1.feed_constant = lookup("C002").empty() ? 0.0 : r.number("C002", r.fields("C002", 1)[0]);
+  if (r.failed.empty() && s.me1.feed_constant < 0.0) r.failed = "C002: the feed constant must be >= 0";
   if (!r.failed.empty()) return std::unexpected(ProgramError{ClmError::parameter_invalid, -1, r.failed});
   return s;
 }

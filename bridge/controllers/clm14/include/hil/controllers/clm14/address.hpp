@@ -92,6 +92,8 @@ inline constexpr BitAddress start{{Area::input, 0, 0}, 3};
 inline constexpr BitAddress immediate_stop_ok{{Area::input, 0, 0}, 4};  ///< active low
 inline constexpr BitAddress external_clear{{Area::input, 0, 0}, 7};
 inline constexpr BitAddress restart{{Area::input, 0, 1}, 6};
+/// Raster 1 (X3/16, fast input of axis 1: SRM, RMI, LMR, LMK, SRP).
+inline constexpr BitAddress raster1{{Area::input, 0, 1}, 7};
 /// Enable inputs of axes 1..4: I0.00.5, I0.00.6, I0.02.0, I0.02.3.
 inline constexpr std::array<BitAddress, 4> enable{
     {{{Area::input, 0, 0}, 5}, {{Area::input, 0, 0}, 6}, {{Area::input, 0, 2}, 0}, {{Area::input, 0, 2}, 3}}};

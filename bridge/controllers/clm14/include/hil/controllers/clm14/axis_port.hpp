@@ -7,6 +7,7 @@
 // transport (sim, CANopen, Modbus, step/dir). Called on the controller's cycle thread only;
 // nothing blocks; nothing throws.
 
+#include <cstdint>
 #include <limits>
 
 namespace hil::controllers::clm14 {
@@ -28,6 +29,8 @@ struct AxisFeedback {
   bool enabled = false;           ///< operation enabled
   bool referenced = false;        ///< the drive's homing completed
   bool fault = false;             ///< the axis holds a fault (following error, drive fault, lost drive)
+  std::int64_t position_inc = 0;  ///< actual, drive increments (the master of a slave axis, FOL)
+  std::int64_t command_inc = 0;   ///< set-point, drive increments (the master of a synchronous axis)
 };
 
 class AxisPort {
@@ -47,6 +50,9 @@ class AxisPort {
   virtual void home() = 0;
   /// Acknowledge an axis fault.
   virtual void reset() = 0;
+  /// Coupled motion (FOL, flying cutoff): this cycle's set-point from a hil::motion::Coupling, in
+  /// drive increments (CouplingOutput). Ended by stop() or a new move_to()/run().
+  virtual void follow(std::int64_t position_inc, double velocity_inc_per_s, double acceleration_inc_per_s2) = 0;
 };
 
 }  // namespace hil::controllers::clm14

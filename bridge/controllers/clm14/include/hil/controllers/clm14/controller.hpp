@@ -27,8 +27,11 @@
 #include "hil/controllers/clm14/axis_port.hpp"
 #include "hil/controllers/clm14/instruction.hpp"
 #include "hil/controllers/clm14/logic_task.hpp"
+#include "hil/controllers/clm14/master_encoder.hpp"
 #include "hil/controllers/clm14/settings.hpp"
 #include "hil/core/clock.hpp"
+#include "hil/motion/coupling.hpp"
+#include "hil/motion/master.hpp"
 
 namespace hil::controllers::clm14 {
 
@@ -44,7 +47,33 @@ struct Options {
   Duration brake_delay{std::chrono::milliseconds(200)};  ///< §9.1: brake released 200 ms after enable
   /// CID Vnnn m ±value: mode 0 = set, 1 = add (manual: "changes the data in a variable", mode lost).
   bool cid_mode1_adds = true;
+  /// MLO: true = the bit toggles each time the processed length passes the programmed length;
+  /// false = it is set each time (the program clears it). The manual: "set/clear a bit".
+  bool mlo_toggles = true;
 };
+
+/// LMR (manual §5.7, vector 37): the raster distance (material from the previous mark at the
+/// tool to the next mark at the light barrier) and the offset distance (material from the mark
+/// seen at the barrier to the cut) from the light-barrier offset `barrier` (> 0: the barrier sits
+/// before the material entry, i.e. upstream of the tool; < 0: after it), the mark distance and
+/// the cut's offset behind the mark. barrier 100, marks 1000, offset 300: 900 / 400 before the
+/// entry, 1100 / 200 after it.
+struct LmrGeometry {
+  double raster = 0.0;
+  double offset = 0.0;
+};
+[[nodiscard]] constexpr LmrGeometry lmr_geometry(double mark_distance, double offset, double barrier) noexcept {
+  return {mark_distance - barrier, offset + barrier};
+}
+
+/// Slave increments per master increment for `factor` × (slave increments per IU) / (master
+/// increments per IU), each "increments per IU" given as pulses × 4 per feed constant (in
+/// 1e-5 IU), the factor in millionths: exact when it fits GearRatio (|num|, den <= 2^31), else
+/// the nearest fraction that does (continued fraction; docs/clm14.md).
+/// `master_factor` multiplies the master's feed constant (FAK 5 on master encoder 1).
+[[nodiscard]] motion::GearRatio clm_gear_ratio(Micro factor, std::int64_t slave_pulses, std::int64_t slave_feed_e5,
+                                               std::int64_t master_pulses, std::int64_t master_feed_e5,
+                                               Micro master_factor = micro_one) noexcept;
 
 /// One task's visible state (status 02/08/39, V002-V006).
 struct TaskView {
@@ -83,6 +112,9 @@ class Controller {
   void on_settings(std::function<void(const Settings&)> f) { on_settings_ = std::move(f); }
   /// Attach axis 1..4 (not owned). Axes without a port cannot be enabled in B000.
   void attach_axis(int axis, AxisPort* port);
+  /// Attach master encoder 1 (not owned; nullptr = none). Without it, FOL from master encoder 1,
+  /// VEO source 5, AEO and the flying cutoff stop the program with 0A naming the encoder.
+  void attach_master_encoder(MasterEncoderPort* port);
 
   // ---- run ---------------------------------------------------------------------------------
   /// Power-up sequence (§7.4): parameter check (02), logic compile (38), task 3 start.
@@ -140,6 +172,14 @@ class Controller {
   /// Time of the last cycle.
   [[nodiscard]] TimePoint now() const noexcept { return now_; }
   [[nodiscard]] bool powered() const noexcept { return powered_; }
+  /// Master encoder 1: travel in IU (C002 × FAK 5 per C000 × 4 counts) and velocity (V011).
+  [[nodiscard]] double master_position() const noexcept;
+  [[nodiscard]] double master_velocity() const noexcept;
+  /// Flying cutoff: synchronisations (cuts) so far, and the material point (ME1 IU) of the last.
+  [[nodiscard]] std::uint64_t cuts() const noexcept { return cut_.cuts; }
+  [[nodiscard]] double last_cut_point() const noexcept;
+  /// Whether axis `axis` follows a master now (FOL or the flying cutoff's synchronous run).
+  [[nodiscard]] bool coupled(int axis) const noexcept;
 
   /// Battery-buffered state: program, logic, variables, counters, retentive markers, run state
   /// and the restart snapshot. from_json() restores it as after a power loss (restart possible
@@ -210,6 +250,12 @@ class Controller {
     bool drive_enable = false;
     TimePoint enable_since{};
     int override_permille = 1000;  ///< VEO source 4
+    bool override_master = false;  ///< VEO source 5: override = ME1 velocity / Vmax × FOL factor
+    double master_override = 1.0;
+    int feed_permille = 999;  ///< ‰ of the running feed (re-planned when the VEO 5 override moves)
+    bool aeo = false;         ///< AEO: acceleration from the ME1 velocity
+    int aeo_scale = 1000;
+    int aeo_min = 0;
     bool override_limit = false;
     bool presignal = false;
     bool rmi_suspended = false;  ///< task-1 feed suspended by RMI
@@ -220,6 +266,59 @@ class Controller {
     double presignal_since_s = 0.0;
     TimePoint presignal_on{};
   };
+  /// Master encoder 1 as read this cycle.
+  struct MasterIn {
+    MasterEncoderPort* port = nullptr;
+    motion::EncoderInput input{32};
+    std::int64_t count = 0;  ///< unwrapped quadrature counts, C001 direction applied
+    std::array<std::int64_t, velocity_window> history{};
+    std::size_t seen = 0;
+    double velocity = 0.0;  ///< counts/s over the velocity window
+  };
+  /// FOL / flying-cutoff coupling of one axis (hil::motion::Coupling, gear law).
+  struct Follow {
+    motion::Coupling coupling{"clm"};
+    bool active = false;  ///< the coupling drives the axis this cycle
+    bool fol = false;     ///< FOL on (else the flying cutoff owns it)
+    int mode = 1;         ///< FOL mode 1 (steps) / 2 (ramps)
+    Micro factor = micro_one;
+    bool ending = false;  ///< mode 2 off: the ratio ramps to 0, then the axis stands
+    bool paused = false;  ///< mode 2: ramped out by Immediate Stop, re-synchronised by Start
+  };
+  /// The flying cutoff of axis 1 (mode 5), in master-encoder counts.
+  struct Cutoff {
+    enum class Phase : std::uint8_t { idle, armed, synchronous, returning, inhibited };
+    Phase phase = Phase::idle;
+    bool have_last = false;
+    std::int64_t last_cut = 0;             ///< material point (counts) cut last
+    std::int64_t cut_at = 0;               ///< the armed instruction's cut point
+    std::int64_t ramp = 0;                 ///< master counts of the engage ramp
+    std::int64_t registration_offset = 0;  ///< LMK/LMR: counts from the raster to the cut
+    bool registration = false;
+    bool raster_used = false;            ///< once per instruction
+    std::optional<std::int64_t> raster;  ///< first raster since de-sync (counts)
+    bool raster_last = false;
+    std::uint64_t cuts = 0;
+  };
+  struct Mlo {
+    bool on = false;
+    BitAddress bit{};
+    double length = 0.0;
+    double ref = 0.0;  ///< processed length at which the current interval started
+  };
+  struct Srp {
+    int mode = 0;  ///< 0 off, 1 correct the next feed, 2 correct now, 3 detect only
+    int base = 600;
+    int task = 0;  ///< the task whose PSI measures
+    ByteAddress flag{};
+    bool armed = false;      ///< the next PSI of axis 1 measures
+    bool measuring = false;  ///< a PSI measures now
+    bool missed = false;     ///< the window passed without a mark: the PSI jumps to base+5
+    double start = 0.0;
+    bool raster_last = false;
+    double correction = 0.0;  ///< mode 1: added to the next feed
+  };
+
   struct Restart {
     bool valid = false;
     std::array<int, 5> pc{};
@@ -264,6 +363,7 @@ class Controller {
   /// A 6.3 length field (±999999.999, truncated to 3 decimals); error 32 when it does not fit.
   [[nodiscard]] std::optional<Micro> length(const Num& n, int t);
   void fail(int t, int code, std::string why);
+  [[nodiscard]] bool forbidden_in_cutoff(const Instruction& in) const;
   bool store_variable(int var, Micro v, int t);
   // motion.cpp
   Flow exec_motion(int t, Task& task, const Instruction& in, TimePoint now);
@@ -277,6 +377,31 @@ class Controller {
   [[nodiscard]] bool reached(int axis) const;
   void step_axis_functions(TimePoint now);
   void jog(TimePoint now);
+  // coupled.cpp: master encoder, FOL, FUN, MLO/MLT, AEO, VEO 5, SRP
+  void update_master_in();
+  Flow exec_coupled(int t, Task& task, const Instruction& in);
+  void step_couplings(TimePoint now);
+  void end_coupling(int axis, bool stop_axis);
+  [[nodiscard]] std::int64_t follow_ramp(int axis, double ratio_change) const;
+  void pause_follow(int axis, bool pause);
+  void reset_coupled_state();
+  [[nodiscard]] bool master_available() const noexcept;
+  [[nodiscard]] double me_iu_per_count() const noexcept;
+  [[nodiscard]] std::optional<std::int64_t> master_counts(int axis) const;
+  [[nodiscard]] std::optional<motion::GearRatio> follow_ratio(int axis, Micro factor) const;
+  [[nodiscard]] double inc_per_iu(int axis) const;
+  [[nodiscard]] motion::SlaveLimits slave_limits(int axis) const;
+  [[nodiscard]] double processed_length() const;
+  void update_measurements();
+  void step_srp();
+  bool superimpose(int axis, double distance, double velocity, int t);
+  // flying_cutoff.cpp: LML/LMK/LMR/EOS, the carriage cycle
+  Flow exec_cutoff(int t, Task& task, const Instruction& in);
+  void step_cutoff();
+  void end_cutoff();
+  [[nodiscard]] std::int64_t cutoff_ramp() const;
+  bool arm_cutoff_engage();
+  [[nodiscard]] bool flying_cutoff() const noexcept;
 
   Options options_;
   ParameterLookup parameters_;
@@ -313,6 +438,13 @@ class Controller {
   TimePoint now_{};
   bool powered_ = false;
   int mat_owner_ = -1;  ///< task using the calculation unit
+  MasterIn me1_{};
+  Micro fak5_ = micro_one;  ///< FAK 5: factor on the C002 feed constant
+  std::array<Follow, 4> follow_{};
+  Cutoff cut_{};
+  std::array<double, 7> fun_ref_{};  ///< FUN channel references (measure at the last restart)
+  Mlo mlo_{};
+  Srp srp_{};
   int last_srm_axis_ = 0;
 };
 

@@ -31,6 +31,8 @@ enum class ClmError : std::uint8_t {
   variable_value = 0x32,
   logic_program = 0x38,
   logic_program_lost = 0x39,
+  missing_eos = 0x35,
+  not_home_position = 0x36,
   io_number = 0x3D,
   // axis 1 codes; axis n adds axis_offset(n)
   drive_not_ready = 0x40,
@@ -40,6 +42,7 @@ enum class ClmError : std::uint8_t {
   min_travel = 0x46,
   max_travel = 0x47,
   not_homed = 0x48,
+  max_override = 0x4D,
   axis_disabled = 0x4E,
   target_below_limit = 0x50,
   target_above_limit = 0x51,

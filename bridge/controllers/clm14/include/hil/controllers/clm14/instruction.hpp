@@ -95,10 +95,12 @@ enum class Cmp : std::uint8_t { eq, ne, lt, gt, le, ge };
 ///  BAC tttt ±off n | BCE tttt bit s | BIC base step startbit n m | BIO tttt byte byte2 pat
 ///  BPA tttt byte pat | CID Vr m ±val | CIO src dst n | CLC tttt | CON a s ±vvv | COU ±off bit n
 ///  CPJ Vr op ±val tol tttt | CPL a | CPS Vr op ±val tol bit | CST t l | CVT Vr byte f d | EOS
-///  FAK a f | HOM a | JMP/JSR/JST tttt | JTK tttt k | LML a len | MAT Vr = Va op ±Vb
+///  FAK a f | FOL a m ±f | FUN ccccccc (pattern[0..6]) | HOM a | JMP/JSR/JST tttt | JTK tttt k
+///  LMK a len off | LML a len | LMR a mark off ±barrier | MAT Vr = Va op ±Vb | MLO/MLT a len bit
 ///  PBK a | POA/POI/PSA/PSI a ±L vvv | REP tttt a dist | RMI a m input | RSV t iiii fffff
 ///  RTM a m | RTS | SAC a m ±L | SET Vr = ±val | SRM a ±off ±vvv input | SRP a m x Vbase byte
-///  TXT m text | VCC a ±L vvv m r | VEO a s e vvv l | WAI sec | FOL/FUN/LMK/LMR/MLO/MLT: raw text.
+///  TXT m text | VCC a ±L vvv m r | VEO a s e vvv l | WAI sec
+/// (FOL, FUN, LMK, LMR, MLO, MLT: layouts decided where the manual lost the figure, docs/clm14.md.)
 struct Instruction {
   Op op = Op::nop;
   std::array<Num, 5> n{};
@@ -111,7 +113,7 @@ struct Instruction {
   char mat_op = '+';           ///< MAT: + - * /
   std::int16_t var = -1;       ///< the variable a command writes or compares (SET/MAT/CPJ/CPS/CVT/CID/SRP)
   bool counter_reset = false;  ///< COU/BAC offset written "000000": set the count to 0 when stored
-  std::string text;            ///< TXT text (16 characters); RSV flags; raw operands of lost-syntax commands
+  std::string text;            ///< TXT text (16 characters); RSV flags
 };
 
 struct ProgramError {

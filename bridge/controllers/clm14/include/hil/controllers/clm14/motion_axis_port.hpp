@@ -6,6 +6,7 @@
 #include <string>
 
 #include "hil/controllers/clm14/axis_port.hpp"
+#include "hil/controllers/clm14/master_encoder.hpp"
 #include "hil/controllers/clm14/settings.hpp"
 #include "hil/motion/axis.hpp"
 
@@ -30,10 +31,32 @@ class MotionAxisPort final : public AxisPort {
   void set_enabled(bool on) override;
   void home() override;
   void reset() override;
+  void follow(std::int64_t position_inc, double velocity_inc_per_s, double acceleration_inc_per_s2) override;
 
  private:
   [[nodiscard]] motion::Limits clamp(const MoveLimits& l) const;
   motion::Axis& axis_;
 };
+
+/// Master encoder 1 on the motion core: a machine axis whose drive counts the material (the
+/// measuring wheel of a flying cutoff, a line shaft); the count is its actual position in drive
+/// increments. Configure that axis with master_encoder_config() so one increment is one
+/// quadrature count of C000.
+class MotionMasterEncoder final : public MasterEncoderPort {
+ public:
+  explicit MotionMasterEncoder(const motion::Axis& axis) : axis_(axis) {}
+  [[nodiscard]] std::uint32_t count() const override {
+    return static_cast<std::uint32_t>(static_cast<std::uint64_t>(axis_.status().position_inc));
+  }
+
+ private:
+  const motion::Axis& axis_;
+};
+
+/// Axis configuration of master encoder 1 in IU: C000 pulses × 4 quadrature counts per C002 IU;
+/// limits [decided]: velocity 2 × A106, acceleration 10 × A108 (the material is moved by the
+/// scenario, not by the CLM; the CLM's error 4D watches 1.25 × Vmax where VEO 5 uses it).
+[[nodiscard]] motion::AxisConfig master_encoder_config(const MasterEncoderSettings& me, const AxisSettings& axis1,
+                                                       std::string name);
 
 }  // namespace hil::controllers::clm14

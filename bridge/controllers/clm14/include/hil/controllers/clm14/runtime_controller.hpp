@@ -3,7 +3,9 @@
 // The CLM1.4 model on the controller runtime (issue 14): a hil::controllers::Controller that owns
 // a clm14::Controller, whose I/O image is the runtime's IoImage (CLM groups at byte group*64+yy,
 // io_address_clm.hpp) and whose axes are the runtime's motion::Axis objects. A scenario names
-// it with `controller: {device: clm14, parameters: clm.par, program: clm.prg}`.
+// it with `controller: {device: clm14, parameters: clm.par, program: clm.prg}`; the key
+// `master_encoder: NAME` declares one more axis, NAME, whose actual increments are master
+// encoder 1's counts (C000 × 4 per C002 IU): the material of a flying cutoff, a FOL master.
 //
 // Parameter files: one parameter per line, either the hilbridge text form "B002 019200 0 1 8 1"
 // or the CLM telegram "# K B002 019200 0 1 8 1$E4"; program files "0000 POI 1 +000100.000 999".
@@ -54,6 +56,9 @@ class RuntimeController final : public hil::controllers::Controller {
   std::map<std::string, std::string> parameters_;
   clm14::Controller model_;
   std::vector<std::unique_ptr<MotionAxisPort>> ports_;
+  std::size_t clm_axes_ = 0;  ///< axes 1..n of the CLM, declared first
+  bool has_master_ = false;   ///< then master encoder 1's axis (controller key master_encoder)
+  std::unique_ptr<MotionMasterEncoder> master_;
   int shown_error_ = 0;
   int shown_axis_ = -1;  ///< the runtime axis index shown_error_ was raised on (-1: the controller)
 };

@@ -24,6 +24,8 @@ struct AxisSettings {
   bool enabled = false;                    ///< axis 1 always; 2..4 per B000
   MotionType motion = MotionType::linear;  ///< Ax00 field 1
   int mode = 0;                            ///< Ax00 field 2 (0 normal .. 5 flying cutoff)
+  int master = 0;                          ///< Ax00 field 3: 0 none, 1..3 axis, 5 master encoder 1 (profile decision)
+  bool test_mode = false;                  ///< Ax00 field 4 (flying cutoff simulation; not modelled)
   double feed_constant = 10.0;             ///< Ax01, IU per encoder revolution
   double min_limit = -111111.111;          ///< Ax03, IU
   double max_limit = 100000.0;             ///< Ax04, IU
@@ -53,11 +55,25 @@ struct AxisSettings {
   double presignal_distance = 0.0;                    ///< IU
   std::optional<BitAddress> velocity_reached_output;  ///< Ax32 left
   std::optional<BitAddress> decelerating_output;      ///< Ax32 right
+  int feedforward = 0;                                ///< Ax11 f: 0 off, 1 on, 2..9 averaging of 2..256 values
+  // Flying cutoff (axis 1, mode 5)
+  std::optional<BitAddress> reverse_inhibit_input;  ///< Ax35: after EOS the carriage waits for it
+  double tool_width = 0.0;                          ///< Ax41, IU: added to the LML length
 
   [[nodiscard]] bool absolute_encoder() const noexcept { return encoder_type == 1 || encoder_type == 2; }
 };
 
+/// Master encoder 1 (C000-C002, §8.4). C002 = 0: not used.
+struct MasterEncoderSettings {
+  int pulses = 1250;            ///< C000 pulses/rev (× 4 quadrature counts)
+  bool inverted = false;        ///< C001 d
+  int averaging = 0;            ///< C001 a: 0 off, 1..7 = 2..128 values
+  double feed_constant = 20.0;  ///< C002, IU per revolution
+  [[nodiscard]] bool used() const noexcept { return feed_constant > 0.0 && pulses > 0; }
+};
+
 struct Settings {
+  MasterEncoderSettings me1{};
   std::array<AxisSettings, 4> axes{};
   int axis_count = 1;               ///< highest enabled axis
   double cycle_ms = 2.0;            ///< B010 (0.0 = auto: 2 ms for 1-2 axes, 3 for 3, 4 for 4)
