@@ -12,6 +12,7 @@
 #include "hil/controllers/elg/elg_controller.hpp"
 #include "hil/controllers/io_stimulus.hpp"
 #include "hil/controllers/parameter_controller.hpp"
+#include "hil/controllers/s5/wf725_controller.hpp"
 #include "hil/runtime/condition.hpp"
 #include "hil/runtime/machine.hpp"
 
@@ -41,6 +42,7 @@ std::optional<ConfigError> Machine::build_controller(const Scenario& scenario,
     });
     controllers::elg::register_elg(builtin);
     controllers::amkasyn::register_amkasyn(builtin);
+    controllers::s5::register_wf725(builtin);
     registry = &builtin;
   }
   auto created = registry->create(spec);

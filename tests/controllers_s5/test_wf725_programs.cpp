@@ -1,0 +1,1 @@
+#include "wf725_fixture.hpp"
