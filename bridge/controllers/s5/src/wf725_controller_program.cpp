@@ -246,7 +246,8 @@ bool Wf725Controller::start_block_motion(TimePoint now) {
 }
 
 void Wf725Controller::finish_block() {
-  if (m_state_ != MState::idle) {
+  // The axis stays until every M function is acknowledged (leading edge, or the MD 8 time).
+  if (m_state_ == MState::strobe || m_state_ == MState::timed) {
     step_ = Step::m_after;
     return;
   }
@@ -342,10 +343,13 @@ void Wf725Controller::program_cycle(const CycleTime& cycle) {
   for (int budget = 0; budget < loop_budget && job_ == Job::program; ++budget) {
     switch (step_) {
       case Step::fetch:
+        // The next M output waits for the trailing edge of the last acknowledgement (MD 8).
+        if (m_state_ != MState::idle) return;
         if (!begin_block(now)) return;
         continue;
       case Step::m_before:
-        if (m_state_ != MState::idle) return;
+        // MD 9 = 2: the motion starts when the M function is acknowledged (leading edge).
+        if (m_state_ == MState::strobe || m_state_ == MState::timed) return;
         (void)start_block_motion(now);
         return;
       case Step::motion:
@@ -365,7 +369,7 @@ void Wf725Controller::program_cycle(const CycleTime& cycle) {
         finish_block();
         continue;
       case Step::m_after:
-        if (m_state_ != MState::idle) return;
+        if (m_state_ == MState::strobe || m_state_ == MState::timed) return;
         finish_block();
         if (step_ == Step::m_after) return;
         continue;

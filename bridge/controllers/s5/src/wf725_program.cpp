@@ -85,7 +85,7 @@ std::expected<Wf725Program, Wf725SyntaxError> parse_header(std::string_view s, i
   prog.number = static_cast<int>(*n);
   while (!p.done()) {
     std::string word;
-    while (!p.done() && std::isalpha(static_cast<unsigned char>(p.peek())) != 0)
+    while (std::isalpha(static_cast<unsigned char>(p.peek())) != 0)
       word.push_back(static_cast<char>(std::toupper(static_cast<unsigned char>(p.take()))));
     if (word == "RAM") {
       prog.ram = true;
