@@ -24,6 +24,13 @@ std::optional<double> number(std::string_view s) {
 
 }  // namespace
 
+bool wf725_wants_module(const ControllerSpec& spec) noexcept {
+  if (!spec.programs.empty()) return true;
+  for (const char* key : {"db", "module", "reference_speeds", "jog_feed"})
+    if (spec.options.contains(key)) return true;
+  return false;
+}
+
 void register_wf725(ControllerRegistry& registry) {
   registry.add("wf725-726", [](const ControllerSpec& spec) -> std::expected<std::unique_ptr<Controller>, ConfigError> {
     const auto fail = [&](std::string key, std::string message) {

@@ -218,7 +218,12 @@ class Wf725Controller final : public Controller {
   std::vector<double> block_changes_um_;
 };
 
-/// Registers `wf725-726` in `registry` (replacing the parameter-only controller).
+/// Registers `wf725-726` in `registry` (the module model; replaces a factory of that name).
 void register_wf725(ControllerRegistry& registry);
+
+/// Whether a `controller:` block asks for the module model (programs, or one of its keys `db`,
+/// `module`, `reference_speeds`, `jog_feed`) rather than the parameter-only controller, whose
+/// axis the scenario commands itself (docs/controllers.md).
+[[nodiscard]] bool wf725_wants_module(const ControllerSpec& spec) noexcept;
 
 }  // namespace hil::controllers::s5
