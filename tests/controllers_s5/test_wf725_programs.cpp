@@ -3,6 +3,7 @@
 // program memory (10/64 programs, 50/350 + 50 blocks), and programs on the controller: flying
 // measurement / flying setting of the actual value (S4, S5), read-in enable G99 (S6), block
 // change points MD 46/47 (S7), M output MD 8/9, program errors 61-93.
+#include "hil/profiles/loader.hpp"
 #include "wf725_fixture.hpp"
 
 namespace hil::controllers::s5::test {
@@ -429,6 +430,24 @@ TEST_F(WfProgram, ProgramRuleErrors) {
   expect(5, 0x89);
   expect(6, 0x91);   // L7 -> L8 -> L9: a third subprogram level
   expect(11, 0x86);  // interpolation of axis pairs: not on one axis
+}
+
+}  // namespace
+}  // namespace hil::controllers::s5::test
+
+namespace hil::controllers::s5::test {
+namespace {
+
+TEST(Wf725Program, TheProfilesGTableIsTheParsersTable) {
+  auto profile = profiles::find_profile("wf725-726");
+  ASSERT_TRUE(profile) << profile.error().describe();
+  auto syntax = wf725_program_syntax(**profile);
+  ASSERT_TRUE(syntax) << syntax.error();
+  for (int g = 0; g < 100; ++g) EXPECT_EQ(syntax->group(g), wf725_g_group(g)) << "G" << g;
+  Wf725ProgramSyntax narrow;
+  narrow.g_group[90] = 1;
+  EXPECT_FALSE(parse_wf725_programs("%1\nN1 G91 X1 F1\n", narrow));
+  EXPECT_TRUE(parse_wf725_programs("%1\nN1 G90 X1 F1\n", narrow));
 }
 
 }  // namespace

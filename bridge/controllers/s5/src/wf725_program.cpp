@@ -4,6 +4,7 @@
 #include <fmt/format.h>
 
 #include <cctype>
+#include <charconv>
 
 namespace hil::controllers::s5 {
 namespace {
@@ -104,7 +105,8 @@ std::expected<Wf725Program, Wf725SyntaxError> parse_header(std::string_view s, i
   return prog;
 }
 
-std::expected<Wf725Block, Wf725SyntaxError> parse_block(std::string_view s, int line, int program) {
+std::expected<Wf725Block, Wf725SyntaxError> parse_block(std::string_view s, int line, int program,
+                                                        const Wf725ProgramSyntax& syntax) {
   LineParser p(s, line, program);
   Wf725Block b;
   if (p.peek() == '/') {
@@ -137,7 +139,7 @@ std::expected<Wf725Block, Wf725SyntaxError> parse_block(std::string_view s, int 
     if (!v) return p.fail(220, bn, fmt::format("address {} without a number", letter));
     switch (letter) {
       case 'G': {
-        const int group = wf725_g_group(static_cast<int>(*v));
+        const int group = syntax.group(*v);
         if (group == 0)
           return p.fail(220, bn,
                         fmt::format("G{:02} is no WF function (G04, G17-19, G23-29, G53, G54, G68, G69, G73-79, "
@@ -205,7 +207,35 @@ int wf725_g_group(int g) noexcept {
   return 0;
 }
 
-std::expected<std::vector<Wf725Program>, Wf725SyntaxError> parse_wf725_programs(std::string_view text) {
+Wf725ProgramSyntax wf725_default_syntax() noexcept {
+  Wf725ProgramSyntax s;
+  for (int g = 0; g < 100; ++g) s.g_group[static_cast<std::size_t>(g)] = static_cast<std::uint8_t>(wf725_g_group(g));
+  return s;
+}
+
+std::expected<Wf725ProgramSyntax, std::string> wf725_program_syntax(const profiles::Profile& profile) {
+  const auto it = profile.tables.find("program_g_functions");
+  if (it == profile.tables.end()) return wf725_default_syntax();
+  Wf725ProgramSyntax s;
+  for (std::size_t i = 0; i < it->second.size(); ++i) {
+    const auto& row = it->second[i];
+    const auto g = row.find("g"), group = row.find("group");
+    int gv = -1, grv = -1;
+    if (g != row.end()) (void)std::from_chars(g->second.data(), g->second.data() + g->second.size(), gv);
+    if (group != row.end())
+      (void)std::from_chars(group->second.data(), group->second.data() + group->second.size(), grv);
+    if (gv < 0 || gv > 99 || grv < 1 || grv > 4)
+      return std::unexpected(
+          fmt::format("{} profile, tables.program_g_functions[{}]: a row needs g: 00..99 and "
+                      "group: 1..4",
+                      profile.device, i));
+    s.g_group[static_cast<std::size_t>(gv)] = static_cast<std::uint8_t>(grv);
+  }
+  return s;
+}
+
+std::expected<std::vector<Wf725Program>, Wf725SyntaxError> parse_wf725_programs(std::string_view text,
+                                                                                const Wf725ProgramSyntax& syntax) {
   std::vector<Wf725Program> out;
   int line = 0;
   std::size_t pos = 0;
@@ -230,7 +260,7 @@ std::expected<std::vector<Wf725Program>, Wf725SyntaxError> parse_wf725_programs(
       return std::unexpected(
           Wf725SyntaxError{230, 0, 0, line, "a block before the program header: start the program with %<number>"});
     auto& prog = out.back();
-    auto b = parse_block(s, line, prog.number);
+    auto b = parse_block(s, line, prog.number, syntax);
     if (!b) return std::unexpected(b.error());
     if (!prog.blocks.empty() && b->number <= prog.blocks.back().number)
       return std::unexpected(Wf725SyntaxError{220, prog.number, b->number, line,

@@ -83,13 +83,15 @@ void register_wf725(ControllerRegistry& registry) {
     const Duration cycle = spec.cycle ? *spec.cycle : mapped->cycle;
     auto md = wf725_machine_data(*loaded, settings);
     const std::string file = loaded->file.string();
+    auto syntax = wf725_program_syntax(*loaded->profile);
+    if (!syntax) return fail("device", syntax.error());
     auto c = std::make_unique<Wf725Controller>(std::move(*loaded), md, std::move(axis), cycle, opt);
     for (const auto& path : spec.programs) {
       std::ifstream in(path, std::ios::binary);
       if (!in) return fail("programs", fmt::format("cannot read the program file {}", path.string()));
       std::stringstream ss;
       ss << in.rdbuf();
-      auto progs = parse_wf725_programs(ss.str());
+      auto progs = parse_wf725_programs(ss.str(), *syntax);
       if (!progs) {
         const auto& e = progs.error();
         return std::unexpected(ConfigError{path.string(), e.line, 0, fmt::format("program {} N{}", e.program, e.block),

@@ -34,6 +34,8 @@
 #include <string_view>
 #include <vector>
 
+#include "hil/profiles/profile.hpp"
+
 namespace hil::controllers::s5 {
 
 struct Wf725Block {
@@ -83,11 +85,26 @@ struct Wf725SyntaxError {
   std::string message;  ///< what is wrong and what to write instead
 };
 
-/// G group (1..4) of G number `g`, 0 when the WF has no such G function.
+/// G group (1..4) of G number `g` in the built-in table (= profile table program_g_functions),
+/// 0 when the WF has no such G function.
 [[nodiscard]] int wf725_g_group(int g) noexcept;
 
+/// The G functions a program may use and their groups (G00..G99; group 0 = no such G).
+struct Wf725ProgramSyntax {
+  std::array<std::uint8_t, 100> g_group{};
+  [[nodiscard]] int group(std::int64_t g) const noexcept {
+    return g >= 0 && g < 100 ? g_group[static_cast<std::size_t>(g)] : 0;
+  }
+};
+/// The built-in table (wf725_g_group).
+[[nodiscard]] Wf725ProgramSyntax wf725_default_syntax() noexcept;
+/// The table of the profile (`tables: program_g_functions`, rows {g, group}); the built-in one
+/// when the profile has none. Error text names the bad row.
+[[nodiscard]] std::expected<Wf725ProgramSyntax, std::string> wf725_program_syntax(const profiles::Profile& profile);
+
 /// Parses every program of `text` (at least one). All or nothing.
-[[nodiscard]] std::expected<std::vector<Wf725Program>, Wf725SyntaxError> parse_wf725_programs(std::string_view text);
+[[nodiscard]] std::expected<std::vector<Wf725Program>, Wf725SyntaxError> parse_wf725_programs(
+    std::string_view text, const Wf725ProgramSyntax& syntax = wf725_default_syntax());
 /// Canonical text of a program (parses back to the same program).
 [[nodiscard]] std::string make_wf725_program_text(const Wf725Program& p);
 
