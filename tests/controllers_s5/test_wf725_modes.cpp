@@ -302,3 +302,30 @@ TEST_F(W, TeachInStoresTheActualValue) {
 
 }  // namespace
 }  // namespace hil::controllers::s5::test
+
+namespace hil::controllers::s5::test {
+namespace {
+
+TEST_F(Wf725Fixture, TheDbAxisIsPlainWordsInTheImage) {
+  spec.options = {{"db", "12"}};
+  start(base_md());
+  ASSERT_EQ(ctl->data_blocks().size(), 1U);
+  EXPECT_EQ(ctl->data_blocks()[0].number, 12);
+  EXPECT_EQ(ctl->data_blocks()[0].words, db::words);
+  ctl->write_db_word(db::dw_enable, 0x0701);  // DL 2 = block 7, D 2.0 drive enable
+  const auto rf = ctl->resolve_bit("DB12 D 2.0");
+  ASSERT_TRUE(rf) << rf.error();
+  EXPECT_EQ(*rf, *ctl->resolve_bit("rf_A"));
+  EXPECT_TRUE(ctl->io().get(*rf));
+  EXPECT_EQ(ctl->io().get(ByteAddress{IoArea::data, 4}), 7) << "DL 2 is byte 2w of the data area";
+  EXPECT_TRUE(ctl->resolve_bit("D 3.6")) << "the DB number defaults to the DB axis";
+  EXPECT_FALSE(ctl->resolve_bit("DB11 D 2.0"));
+  EXPECT_FALSE(ctl->resolve_bit("DB12 D 48.0")) << "beyond DW 47";
+  traverse(db::Submode::set_actual);
+  run(milliseconds(40));
+  EXPECT_EQ(word(db::dw_state), (1U << 8) | 3U) << "DW 23: active mode bits / submode";
+  EXPECT_EQ(axis->status().state, motion::AxisState::standstill) << "D 2.0 enabled the axis";
+}
+
+}  // namespace
+}  // namespace hil::controllers::s5::test
