@@ -30,7 +30,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
       const int e = store.store(prog);
       if (e != 0 && e != 123 && e != 124) std::abort();
       if (e != 0 && store.size() != before) std::abort();
-      if (store.blocks_used(false) > store.limits().eeprom_blocks || store.blocks_used(true) > store.limits().ram_blocks)
+      if (store.blocks_used(false) > store.limits().eeprom_blocks ||
+          store.blocks_used(true) > store.limits().ram_blocks)
         std::abort();
     }
   }
