@@ -12,6 +12,7 @@
 #include "hil/controllers/elg/elg_controller.hpp"
 #include "hil/controllers/io_stimulus.hpp"
 #include "hil/controllers/parameter_controller.hpp"
+#include "hil/controllers/s5/wf725_controller.hpp"
 #include "hil/runtime/condition.hpp"
 #include "hil/runtime/machine.hpp"
 
@@ -41,6 +42,13 @@ std::optional<ConfigError> Machine::build_controller(const Scenario& scenario,
     });
     controllers::elg::register_elg(builtin);
     controllers::amkasyn::register_amkasyn(builtin);
+    // wf725-726: with programs or the DB-axis keys the WF module model runs (issue 19); without,
+    // the parameter-only controller configures the axis the scenario commands.
+    auto wf_module = std::make_shared<controllers::ControllerRegistry>();
+    controllers::s5::register_wf725(*wf_module);
+    builtin.add("wf725-726", [wf_module, parameters](const controllers::ControllerSpec& s) {
+      return controllers::s5::wf725_wants_module(s) ? wf_module->create(s) : parameters->create(s);
+    });
     registry = &builtin;
   }
   auto created = registry->create(spec);

@@ -1,0 +1,234 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+// A WF 725/726 axis as a controller of the runtime (docs/wf725.md): a scenario's
+//   controller: {device: wf725-726, parameters: axis-a.txt, programs: [progs.wf]}
+// configures one axis from its machine data MD 1-50 (wf725_axes: scaling MD 19-21/49, MD 3,
+// ramps, windows, backlash, rotary MD 18) and runs the modes, submodes and traversing programs of
+// the digest's §6 on it, commanded by the PLC through the DB axis (wf725_interface.hpp) held as
+// plain data words in the image (read_db_word / write_db_word, or `DB10 D 2.0` bits from `io:`).
+// Errors are the module's (catalogues traversing, program_io, memory_admin, standard2): traversing
+// errors in DR 4 with D 3.5, program-I/O errors in DW 40; acknowledged by data code 800C, the
+// RESET bit, or cleared by the next valid start (self-acknowledging).
+//
+// Options (controller block keys): `axis` (A, B, C: the axis name and letter, default A),
+// `module` (WF725A, WF725B, WF726A, WF726B, WF726C; default WF726A), `db` (DB number of the DB
+// axis, default 10), `reference_speeds` ("rapid,reduced,slow" in mm/min, preset of data codes
+// 8/9/A), `jog_feed` (mm/min, preset of data code 1C).
+//
+// I/O image: inputs byte 0 bits 0..5 = X7 E1..E6 (`x7_e1`..`x7_e6`); byte 1 bit 0/1
+// `limit_minus_<axis>` / `limit_plus_<axis>` (the hard range-limit switch inputs, errors 15/16);
+// outputs byte 0 bits 0..5 = X7 A1..A6 by MD 10; output byte 1: `in_position_<axis>`,
+// `moving_<axis>`, `error_<axis>`, `drive_enable_<axis>` (the RF output); marker 0.0
+// `device_error`; data area: the DB axis (48 words), `reference_cam_<axis>` names the cam
+// (D 2.1 with MD 15 = 1, else X7 E<axis>).
+// Thread: the cycle thread (Controller); read_db_word/write_db_word between cycles.
+
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "hil/controllers/controller.hpp"
+#include "hil/controllers/controller_registry.hpp"
+#include "hil/controllers/parameter_file.hpp"
+#include "hil/controllers/s5/s5_interface_db.hpp"
+#include "hil/controllers/s5/wf725_interface.hpp"
+#include "hil/controllers/s5/wf725_machine_data.hpp"
+#include "hil/controllers/s5/wf725_program_store.hpp"
+
+namespace hil::controllers::s5 {
+
+struct Wf725Options {
+  char axis = 'A';
+  std::uint16_t db = 10;
+  std::int64_t ref_speeds[3] = {0, 0, 0};  ///< 10^-2 mm/min (data codes 8, 9, A)
+  std::int64_t jog_feed = 0;               ///< 10^-2 mm/min (data code 1C)
+};
+
+class Wf725Controller final : public Controller {
+ public:
+  Wf725Controller(LoadedParameters parameters, Wf725MachineData md, ControllerAxis axis, Duration cycle,
+                  Wf725Options options);
+
+  /// Stores parsed programs (the scenario's `programs:`): 0 or the program-I/O error.
+  [[nodiscard]] int store_program(Wf725Program p) { return store_.store(std::move(p)); }
+
+  // ---- the PLC's view: the DB axis as plain words (S5InterfaceDb) ----------------------------
+  [[nodiscard]] std::uint16_t read_db_word(std::uint16_t w) const noexcept { return db_.read_word(w); }
+  void write_db_word(std::uint16_t w, std::uint16_t v) noexcept { db_.write_word(w, v); }
+  [[nodiscard]] const S5DataBlock& interface_db() const noexcept { return db_.block(); }
+  /// The DB axis as the data block in the image's data area (DW w = bytes 2w, 2w + 1). Same
+  /// signature as the runtime's `Controller::data_blocks()` of the `plc:` steps (ip247rt), which it
+  /// overrides once both are merged, so `read_data_word(db, dw)` serves the DB axis.
+  [[nodiscard]] std::span<const S5DataBlock> data_blocks() const noexcept { return {&db_.block(), 1}; }
+
+  [[nodiscard]] std::expected<BitAddress, std::string> resolve_bit(std::string_view text) const override;
+
+  // ---- observation (tests, summary) ------------------------------------------------------------
+  /// Actual value as the module shows it (program coordinates), µm (10^-3 degree).
+  [[nodiscard]] double actual_um() const noexcept;
+  [[nodiscard]] bool synchronized() const noexcept { return synced_; }
+  [[nodiscard]] bool traversing() const noexcept { return traversing_; }
+  [[nodiscard]] wf_db::Submode submode() const noexcept { return submode_; }
+  [[nodiscard]] const Wf725MachineData& machine_data() const noexcept { return md_; }
+  [[nodiscard]] const Wf725ProgramStore& programs() const noexcept { return store_; }
+  /// Machine position latched at the last flying-measurement edge, µm.
+  [[nodiscard]] std::optional<double> measured_um() const noexcept { return measured_um_; }
+  /// Every M function output, in order.
+  [[nodiscard]] const std::vector<int>& m_history() const noexcept { return m_history_; }
+  /// Command position (program coordinates, µm) at each flying block change, in order.
+  [[nodiscard]] const std::vector<double>& block_changes_um() const noexcept { return block_changes_um_; }
+  /// MDs written in mode MD I/O that shape the axis: they apply at the next power-up.
+  [[nodiscard]] const std::vector<int>& pending_md() const noexcept { return pending_md_; }
+
+ protected:
+  void on_cycle(const CycleTime& cycle) noexcept override;
+  [[nodiscard]] std::optional<DeviceErrorCode> map_axis_fault(std::size_t axis, const hil::Fault& fault,
+                                                              const motion::AxisStatus& status) const noexcept override;
+
+ private:
+  enum class Job : std::uint8_t { none, jog, reference, move, program, clamping };
+  enum class RefPhase : std::uint8_t { rapid, reduced, slow };
+  enum class Step : std::uint8_t {
+    fetch,
+    m_before,
+    motion,
+    m_after,
+    dwell,
+    wait_start,
+    wait_enable,
+    continuous,
+    stopping
+  };
+  enum class MState : std::uint8_t { idle, strobe, wait_release, timed };
+  struct Frame {
+    const Wf725Program* program = nullptr;
+    std::size_t index = 0;
+    int passes_left = 1;
+  };
+
+  void raise_wf(int code, TimePoint now, std::string_view context = {});
+  void raise_io(int code, TimePoint now, std::string_view context = {}, std::string_view catalogue = "program_io");
+  void clear_self_acknowledging() noexcept;
+  [[nodiscard]] bool has_error_below_60() const noexcept;
+  [[nodiscard]] bool has_error(int code) const noexcept;
+
+  void handle_mode(TimePoint now);
+  void handle_drive(TimePoint now);
+  void handle_data_code(TimePoint now);
+  void handle_start(TimePoint now);
+  void run_job(const CycleTime& cycle);
+  void check_limits(TimePoint now);
+  void write_status();
+
+  void abort_job();
+  /// Moves to machine position `target_mm` at `feed` (10^-2 mm/min), clamped to the armed
+  /// pre-limits. False when the axis refused (error raised).
+  bool go(double target_mm, std::int64_t feed, TimePoint now, motion::Direction dir = motion::Direction::shortest);
+  bool go_velocity(int direction, std::int64_t feed, TimePoint now);
+  [[nodiscard]] bool armed() const noexcept { return synced_ || !md_.incremental(); }
+  [[nodiscard]] double machine_mm() const noexcept;          ///< actual, machine coordinates
+  [[nodiscard]] double machine_command_mm() const noexcept;  ///< command, machine coordinates
+  [[nodiscard]] double to_axis(double machine_mm) const noexcept { return machine_mm - offset_mm_; }
+  [[nodiscard]] bool cam() const noexcept;
+  [[nodiscard]] bool fast_input(int e) const noexcept;
+  [[nodiscard]] bool motion_done() const noexcept;
+  [[nodiscard]] motion::Direction rotary_direction() const noexcept;
+
+  // programs
+  bool start_program(TimePoint now, bool single_block);
+  void program_cycle(const CycleTime& cycle);
+  const Wf725Block* current_block() const noexcept;
+  bool advance() noexcept;  ///< to the next block; false at the end of the main program
+  bool begin_block(TimePoint now);
+  bool begin_motion(TimePoint now);
+  bool start_block_motion(TimePoint now);
+  void finish_block();
+  void continuous_cycle(TimePoint now);
+  [[nodiscard]] double block_target_mm(const Wf725Block& b, bool absolute) const noexcept;
+  [[nodiscard]] const Wf725Block* peek_next() const noexcept;
+  bool flying_change(const CycleTime& cycle);
+  void end_program();
+  void output_m(int m, TimePoint now);
+  void m_cycle(TimePoint now);
+
+  Wf725MachineData md_;
+  Wf725Options opt_;
+  Wf725ProgramStore store_;
+  S5InterfaceDb db_;
+  const profiles::ErrorCatalogue* traversing_cat_ = nullptr;
+  const profiles::ErrorCatalogue* io_cat_ = nullptr;
+  const profiles::ErrorCatalogue* admin_cat_ = nullptr;
+  const profiles::ErrorCatalogue* standard2_cat_ = nullptr;
+  std::optional<BitAddress> cam_bit_;
+
+  bool traversing_ = false;
+  std::uint8_t mode_bits_ = 0;  ///< active mode (DL 0 bits as accepted)
+  wf_db::Submode submode_ = wf_db::Submode::none;
+  bool synced_ = false;
+  double offset_mm_ = 0.0;      ///< machine = axis + offset
+  double zero_shift_mm_ = 0.0;  ///< program = machine + zero shift (G92 / G54)
+  bool g92_active_ = false;
+  bool g54_active_ = false;
+  int tool_ = 0;
+  std::array<std::int64_t, 21> offsets_um_{};
+  int limit_side_ = 0;  ///< the running move was clamped to the pre-limit on this side
+  int range_side_ = 0;  ///< the command position lies beyond MD 12 (-1) / MD 14 (+1)
+  TimePoint last_now_{};
+  bool drive_enabled_ = false;
+  bool peh_ = false;
+  bool positioning_ = false;  ///< a motion started since the PEH window was last reached
+  std::vector<int> pending_md_;
+
+  // jobs
+  Job job_ = Job::none;
+  int jog_dir_ = 0;
+  RefPhase ref_ = RefPhase::rapid;
+  int ref_dir_ = 0;
+  int ref_bits_ = 0;
+  double ref_target_axis_ = 0.0;
+  std::int64_t ref_speeds_[3] = {0, 0, 0};
+  std::int64_t jog_feed_ = 0;
+  std::optional<std::int64_t> mdi_position_;
+  bool mdi_incremental_ = false;
+  std::int64_t mdi_feed_ = 0;
+  double clamp_command_mm_ = 0.0;
+  std::optional<double> measured_um_;
+
+  // program
+  std::vector<Frame> stack_;
+  Step step_ = Step::fetch;
+  bool single_ = false;     ///< one block per start (single step, automatic single step)
+  bool absolute_ = true;    ///< modal G90 / G91
+  std::int64_t feed_ = 0;   ///< modal F
+  double target_mm_ = 0.0;  ///< machine target of the block's motion
+  int change_group_ = 0;    ///< 46 / 47: the block's G2x / G7x block-change tolerance, else 0
+  bool flying_in_ = false;  ///< the running block was entered by a flying change
+  TimePoint dwell_end_{};
+  bool m0_pending_ = false;
+  int after_m_ = -1;  ///< M output after the motion (MD 9 = 3)
+  int running_program_ = 0;
+  int running_block_ = 0;
+  bool continuous_measure_ = false;  ///< G68/G69 block waits for the fast-input edge
+  int continuous_input_ = 0;
+  bool g99_wait_ = false;
+
+  // M output
+  MState m_state_ = MState::idle;
+  int m_ = 0;
+  TimePoint m_until_{};
+  std::vector<int> m_history_;
+  std::vector<double> block_changes_um_;
+};
+
+/// Registers `wf725-726` in `registry` (the module model; replaces a factory of that name).
+void register_wf725(ControllerRegistry& registry);
+
+/// Whether a `controller:` block asks for the module model (programs, or one of its keys `db`,
+/// `module`, `reference_speeds`, `jog_feed`) rather than the parameter-only controller, whose
+/// axis the scenario commands itself (docs/controllers.md).
+[[nodiscard]] bool wf725_wants_module(const ControllerSpec& spec) noexcept;
+
+}  // namespace hil::controllers::s5

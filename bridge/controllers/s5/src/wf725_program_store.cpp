@@ -1,0 +1,72 @@
+// SPDX-License-Identifier: MIT
+#include "hil/controllers/s5/wf725_program_store.hpp"
+
+#include <algorithm>
+
+namespace hil::controllers::s5 {
+
+int Wf725ProgramStore::blocks_used(bool ram) const noexcept {
+  int n = 0;
+  for (const auto& p : programs_)
+    if (p.ram == ram) n += static_cast<int>(p.blocks.size());
+  return n;
+}
+
+const Wf725Program* Wf725ProgramStore::find(int number) const noexcept {
+  for (const auto& p : programs_)
+    if (p.number == number) return &p;
+  return nullptr;
+}
+
+int Wf725ProgramStore::store(Wf725Program p) {
+  if (p.number == 0) return 125;
+  const auto it = std::find_if(programs_.begin(), programs_.end(), [&](const auto& q) { return q.number == p.number; });
+  if (it == programs_.end() && static_cast<int>(programs_.size()) >= limits_.programs) return 124;
+  int used = blocks_used(p.ram);
+  if (it != programs_.end() && it->ram == p.ram) used -= static_cast<int>(it->blocks.size());
+  const int capacity = p.ram ? limits_.ram_blocks : limits_.eeprom_blocks;
+  if (used + static_cast<int>(p.blocks.size()) > capacity) return 123;
+  if (it != programs_.end()) {
+    *it = std::move(p);
+  } else {
+    programs_.push_back(std::move(p));
+  }
+  return 0;
+}
+
+int Wf725ProgramStore::remove(int number) {
+  if (number == 0) return 125;
+  const auto it = std::find_if(programs_.begin(), programs_.end(), [&](const auto& q) { return q.number == number; });
+  if (it == programs_.end()) return 127;
+  programs_.erase(it);
+  return 0;
+}
+
+int Wf725ProgramStore::teach(int program, int block_number, Wf725Block block, bool ram) {
+  if (program == 0) return 135;
+  if (block_number == 0) return 136;
+  block.number = block_number;
+  auto it = std::find_if(programs_.begin(), programs_.end(), [&](const auto& q) { return q.number == program; });
+  if (it == programs_.end()) {
+    if (static_cast<int>(programs_.size()) >= limits_.programs) return 137;
+    if (blocks_used(ram) + 1 > (ram ? limits_.ram_blocks : limits_.eeprom_blocks)) return 138;
+    Wf725Program p;
+    p.number = program;
+    p.ram = ram;
+    p.blocks.push_back(std::move(block));
+    programs_.push_back(std::move(p));
+    return 0;
+  }
+  auto& blocks = it->blocks;
+  const auto at = std::lower_bound(blocks.begin(), blocks.end(), block_number,
+                                   [](const Wf725Block& b, int n) { return b.number < n; });
+  if (at != blocks.end() && at->number == block_number) {
+    *at = std::move(block);
+    return 0;
+  }
+  if (blocks_used(it->ram) + 1 > (it->ram ? limits_.ram_blocks : limits_.eeprom_blocks)) return 138;
+  blocks.insert(at, std::move(block));
+  return 0;
+}
+
+}  // namespace hil::controllers::s5
