@@ -184,6 +184,7 @@ std::expected<std::unique_ptr<hc::Controller>, ConfigError> Ip247Controller::cre
         ConfigError{spec.parameters.string(), 0, 0, "controller.parameters",
                     fmt::format("IP247 MD error {}: {}", static_cast<int>(e), make_error_code(e).message())});
   c->md_ = *c->axis_.machine_data();
+  c->write_programs();
 
   // The machine axis: the motor behind the module's pulse output, 1 increment = 1 pulse.
   hc::ControllerAxis a;
@@ -302,8 +303,7 @@ double Ip247Controller::trace_value(std::size_t i) const noexcept {
   }
 }
 
-void Ip247Controller::load_programs(TimePoint now) noexcept {
-  const auto* cat = catalogue("module");
+void Ip247Controller::write_programs() {
   for (const auto& f : program_files_) {
     Ip247SyntaxFault fault;
     const auto e = store_.write(f.number, f.text, &fault);
@@ -311,13 +311,13 @@ void Ip247Controller::load_programs(TimePoint now) noexcept {
     std::vector<std::uint16_t> words = image ? std::move(*image) : std::vector<std::uint16_t>{};
     if (e == stepdir::Ip247Error::program_faulty && !words.empty()) set_ip247_vp_error(words, fault);
     if (!words.empty()) vp_images_[f.number] = std::move(words);
-    if (e == stepdir::Ip247Error::none || cat == nullptr) continue;
-    const std::string context =
-        e == stepdir::Ip247Error::program_faulty
-            ? fmt::format("program {} ({}): syntax error {} in block N{}: {}", f.number, f.file.string(),
-                          static_cast<int>(fault.code), fault.block_number, fault.message)
-            : fmt::format("program {} ({}) not stored", f.number, f.file.string());
-    raise(*cat, static_cast<int>(e), now, 0, context, std::nullopt, false);
+    if (e == stepdir::Ip247Error::none) continue;
+    refused_.push_back(
+        {static_cast<int>(e),
+         e == stepdir::Ip247Error::program_faulty
+             ? fmt::format("program {} ({}): syntax error {} in block N{}: {}", f.number, f.file.string(),
+                           static_cast<int>(fault.code), fault.block_number, fault.message)
+             : fmt::format("program {} ({}) not stored", f.number, f.file.string())});
   }
 }
 
@@ -364,7 +364,9 @@ void Ip247Controller::on_cycle(const CycleTime& cycle) noexcept {
   const auto state = axis(0).status().state;
   const bool bb = ready && state != motion::AxisState::error;
   if (!started_) {
-    load_programs(cycle.now);
+    // The VP DBs the PLC wrote at start that the module refused (error 48 ...).
+    if (const auto* cat = catalogue("module"))
+      for (const auto& [code, context] : refused_) raise(*cat, code, cycle.now, 0, context, std::nullopt, false);
     started_ = true;
   }
   if (ready && !anchored_) {

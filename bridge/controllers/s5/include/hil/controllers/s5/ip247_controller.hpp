@@ -74,7 +74,8 @@ class Ip247Controller final : public hil::controllers::Controller {
                                                               const motion::AxisStatus& status) const noexcept override;
 
  private:
-  void load_programs(TimePoint now) noexcept;
+  /// BA22 of every program file at start: stores it or keeps the refusal for the first cycle.
+  void write_programs();
   void report_error(TimePoint now) noexcept;
   void drive_axis() noexcept;
 
@@ -83,11 +84,12 @@ class Ip247Controller final : public hil::controllers::Controller {
   S5DataBlock interface_{};
   std::vector<Ip247ProgramFile> program_files_;
   std::map<int, std::vector<std::uint16_t>> vp_images_;  ///< VP DB images by program number
+  std::vector<std::pair<int, std::string>> refused_;     ///< module error and text of refused VPs
   Ip247ProgramStore store_;
   Ip247Axis axis_;
   Ip247Kinematics kin_{};
   std::vector<std::uint16_t> words_;  ///< scratch: the interface DB of this cycle
-  bool started_ = false;              ///< the programs are written
+  bool started_ = false;              ///< the refusals of the programs are reported
   bool anchored_ = false;             ///< base_inc_ / base_pulses_ are set
   std::int64_t base_inc_ = 0;         ///< machine-axis increment of module pulse 0
   std::int64_t base_pulses_ = 0;
