@@ -185,6 +185,7 @@ std::expected<std::unique_ptr<hc::Controller>, ConfigError> Ip247Controller::cre
                     fmt::format("IP247 MD error {}: {}", static_cast<int>(e), make_error_code(e).message())});
   c->md_ = *c->axis_.machine_data();
   c->write_programs();
+  c->publish_status();
 
   // The machine axis: the motor behind the module's pulse output, 1 increment = 1 pulse.
   hc::ControllerAxis a;
@@ -244,7 +245,11 @@ Ip247Controller::Ip247Controller(std::shared_ptr<const profiles::Profile> profil
       axis_(store_, md.axis),
       kin_(ip247_kinematics(md)) {
   words_.assign(ip247_axis_db_words, 0);
-  write_ip247_status(words_, axis_, md.ag_bcd);
+  publish_status();
+}
+
+void Ip247Controller::publish_status() noexcept {
+  write_ip247_status(words_, axis_, md_.ag_bcd);
   for (std::size_t w = 0; w < words_.size(); ++w)
     (void)Controller::write_data_word(interface_.number, static_cast<int>(w), words_[w]);
 }

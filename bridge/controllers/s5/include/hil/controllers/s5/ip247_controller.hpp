@@ -77,6 +77,8 @@ class Ip247Controller final : public hil::controllers::Controller {
   /// BA22 of every program file at start: stores it or keeps the refusal for the first cycle.
   void write_programs();
   void report_error(TimePoint now) noexcept;
+  /// Status words (DW5..DW13, DW4 cleared) of the module into the interface DB.
+  void publish_status() noexcept;
   void drive_axis() noexcept;
 
   Ip247MachineData md_;
