@@ -429,7 +429,12 @@ Program::Check Program::poll(Running& r, Duration t) {
       },
       s.action);
   if (c == Check::pending && t - r.started > timeout) {
-    fail(s, t, fmt::format("did not complete within {:.3f} s", to_seconds(timeout)));
+    std::string shows;  // a plc wait says what the device shows instead
+    if (const auto* p = std::get_if<PlcStep>(&s.action); p && p->action == PlcStep::Action::wait)
+      if (const auto v = read_plc(*machine_.controller(), p->operand))
+        shows = fmt::format(" (waited for {}, the device shows {})", plc_text(p->operand, p->value),
+                            plc_text(p->operand, *v));
+    fail(s, t, fmt::format("did not complete within {:.3f} s{}", to_seconds(timeout), shows));
     return Check::failed;
   }
   return c;
