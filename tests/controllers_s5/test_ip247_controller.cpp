@@ -188,6 +188,13 @@ TEST(Ip247Controller, ConfigurationErrorsNameFileLineAndKey) {
   bad.insert(bad.find("machine:"), "  interface_db: 1\n");  // program 1 is DB1
   e = load_error(bad);
   EXPECT_NE(e.find("program 1 would be DB1"), std::string::npos) << e;
+  // a drive that plans its own trajectory cannot follow the module's pulses
+  bad = head;
+  bad.replace(bad.find("drive: {transport: sim}"), 23,
+              "drive: {transport: stepdir, profile: ip247, fmax_hz: 20000, fss_hz: 500, accel_hz_per_s: 200000, "
+              "pulse_us: 10}");
+  e = load_error(bad);
+  EXPECT_NE(e.find("cyclic drive"), std::string::npos) << e;
   const fs::path nohead = scenario_file("nohead.txt", "N10 X1 F100\nN20 M02\n");
   bad = head;
   bad.replace(bad.find("[ip247-npv-main.txt, ip247-npv-sub.txt]"), 39, nohead.filename().string());

@@ -52,7 +52,7 @@ std::expected<void, std::string> Controller::bind_axes(std::span<motion::Axis* c
   axes_.assign(axes.begin(), axes.end());
   seen_fault_.assign(axes_.size(), {});
   limit_hit_.assign(axes_.size(), 0);
-  return {};
+  return check_axes();
 }
 
 std::expected<BitAddress, std::string> Controller::resolve_bit(std::string_view text) const {

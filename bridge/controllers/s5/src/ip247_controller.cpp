@@ -339,28 +339,6 @@ void Ip247Controller::report_error(TimePoint now) noexcept {
   shown_error_ = e;
 }
 
-void Ip247Controller::drive_axis() noexcept {
-  if (axis_.planner() == nullptr) return;
-  motion::Axis& ax = axis(0);
-  const std::int64_t pulses = axis_.planner()->motor_position();
-  const std::int64_t delta = pulses - last_pulses_;
-  last_pulses_ = pulses;
-  const std::int64_t target = base_inc_ + (pulses - base_pulses_);
-  if (delta != 0) {
-    resting_ = 0;
-    const double v = period_ns_ > 0 ? static_cast<double>(delta) * 1e9 / static_cast<double>(period_ns_) : 0.0;
-    following_ = !ax.follow(target, v, 0.0);
-  } else if (following_) {
-    // The pulse output rests: one cycle at velocity 0, then the axis settles like after any move.
-    if (++resting_ >= 2) {
-      (void)ax.stop();
-      following_ = false;
-    } else {
-      (void)ax.follow(target, 0.0, 0.0);
-    }
-  }
-}
-
 void Ip247Controller::on_cycle(const CycleTime& cycle) noexcept {
   const std::int64_t now_ns = cycle.now.time_since_epoch().count();
   period_ns_ = cycle_period().count();
@@ -373,12 +351,6 @@ void Ip247Controller::on_cycle(const CycleTime& cycle) noexcept {
     if (const auto* cat = catalogue("module"))
       for (const auto& [code, context] : refused_) raise(*cat, code, cycle.now, 0, context, std::nullopt, false);
     started_ = true;
-  }
-  if (ready && !anchored_) {
-    // Module pulse 0 is where the machine axis stands when its power section comes up.
-    base_inc_ = axis(0).status().command_inc;
-    base_pulses_ = last_pulses_ = axis_.planner() ? axis_.planner()->motor_position() : 0;
-    anchored_ = true;
   }
   // The PLC's job: BA, parameters and a command bit in the interface DB. Until the power section
   // is up at power-on the module takes no job (DW4 stays set: the PLC's handshake waits).
@@ -402,7 +374,7 @@ void Ip247Controller::on_cycle(const CycleTime& cycle) noexcept {
   in.external_stop = io().get(in_external_stop);
   in.ready = bb;
   axis_.step(now_ns, period_ns_, in, nullptr);
-  if (ready) drive_axis();
+  if (bb) follower_.step(axis(0), axis_, period_ns_);  // module pulse 0 = where the axis stood at power-up
   write_ip247_status(words_, axis_, md_.ag_bcd);
   if (!ready) words_[4] = pending;
   if (decode_error != 0) words_[12] = static_cast<std::uint16_t>((words_[12] & 0xFF00) | decode_error);
@@ -412,6 +384,17 @@ void Ip247Controller::on_cycle(const CycleTime& cycle) noexcept {
   io().set(out_moving, axis_.running());
   io().set(out_error, axis_.error() >= 10);
   report_error(cycle.now);
+}
+
+std::expected<void, std::string> Ip247Controller::check_axes() {
+  const hil::Drive& drive = axis(0).drive();
+  if (drive.capabilities().drive_profile)
+    return std::unexpected(fmt::format(
+        "axis '{}': its drive {} generates its own trajectory (drive profile), but the IP247 module drives its axis "
+        "with its pulse train as a cyclic set-point: use a cyclic drive (stepdir `profile: motion`, CiA 402 CSP, "
+        "sim)",
+        axis_specs()[0].name, drive.name()));
+  return {};
 }
 
 std::optional<hc::DeviceErrorCode> Ip247Controller::map_axis_fault(std::size_t, const hil::Fault&,

@@ -177,6 +177,9 @@ class Controller {
   [[nodiscard]] virtual std::optional<DeviceErrorCode> map_axis_fault(
       std::size_t axis, const hil::Fault& fault, const motion::AxisStatus& status) const noexcept = 0;
 
+  /// Called by bind_axes() once the axes are bound: a device refuses axes it cannot drive (error
+  /// text, e.g. a drive that generates its own trajectory where the device needs cyclic set-points).
+  [[nodiscard]] virtual std::expected<void, std::string> check_axes() { return {}; }
   /// Declares an axis (construction time only).
   void add_axis(ControllerAxis axis);
   [[nodiscard]] motion::Axis& axis(std::size_t i) noexcept { return *axes_[i]; }

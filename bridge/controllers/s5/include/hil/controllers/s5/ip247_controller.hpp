@@ -36,6 +36,7 @@
 #include "hil/controllers/controller.hpp"
 #include "hil/controllers/controller_registry.hpp"
 #include "hil/controllers/s5/ip247_axis.hpp"
+#include "hil/controllers/s5/ip247_follower.hpp"
 #include "hil/controllers/s5/ip247_machine_data.hpp"
 #include "hil/controllers/s5/ip247_program_store.hpp"
 
@@ -70,6 +71,8 @@ class Ip247Controller final : public hil::controllers::Controller {
 
  protected:
   void on_cycle(const CycleTime& cycle) noexcept override;
+  /// The module's pulses are a cyclic set-point: a drive-profile drive cannot follow them.
+  [[nodiscard]] std::expected<void, std::string> check_axes() override;
   [[nodiscard]] std::optional<DeviceErrorCode> map_axis_fault(std::size_t axis, const hil::Fault& fault,
                                                               const motion::AxisStatus& status) const noexcept override;
 
@@ -79,7 +82,6 @@ class Ip247Controller final : public hil::controllers::Controller {
   void report_error(TimePoint now) noexcept;
   /// Status words (DW5..DW13, DW4 cleared) of the module into the interface DB.
   void publish_status() noexcept;
-  void drive_axis() noexcept;
 
   Ip247MachineData md_;
   int md_db_ = 1;
@@ -92,12 +94,7 @@ class Ip247Controller final : public hil::controllers::Controller {
   Ip247Kinematics kin_{};
   std::vector<std::uint16_t> words_;  ///< scratch: the interface DB of this cycle
   bool started_ = false;              ///< the refusals of the programs are reported
-  bool anchored_ = false;             ///< base_inc_ / base_pulses_ are set
-  std::int64_t base_inc_ = 0;         ///< machine-axis increment of module pulse 0
-  std::int64_t base_pulses_ = 0;
-  std::int64_t last_pulses_ = 0;
-  int resting_ = 0;
-  bool following_ = false;
+  Ip247Follower follower_;
   int shown_error_ = 0;
   std::int64_t period_ns_ = 0;
 };
