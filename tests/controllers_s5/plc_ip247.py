@@ -17,6 +17,9 @@ except ImportError:
     sys.exit(77)
 
 HILBRIDGE = sys.argv[1]
+# Optional: `--machine FILE`: the emulator's axis 1 drives the machine axis of FILE (retrofit mode);
+# the script then also checks that the machine axis stands where the module's pulses put it.
+MACHINE = sys.argv[3] if len(sys.argv) > 3 and sys.argv[2] == "--machine" else None
 STX, ETX, DLE, NAK = 0x02, 0x03, 0x10, 0x15
 failures = []
 
@@ -162,9 +165,11 @@ def wait_finished(link, timeout=30):
 
 
 def main():
-    p = subprocess.Popen([HILBRIDGE, "emulate", "ip247", "--pty", "--format", "8N1", "--state", "none",
-                          "--switch", "1:limit-end:6000"], stdin=subprocess.PIPE, stdout=subprocess.PIPE,
-                         stderr=subprocess.DEVNULL, text=True)
+    args = [HILBRIDGE, "emulate", "ip247", "--pty", "--format", "8N1", "--state", "none", "--switch",
+            "1:limit-end:6000"]
+    if MACHINE:
+        args += ["--machine", MACHINE]
+    p = subprocess.Popen(args, stdin=subprocess.PIPE, stdout=subprocess.PIPE, stderr=subprocess.DEVNULL, text=True)
     try:
         path = p.stdout.readline().strip()
         check("emulator printed its pty", path.startswith("/dev/pts/"), path)
@@ -198,6 +203,16 @@ def main():
         check("BA7 backward 20 mm leaves the switch", link.send("X", 1, 0, [0x0700, 0] + dd(20000) + [0x0008]) == 0)
         s, _ = wait_finished(link)
         check("moved back without error", s["error"] == 0 and s["actual"] < 60000, s)
+        if MACHINE:
+            time.sleep(0.5)  # the plant settles on the last pulse
+            p.stdin.write("machine\n")
+            p.stdin.flush()
+            line = p.stdout.readline().strip()
+            words = line.split()
+            pos = int(words[4]) if len(words) > 5 and words[3] == "position" else None
+            check("machine axis where the module's pulses put it (10 um/pulse)",
+                  pos is not None and abs(pos * 10 - s["actual"]) <= 10 and "standstill" in line,
+                  f"{line!r}, module actual {s['actual']} BU")
     finally:
         try:
             p.stdin.write("quit\n")

@@ -154,6 +154,71 @@ TEST(StepDirDrive, Ip247ProfileHitsAbsoluteTargetWithFirstIntervalOneOverFss) {
   r.expect_clean();
 }
 
+namespace {
+/// Shortest interval between rising step edges (line 0) recorded on the mock output bank.
+std::int64_t min_step_interval_ns(const DriveRig& r) {
+  std::int64_t last = -1, best = INT64_MAX;
+  for (const auto& e : r.factory.axes().front()->mock_out->recorded()) {
+    if (e.line != 0 || !e.level) continue;
+    if (last >= 0) best = std::min(best, e.t_ns - last);
+    last = e.t_ns;
+  }
+  return best;
+}
+}  // namespace
+
+TEST(StepDirDrive, Ip247ProfileRunsEachMoveAtItsProgrammedSpeed) {
+  // The ip247 profile is a drive-profile drive: the motion core's move carries the programmed
+  // speed, which becomes the pulse frequency (1 increment = 1 step), not fmax.
+  DriveRig r(std::string(base) + "profile: ip247\n");
+  EXPECT_TRUE(r.drive->capabilities().drive_profile);
+  ASSERT_TRUE(r.enable());
+  hil::DriveCommand c;
+  c.move = {hil::DriveMove::Kind::position, 1, 3000, 2000.0, 0.0, 0.0};  // 2 kHz
+  const auto run = [&](const hil::DriveCommand& cmd, std::int64_t end) {
+    for (int i = 0; i < 100'000; ++i) {
+      hil::CycleTime t{r.clock.now(), r.period};
+      r.drive->read(t);
+      r.drive->write(t, cmd);
+      r.clock.advance(r.period);
+      if (!r.sd->planner().moving() && r.drive->feedback().position_inc == end) return true;
+    }
+    return false;
+  };
+  ASSERT_TRUE(run(c, 3000));
+  EXPECT_EQ(min_step_interval_ns(r), 500'000);  // 1 / 2 kHz
+  // Above fmax: clamped to fmax (20 kHz = 50 us), the move still runs.
+  c.move = {hil::DriveMove::Kind::position, 2, 60'000, 1e6, 0.0, 0.0};
+  ASSERT_TRUE(run(c, 60'000));
+  EXPECT_EQ(min_step_interval_ns(r), 50'000);
+  // A velocity move at -5 kHz, then hold: brakes along the ramp and stands.
+  c.move = {hil::DriveMove::Kind::velocity, 3, 0, -5000.0, 0.0, 0.0};
+  for (int i = 0; i < 200; ++i) {
+    hil::CycleTime t{r.clock.now(), r.period};
+    r.drive->read(t);
+    r.drive->write(t, c);
+    r.clock.advance(r.period);
+  }
+  EXPECT_LT(r.drive->feedback().position_inc, 60'000 - 500);
+  c.move = {hil::DriveMove::Kind::hold, 4, 0, 0.0, 0.0, 0.0};
+  for (int i = 0; i < 500 && r.sd->planner().moving(); ++i) {
+    hil::CycleTime t{r.clock.now(), r.period};
+    r.drive->read(t);
+    r.drive->write(t, c);
+    r.clock.advance(r.period);
+  }
+  EXPECT_FALSE(r.sd->planner().moving());
+  const auto at = r.sd->planner().position();
+  for (int i = 0; i < 20; ++i) {
+    hil::CycleTime t{r.clock.now(), r.period};
+    r.drive->read(t);
+    r.drive->write(t, c);
+    r.clock.advance(r.period);
+  }
+  EXPECT_EQ(r.sd->planner().position(), at);  // the hold stays: nothing re-starts the old move
+  r.expect_clean();
+}
+
 TEST(StepDirConfig, ErrorsNameKeyAndMdError) {
   hil::VirtualClock clock;
   hil::RunEnvironment env{clock, true, nullptr, "", std::chrono::milliseconds(1), false, {}};

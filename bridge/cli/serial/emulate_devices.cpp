@@ -5,6 +5,7 @@
 #include <asio/io_context.hpp>
 #include <expected>
 
+#include <array>
 #include <cstdio>
 #include <fstream>
 #include <functional>
@@ -17,6 +18,7 @@
 #include "hil/controllers/clm14/motion_axis_port.hpp"
 #include "hil/controllers/elg/elg_controller.hpp"
 #include "hil/controllers/parameter_file.hpp"
+#include "hil/controllers/s5/ip247_follower.hpp"
 #include "hil/controllers/s5/ip247_module_endpoint.hpp"
 #include "hil/core/clock.hpp"
 #include "hil/core/text_file.hpp"
@@ -104,6 +106,87 @@ std::expected<std::unique_ptr<Retrofit>, std::string> make_retrofit(const std::s
   for (auto& a : r->machine->axes())
     r->ports.push_back(std::make_unique<hil::controllers::clm14::MotionAxisPort>(*a.axis));
   return r;
+}
+
+/// `emulate ip247 --machine`: the module's axes 1..3 drive the axes of a machine file (a scenario
+/// with only `machine:`, axes in pulses: inc_per_unit 1), each on its transport (step/dir on a GPIO
+/// chip, CANopen CSP, sim), through their cyclic set-point once per module cycle.
+struct Ip247Retrofit {
+  asio::io_context io;
+  SteadyClock clock;
+  hil::runtime::Scenario scenario;
+  std::unique_ptr<RunEnvironment> env;
+  std::optional<hil::runtime::Machine> machine;
+  std::array<hil::controllers::s5::Ip247Follower, 3> followers{};
+  bool enabled = false;
+};
+
+std::expected<std::unique_ptr<Ip247Retrofit>, std::string> make_ip247_retrofit(const std::string& file,
+                                                                               const TransportRegistry& registry) {
+  auto r = std::make_unique<Ip247Retrofit>();
+  auto sc = hil::runtime::load_scenario(file);
+  if (!sc) return std::unexpected(sc.error().describe());
+  r->scenario = std::move(*sc);
+  if (r->scenario.axes.empty() || r->scenario.axes.size() > 3)
+    return std::unexpected(fmt::format("{}: machine.axes: give 1 to 3 axes (IP247 axes 1..3, in pulses)", file));
+  r->env = std::make_unique<RunEnvironment>(
+      RunEnvironment{r->clock, false, &r->io, r->scenario.file, r->scenario.period, false, {}});
+  auto m = hil::runtime::Machine::build(r->scenario, registry, *r->env);
+  if (!m) return std::unexpected(m.error().describe());
+  r->machine.emplace(std::move(*m));
+  for (const auto& a : r->machine->axes()) {
+    if (a.axis->drive().capabilities().drive_profile)
+      return std::unexpected(
+          fmt::format("{}: axis '{}': its drive plans its own trajectory; the IP247's pulses are a "
+                      "cyclic set-point: use a cyclic drive (stepdir profile: motion, CSP, sim)",
+                      file, a.spec->name));
+  }
+  return r;
+}
+
+/// The module's hooks for a retrofit: BB and the limit/reference lines from the machine axes, the
+/// axes following the module's pulses after every module cycle.
+hil::controllers::s5::Ip247ModuleHooks ip247_retrofit_hooks(Ip247Retrofit& rf,
+                                                            hil::controllers::s5::Ip247ModulePolicy& module,
+                                                            Duration cycle) {
+  namespace s5 = hil::controllers::s5;
+  const auto takes_setpoints = [](const hil::motion::Axis& a) {
+    const auto st = a.status().state;
+    return st == hil::motion::AxisState::standstill || st == hil::motion::AxisState::moving ||
+           st == hil::motion::AxisState::stopping;
+  };
+  s5::Ip247ModuleHooks h;
+  h.inputs = [&rf, &module, takes_setpoints](int n, s5::Ip247Inputs& in) {
+    auto& axes = rf.machine->axes();
+    if (static_cast<std::size_t>(n) > axes.size()) return;
+    auto& ax = *axes[static_cast<std::size_t>(n - 1)].axis;
+    in.ready = takes_setpoints(ax);
+    if (!ax.drive().capabilities().digital_inputs) return;  // the mock switches only
+    // CiA 402 0x60FD bits are "active"; the module reads raw levels and applies NO/NC itself. A
+    // switch is actuated when the drive's line or the mock switch says so.
+    const std::uint32_t di = ax.drive().feedback().digital_inputs;
+    const auto& md = module.axis(n).machine_data();
+    const bool nc = md && md->limits_normally_closed;
+    const bool start = ((di & hil::digital_input::negative_limit) != 0) || (in.limit_start != nc);
+    const bool end = ((di & hil::digital_input::positive_limit) != 0) || (in.limit_end != nc);
+    in.limit_start = start != nc;
+    in.limit_end = end != nc;
+    in.reference = in.reference || (di & hil::digital_input::home_switch) != 0;
+  };
+  h.after_cycle = [&rf, &module, cycle, takes_setpoints](TimePoint now) {
+    rf.io.poll();
+    auto& axes = rf.machine->axes();
+    if (!rf.enabled) {
+      for (auto& a : axes) (void)a.axis->enable();  // the module's power sections come up
+      rf.enabled = true;
+    }
+    for (std::size_t i = 0; i < axes.size() && i < 3; ++i) {
+      auto& ax = *axes[i].axis;
+      if (takes_setpoints(ax)) rf.followers[i].step(ax, module.axis(static_cast<int>(i) + 1), cycle.count());
+    }
+    rf.machine->cycle(CycleTime{now, cycle});
+  };
+  return h;
 }
 
 std::expected<lg::ClmMode, std::string> parse_mode(std::string_view s) {
@@ -442,7 +525,12 @@ void register_emulators(Context& ctx) {
     add_emulate_options(*cmd, *so);
     auto switches = std::make_shared<std::vector<std::string>>();
     auto cycle = std::make_shared<Duration>(std::chrono::milliseconds(1));
+    auto machine = std::make_shared<std::string>();
     if (dev == "ip247") {
+      cmd->add_option("--machine", *machine,
+                      "Retrofit mode: a machine file (scenario with machine.axes, 1 increment = 1 pulse) whose axes "
+                      "1..3 are the module's axes on real transports (step/dir on a GPIO chip, CiA 402 CSP, sim); "
+                      "their limit and reference lines replace the mock switches when the drive reports them");
       cmd->add_option("--switch", *switches,
                       "Mock switch of an axis, actuated as a function of the pulses output: "
                       "AXIS:limit-start:PULSES, AXIS:limit-end:PULSES or AXIS:cam:FROM:TO; repeatable");
@@ -451,7 +539,8 @@ void register_emulators(Context& ctx) {
                           cycle_range);
       add_duration_alias(*cmd, "--cycle-ms", "--cycle", *cycle, "ms", cycle_range);
     }
-    cmd->callback([&ctx, so, dev, switches, cycle] {
+    cmd->callback([&ctx, so, dev, switches, cycle, machine] {
+      std::unique_ptr<Ip247Retrofit> retrofit;  // outlives the endpoint that calls its hooks
       std::unique_ptr<lg::DbPolicy> policy;
       hil::controllers::s5::Ip247ModulePolicy* module = nullptr;
       if (dev == "ip247") {
@@ -480,6 +569,16 @@ void register_emulators(Context& ctx) {
         auto p = std::make_unique<hil::controllers::s5::Ip247ModulePolicy>(mo);
         module = p.get();
         policy = std::move(p);
+        if (!machine->empty()) {
+          auto r = make_ip247_retrofit(*machine, ctx.transports);
+          if (!r) {
+            fmt::print(stderr, "error: --machine: {}\n", r.error());
+            ctx.exit_code = 2;
+            return;
+          }
+          retrofit = std::move(*r);
+          module->set_hooks(ip247_retrofit_hooks(*retrofit, *module, mo.cycle));
+        }
       } else {
         auto check = hil::serial::load_wf725_check();
         if (!check) {
@@ -504,7 +603,8 @@ void register_emulators(Context& ctx) {
       if (auto text = read_file(state))
         if (auto r = ep.load_state(*text); !r) fmt::print(stderr, "warning: {}\n", r.error());
       if (module != nullptr) module->adopt(ep.store());  // battery-backed MD and programs
-      ctx.exit_code = serve(ep, *so, state, [module](lg::Endpoint& e, const std::string& c) -> std::string {
+      Ip247Retrofit* rf = retrofit.get();
+      ctx.exit_code = serve(ep, *so, state, [module, rf](lg::Endpoint& e, const std::string& c) -> std::string {
         auto& s = static_cast<lg::S5BlockEndpoint&>(e);
         if (c == "axes" && module != nullptr) {
           std::string out;
@@ -512,6 +612,15 @@ void register_emulators(Context& ctx) {
             const auto& a = module->axis(n);
             out += fmt::format("axis {}: BA{} actual {} remaining {} M{} attributes {:02X} error {}\n", n, a.ba(),
                                a.actual(), a.remaining(), a.m_output(), a.attributes(), a.error());
+          }
+          return out;
+        }
+        if (c == "machine" && rf != nullptr) {  // the retrofit's machine axes (increments = pulses)
+          std::string out;
+          for (const auto& a : rf->machine->axes()) {
+            const auto& st = a.axis->status();
+            out += fmt::format("machine axis {}: position {} inc state {}{}\n", a.spec->name, st.position_inc,
+                               hil::motion::to_string(st.state), st.fault ? " fault " + st.fault.describe() : "");
           }
           return out;
         }
@@ -524,7 +633,8 @@ void register_emulators(Context& ctx) {
           return out.empty() ? std::string("no DBs") : out;
         }
         if (c == "error") return s.last_error().empty() ? std::string("no error") : s.last_error();
-        return "error: unknown command (dbs, error, axes, rejection, quit)";
+        return rf != nullptr ? "error: unknown command (dbs, error, axes, machine, rejection, quit)"
+                             : "error: unknown command (dbs, error, axes, rejection, quit)";
       });
     });
   }

@@ -12,6 +12,7 @@
 #include "hil/controllers/elg/elg_controller.hpp"
 #include "hil/controllers/io_stimulus.hpp"
 #include "hil/controllers/parameter_controller.hpp"
+#include "hil/controllers/s5/ip247_controller.hpp"
 #include "hil/controllers/s5/wf725_controller.hpp"
 #include "hil/runtime/condition.hpp"
 #include "hil/runtime/machine.hpp"
@@ -39,6 +40,13 @@ std::optional<ConfigError> Machine::build_controller(const Scenario& scenario,
     auto parameters = std::make_shared<controllers::ControllerRegistry>(controllers::builtin_controllers());
     builtin.add("clm14", [programs, parameters](const controllers::ControllerSpec& s) {
       return s.programs.empty() ? parameters->create(s) : programs->create(s);
+    });
+    // ip247: with programs or an interface DB the module runs (its modes and programs, commanded
+    // through the interface DB by `plc:` steps, issue 19); without, the parameter-only controller.
+    auto module = std::make_shared<controllers::ControllerRegistry>();
+    controllers::s5::register_ip247(*module);
+    builtin.add("ip247", [module, parameters](const controllers::ControllerSpec& s) {
+      return s.programs.empty() && !s.options.contains("interface_db") ? parameters->create(s) : module->create(s);
     });
     controllers::elg::register_elg(builtin);
     controllers::amkasyn::register_amkasyn(builtin);

@@ -2,6 +2,7 @@
 #include "hil/runtime/program.hpp"
 
 #include <cmath>
+#include <expected>
 
 #include <fmt/format.h>
 
@@ -9,6 +10,76 @@
 #include "overloaded.hpp"
 
 namespace hil::runtime {
+
+namespace {
+
+/// The operand's value as the PLC reads it (double word: signed 32-bit; bit: 0/1).
+std::expected<std::int64_t, std::string> read_plc(const controllers::Controller& c, const PlcOperand& o) {
+  const auto w = c.read_data_word(o.db, o.dw);
+  if (!w) return std::unexpected(w.error());
+  switch (o.kind) {
+    case PlcOperand::Kind::word:
+      return *w;
+    case PlcOperand::Kind::double_word: {
+      const auto lo = c.read_data_word(o.db, o.dw + 1);
+      if (!lo) return std::unexpected(lo.error());
+      return static_cast<std::int32_t>((static_cast<std::uint32_t>(*w) << 16) | *lo);
+    }
+    case PlcOperand::Kind::bit:
+      return (*w >> o.bit) & 1;
+    case PlcOperand::Kind::left_byte:
+      return *w >> 8;
+    case PlcOperand::Kind::right_byte:
+      return *w & 0xFF;
+  }
+  return 0;
+}
+
+/// Writes the operand (bits and bytes read-modify-write their data word).
+std::expected<void, std::string> write_plc(controllers::Controller& c, const PlcOperand& o, std::int64_t value) {
+  const auto w = c.read_data_word(o.db, o.dw);
+  if (!w) return std::unexpected(w.error());
+  std::uint16_t word = *w;
+  switch (o.kind) {
+    case PlcOperand::Kind::word:
+      word = static_cast<std::uint16_t>(value);
+      break;
+    case PlcOperand::Kind::double_word: {
+      const auto u = static_cast<std::uint32_t>(static_cast<std::int32_t>(value));
+      if (auto r = c.write_data_word(o.db, o.dw + 1, static_cast<std::uint16_t>(u & 0xFFFF)); !r) return r;
+      word = static_cast<std::uint16_t>(u >> 16);
+      break;
+    }
+    case PlcOperand::Kind::bit:
+      word = static_cast<std::uint16_t>(value != 0 ? (word | (1U << o.bit)) : (word & ~(1U << o.bit)));
+      break;
+    case PlcOperand::Kind::left_byte:
+      word = static_cast<std::uint16_t>((word & 0x00FF) | ((value & 0xFF) << 8));
+      break;
+    case PlcOperand::Kind::right_byte:
+      word = static_cast<std::uint16_t>((word & 0xFF00) | (value & 0xFF));
+      break;
+  }
+  return c.write_data_word(o.db, o.dw, word);
+}
+
+std::string plc_text(const PlcOperand& o, std::int64_t v) {
+  switch (o.kind) {
+    case PlcOperand::Kind::word:
+      return fmt::format("DB{} DW{} = {:04X}h", o.db, o.dw, v);
+    case PlcOperand::Kind::double_word:
+      return fmt::format("DB{} DD{} = {}", o.db, o.dw, v);
+    case PlcOperand::Kind::bit:
+      return fmt::format("DB{} D {}.{} = {}", o.db, o.dw, o.bit, v);
+    case PlcOperand::Kind::left_byte:
+      return fmt::format("DB{} DL{} = {:02X}h", o.db, o.dw, v);
+    case PlcOperand::Kind::right_byte:
+      return fmt::format("DB{} DR{} = {:02X}h", o.db, o.dw, v);
+  }
+  return {};
+}
+
+}  // namespace
 namespace {
 
 using detail::Overloaded;
@@ -60,6 +131,20 @@ std::optional<ConfigError> Program::check() const {
     if (err) return;
     if (const auto* p = std::get_if<ParallelStep>(&s.action)) {
       for (const auto& c : p->steps) self(self, c);
+      return;
+    }
+    if (const auto* p = std::get_if<PlcStep>(&s.action)) {
+      // The operand must exist (and be writable for a write) before the run; a write is tried
+      // with the value the word has now, which leaves the image as it is.
+      auto* c = machine_.controller();
+      if (c == nullptr) return;
+      std::expected<void, std::string> ok;
+      if (auto v = read_plc(*c, p->operand); !v) {
+        ok = std::unexpected(v.error());
+      } else if (p->action == PlcStep::Action::write) {
+        ok = write_plc(*c, p->operand, *v);
+      }
+      if (!ok) err = ConfigError{scenario_.file, s.source.line, 0, s.source.path + ".plc", ok.error()};
       return;
     }
     const auto* i = std::get_if<InjectFaultStep>(&s.action);
@@ -154,7 +239,27 @@ bool Program::launch(Running& r, Duration t) {
             return e.empty();
           },
           [](const AcknowledgeStep&) { return true; },  // given at the controller's next cycle (poll)
-          [](const auto&) { return true; },             // waits start nothing
+          [&](const PlcStep& p) {
+            auto* c = machine_.controller();
+            if (p.action == PlcStep::Action::write) {
+              if (auto w = write_plc(*c, p.operand, p.value); !w) {
+                fail(s, t, w.error());
+                return false;
+              }
+              r.issued = true;
+            } else if (p.action == PlcStep::Action::expect) {
+              const auto v = read_plc(*c, p.operand);
+              if (!v || *v != p.value) {
+                fail(s, t,
+                     v ? fmt::format("expected {}, the device shows {}", plc_text(p.operand, p.value),
+                                     plc_text(p.operand, *v))
+                       : v.error());
+                return false;
+              }
+            }
+            return true;
+          },
+          [](const auto&) { return true; },  // waits start nothing
       },
       s.action);
 }
@@ -166,6 +271,8 @@ Program::Check Program::poll(Running& r, Duration t) {
     if (!launch(r, t)) return Check::failed;
     if (!s.wait && !std::holds_alternative<ParallelStep>(s.action)) return Check::done;
     if (std::holds_alternative<InjectFaultStep>(s.action)) return Check::done;
+    if (const auto* p = std::get_if<PlcStep>(&s.action); p && p->action == PlcStep::Action::expect)
+      return Check::done;   // checked at once
     return Check::pending;  // a command takes effect at the next update: judge it from then on
   }
   const Duration timeout = s.timeout.value_or(scenario_.timeout);
@@ -273,6 +380,16 @@ Program::Check Program::poll(Running& r, Duration t) {
             return met ? Check::done : Check::pending;
           },
           [&](const InjectFaultStep&) { return Check::done; },
+          [&](const PlcStep& p) {
+            if (p.action == PlcStep::Action::write)  // done when the device has had a cycle with it
+              return machine_.controller_cycle_complete() ? Check::done : Check::pending;
+            const auto v = read_plc(*machine_.controller(), p.operand);
+            if (!v) {
+              fail(s, t, v.error());
+              return Check::failed;
+            }
+            return *v == p.value ? Check::done : Check::pending;
+          },
           [&](const AcknowledgeStep& a) {
             // The device takes the operator's acknowledgement at its next cycle, after that
             // cycle's supervision (a fault of the last cycles has become its error by then).
@@ -312,7 +429,12 @@ Program::Check Program::poll(Running& r, Duration t) {
       },
       s.action);
   if (c == Check::pending && t - r.started > timeout) {
-    fail(s, t, fmt::format("did not complete within {:.3f} s", to_seconds(timeout)));
+    std::string shows;  // a plc wait says what the device shows instead
+    if (const auto* p = std::get_if<PlcStep>(&s.action); p && p->action == PlcStep::Action::wait)
+      if (const auto v = read_plc(*machine_.controller(), p->operand))
+        shows = fmt::format(" (waited for {}, the device shows {})", plc_text(p->operand, p->value),
+                            plc_text(p->operand, *v));
+    fail(s, t, fmt::format("did not complete within {:.3f} s{}", to_seconds(timeout), shows));
     return Check::failed;
   }
   return c;

@@ -17,6 +17,7 @@
 #include "hil/core/duration_text.hpp"
 #include "hil/core/text_file.hpp"
 #include "io_link_loader.hpp"
+#include "plc_loader.hpp"
 
 namespace hil::runtime {
 namespace {
@@ -545,7 +546,7 @@ class Loader {
   static constexpr std::string_view step_keys[] = {
       "enable",        "disable",      "reset",    "home",       "move_absolute", "move_relative",
       "move_velocity", "jog",          "stop",     "quick_stop", "wait",          "wait_in_position",
-      "wait_until",    "inject_fault", "parallel", "couple",     "acknowledge"};
+      "wait_until",    "inject_fault", "parallel", "couple",     "acknowledge",   "plc"};
 
   Step load_step(const Field& f, int depth) {
     if (!f.node().IsMap())
@@ -554,7 +555,8 @@ class Loader {
     const auto keys = f.expect_map({"enable",        "disable",          "reset",      "home",         "move_absolute",
                                     "move_relative", "move_velocity",    "jog",        "stop",         "quick_stop",
                                     "wait",          "wait_in_position", "wait_until", "inject_fault", "parallel",
-                                    "couple",        "acknowledge",      "at",         "timeout",      "blocking"});
+                                    "couple",        "acknowledge",      "plc",        "at",           "timeout",
+                                    "blocking"});
     std::string action;
     for (const auto& k : keys) {
       if (k == "at" || k == "timeout" || k == "blocking") continue;
@@ -647,6 +649,9 @@ class Loader {
       a.how = static_cast<AcknowledgeStep::How>(v.as_enum({"acknowledge", "reset", "power_cycle"}));
       st.name += std::string(" ") + std::array{"acknowledge", "reset", "power_cycle"}[static_cast<std::size_t>(a.how)];
       st.action = a;
+    } else if (action == "plc") {
+      if (!has_controller_) v.fail("'plc' reads and writes a controller's data blocks: add a 'controller:' block");
+      st.action = detail::load_plc_step(v, st.name);
     } else if (action == "couple") {
       CoupleStep c = detail::load_couple_step(v, *scenario_);
       st.name += " " + c.slave;

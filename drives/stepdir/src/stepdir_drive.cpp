@@ -2,6 +2,7 @@
 #include "hil/drives/stepdir/stepdir_drive.hpp"
 
 #include <algorithm>
+#include <cmath>
 
 #include <fmt/format.h>
 
@@ -43,6 +44,10 @@ DriveCapabilities StepDirDrive::capabilities() const noexcept {
   c.closed_loop = false;
   c.velocity_mode = false;
   c.homing = true;
+  // The `ip247` profile generates the trajectory itself (the module's exponential ramp to each
+  // target at the move's own speed): the motion core hands it DriveCommand::move and supervises
+  // the end position only.
+  c.drive_profile = cfg_.profile == PlannerMode::ramp;
   // The limit and reference inputs, as CiA 402 0x60FD bits (a digital input of the axis).
   c.digital_inputs = idx_lstart_ >= 0 || idx_lend_ >= 0 || idx_ref_ >= 0;
   return c;
@@ -305,6 +310,54 @@ void StepDirDrive::step_homing(std::int64_t now) {
   }
 }
 
+double StepDirDrive::move_frequency_hz(double velocity_inc_per_s) const noexcept {
+  // One increment is one step: the move's speed in inc/s is its pulse frequency. move_to() clamps
+  // it to [f_ss, fmax] (a speed outside is the IP247's warning 7; the move still runs).
+  const double f = std::fabs(velocity_inc_per_s);
+  return f > 0.0 ? f : cfg_.ramp.f_max_hz;
+}
+
+std::int64_t StepDirDrive::move_goal(const DriveMove& m, std::int64_t pos) const noexcept {
+  switch (m.kind) {
+    case DriveMove::Kind::position:
+      return m.target_inc;
+    case DriveMove::Kind::velocity:
+      return m.velocity_inc_per_s > 0.0 ? pos + far_away : (m.velocity_inc_per_s < 0.0 ? pos - far_away : pos);
+    case DriveMove::Kind::hold:
+      break;
+  }
+  return pos;
+}
+
+void StepDirDrive::ramp_to(const DriveMove& m, bool blocked) {
+  const bool new_move = m.id != move_id_;
+  move_id_ = m.id;
+  if (blocked) {
+    // Held back by the direction lock or a limit fault: the limit check has braked the planner.
+    if (planner_.moving()) planner_.halt();
+    return;
+  }
+  const std::int64_t pos = planner_.position();
+  switch (m.kind) {
+    case DriveMove::Kind::hold:
+      if (new_move && planner_.moving()) planner_.halt();  // brake along the ramp
+      return;
+    case DriveMove::Kind::position:
+      // The programmed speed reaches the pulse train: f = the move's velocity in steps/s.
+      // Only a new move starts the planner (a move id the drive has run, e.g. after a homing run
+      // re-referenced the planner, never moves it again).
+      if (new_move) (void)planner_.move_to(m.target_inc, move_frequency_hz(m.velocity_inc_per_s));
+      return;
+    case DriveMove::Kind::velocity:
+      if (m.velocity_inc_per_s == 0.0) {
+        if (planner_.moving()) planner_.halt();
+      } else if (new_move) {
+        (void)planner_.move_to(move_goal(m, pos), move_frequency_hz(m.velocity_inc_per_s));
+      }
+      return;
+  }
+}
+
 void StepDirDrive::write(const CycleTime& cycle, const DriveCommand& command) {
   const std::int64_t now = cycle.now.time_since_epoch().count();
   const std::int64_t horizon = now + cycle.period.count();
@@ -331,19 +384,26 @@ void StepDirDrive::write(const CycleTime& cycle, const DriveCommand& command) {
   } else if (homing_ != HomingPhase::idle) {
     step_homing(now);
   } else {
+    const bool profile = planner_.mode() == PlannerMode::ramp && command.move.id != 0;
     std::int64_t target = command.position_inc;
     const std::int64_t pos = planner_.position();
+    if (profile) target = move_goal(command.move, pos);
     const int about = target > pos ? 1 : (target < pos ? -1 : 0);
+    bool blocked = false;
     if (about != 0 && about == lock_dir_) {
-      target = pos;  // direction locked after a limit overrun
+      blocked = true;  // direction locked after a limit overrun
     } else if (about != 0) {
       check_limits(about);  // moving or about to move toward an actuated switch
-      if (fb_.fault) target = pos;
+      blocked = static_cast<bool>(fb_.fault);
     }
+    if (blocked) target = pos;
     if (planner_.mode() == PlannerMode::follow) {
       planner_.follow(target);
-    } else if (target != planner_.target()) {
-      planner_.move_to(target, cfg_.ramp.f_max_hz);
+    } else if (!profile) {
+      // A raw position command (no move from a motion core): nothing says how fast, so fmax.
+      if (target != planner_.target()) (void)planner_.move_to(target, cfg_.ramp.f_max_hz);
+    } else {
+      ramp_to(command.move, blocked);
     }
   }
   const std::size_t fixed = batch_.size();

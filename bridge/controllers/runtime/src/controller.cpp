@@ -52,7 +52,7 @@ std::expected<void, std::string> Controller::bind_axes(std::span<motion::Axis* c
   axes_.assign(axes.begin(), axes.end());
   seen_fault_.assign(axes_.size(), {});
   limit_hit_.assign(axes_.size(), 0);
-  return {};
+  return check_axes();
 }
 
 std::expected<BitAddress, std::string> Controller::resolve_bit(std::string_view text) const {
@@ -166,9 +166,41 @@ void Controller::apply_reaction(const DeviceError& e) noexcept {
 }
 
 void Controller::raise(const profiles::ErrorCatalogue& catalogue, int code, TimePoint now, int axis,
-                       std::string_view context, std::optional<AckRule> ack) noexcept {
+                       std::string_view context, std::optional<AckRule> ack, bool react) noexcept {
   auto e = make_device_error(catalogue, code, now, axis, context, ack);
-  if (errors_.raise(e)) apply_reaction(e);
+  if (errors_.raise(e) && react) apply_reaction(e);
+}
+
+namespace {
+std::expected<std::uint32_t, std::string> data_word_byte(std::span<const S5DataBlock> blocks, std::string_view device,
+                                                         int db, int dw) {
+  for (const auto& b : blocks) {
+    if (b.number != db) continue;
+    if (dw < 0 || dw >= b.words)
+      return std::unexpected(fmt::format("DB{} of the {} controller has data words 0..{}; DW {} is beyond it", db,
+                                         device, b.words - 1, dw));
+    return b.base + 2U * static_cast<std::uint32_t>(dw);
+  }
+  std::string list;
+  for (const auto& b : blocks) list += fmt::format("{}DB{}", list.empty() ? "" : ", ", b.number);
+  return std::unexpected(fmt::format("the {} controller has no data block DB{} ({})", device, db,
+                                     list.empty() ? "it has no PLC data blocks" : "it has " + list));
+}
+}  // namespace
+
+std::expected<std::uint16_t, std::string> Controller::read_data_word(int db, int dw) const {
+  const auto at = data_word_byte(data_blocks(), device(), db, dw);
+  if (!at) return std::unexpected(at.error());
+  return static_cast<std::uint16_t>((io_.get(ByteAddress{IoArea::data, *at}) << 8) |
+                                    io_.get(ByteAddress{IoArea::data, *at + 1}));
+}
+
+std::expected<void, std::string> Controller::write_data_word(int db, int dw, std::uint16_t value) {
+  const auto at = data_word_byte(data_blocks(), device(), db, dw);
+  if (!at) return std::unexpected(at.error());
+  io_.set(ByteAddress{IoArea::data, *at}, static_cast<std::uint8_t>(value >> 8));
+  io_.set(ByteAddress{IoArea::data, *at + 1}, static_cast<std::uint8_t>(value & 0xFF));
+  return {};
 }
 
 std::size_t Controller::acknowledge(Acknowledgement how) noexcept {

@@ -41,8 +41,11 @@ void Ip247ModulePolicy::on_time(TimePoint now) {
   while (t_ + cycle <= now) {
     t_ += cycle;
     for (int n = 1; n <= 3; ++n) {
-      axes_[static_cast<std::size_t>(n - 1)]->step(t_.time_since_epoch().count(), cycle.count(), inputs(n), nullptr);
+      Ip247Inputs in = inputs(n);
+      if (hooks_.inputs) hooks_.inputs(n, in);
+      axes_[static_cast<std::size_t>(n - 1)]->step(t_.time_since_epoch().count(), cycle.count(), in, nullptr);
     }
+    if (hooks_.after_cycle) hooks_.after_cycle(t_);
   }
 }
 

@@ -144,6 +144,26 @@ struct InjectFaultStep {
 struct AcknowledgeStep {
   enum class How : std::uint8_t { acknowledge, reset, power_cycle } how = How::acknowledge;
 };
+/// `plc:` the PLC side of a controller's S5 data blocks (Controller::read_data_word /
+/// write_data_word; docs/scenarios.md "PLC steps"): write a command word or bit, wait for a status
+/// word or bit, or check one at once. Needs a `controller:` block.
+struct PlcOperand {
+  enum class Kind : std::uint8_t {
+    word,         ///< DW dw (`value`), 0..0xFFFF or -32768..-1 (two's complement)
+    double_word,  ///< DW dw (high) and DW dw+1 (low) as one signed 32-bit value (`dd`), e.g. the actual value
+    bit,          ///< bit 0..15 of DW dw (`bit`, `state`)
+    left_byte,    ///< DL dw (`dl`): bits 15..8
+    right_byte,   ///< DR dw (`dr`): bits 7..0
+  } kind = Kind::word;
+  int db = 0;
+  int dw = 0;
+  int bit = 0;
+};
+struct PlcStep {
+  enum class Action : std::uint8_t { write, wait, expect } action = Action::write;
+  PlcOperand operand;
+  std::int64_t value = 0;  ///< word / dd / byte value, or 0/1 for a bit
+};
 struct Step;
 struct ParallelStep {
   std::vector<Step> steps;
@@ -151,7 +171,7 @@ struct ParallelStep {
 
 using StepAction = std::variant<EnableStep, DisableStep, ResetStep, HomeStep, MoveAbsoluteStep, MoveRelativeStep,
                                 MoveVelocityStep, JogStep, StopStep, QuickStopStep, WaitStep, WaitInPositionStep,
-                                WaitUntilStep, InjectFaultStep, ParallelStep, CoupleStep, AcknowledgeStep>;
+                                WaitUntilStep, InjectFaultStep, ParallelStep, CoupleStep, AcknowledgeStep, PlcStep>;
 
 struct Step {
   StepAction action;

@@ -38,6 +38,7 @@
 #include <vector>
 
 #include "hil/controllers/device_error.hpp"
+#include "hil/controllers/io_address_s5.hpp"
 #include "hil/controllers/io_image.hpp"
 #include "hil/core/clock.hpp"
 #include "hil/core/drive.hpp"
@@ -157,6 +158,18 @@ class Controller {
   /// decimals of up to 15 significant digits); read after every controller step. NaN when the
   /// device cannot show it now. Cycle thread; never throws.
   [[nodiscard]] virtual double value(std::size_t handle) const noexcept { return trace_value(handle); }
+  /// The PLC side of a device commanded through S5 data blocks (IP247, WF 725/726): data word
+  /// `dw` of data block `db` as the PLC's FB or a DB transfer reads and writes it (a scenario's
+  /// `plc:` steps, docs/scenarios.md). A write lands at once; the device acts on it (command bits,
+  /// parameters) at its next cycle and writes its status words there. The default serves the
+  /// data_blocks() the device lays into the image's data area (DW w = bytes base + 2w, base + 2w
+  /// + 1, high byte first), so DB bits are also image signals ("DB10 D 12.7"); devices override it
+  /// for blocks kept elsewhere (the IP247's program images). Error text for a block the device
+  /// does not have or a word beyond it. Cycle thread (or configuration time); never throws.
+  [[nodiscard]] virtual std::expected<std::uint16_t, std::string> read_data_word(int db, int dw) const;
+  virtual std::expected<void, std::string> write_data_word(int db, int dw, std::uint16_t value);
+  /// The data blocks of the interface that lie in the image's data area (none by default).
+  [[nodiscard]] virtual std::span<const S5DataBlock> data_blocks() const noexcept { return {}; }
 
   /// Latched and past device errors.
   [[nodiscard]] const DeviceErrorLatch& errors() const noexcept { return errors_; }
@@ -174,14 +187,19 @@ class Controller {
   [[nodiscard]] virtual std::optional<DeviceErrorCode> map_axis_fault(
       std::size_t axis, const hil::Fault& fault, const motion::AxisStatus& status) const noexcept = 0;
 
+  /// Called by bind_axes() once the axes are bound: a device refuses axes it cannot drive (error
+  /// text, e.g. a drive that generates its own trajectory where the device needs cyclic set-points).
+  [[nodiscard]] virtual std::expected<void, std::string> check_axes() { return {}; }
   /// Declares an axis (construction time only).
   void add_axis(ControllerAxis axis);
   [[nodiscard]] motion::Axis& axis(std::size_t i) noexcept { return *axes_[i]; }
   [[nodiscard]] const motion::Axis& axis(std::size_t i) const noexcept { return *axes_[i]; }
   /// Raises a device error from the device logic and applies its reaction (stop / drive off)
   /// to axis `axis` (-1: every axis). `context` is appended to the catalogue text.
+  /// `react` false: the device has applied the reaction itself (a module that brakes its own
+  /// pulse output); the error is only latched and reported.
   void raise(const profiles::ErrorCatalogue& catalogue, int code, TimePoint now, int axis = -1,
-             std::string_view context = {}, std::optional<AckRule> ack = {}) noexcept;
+             std::string_view context = {}, std::optional<AckRule> ack = {}, bool react = true) noexcept;
   /// A self-clearing error whose cause went away.
   bool clear_error(const profiles::ErrorCatalogue& catalogue, int code, int axis = -1) noexcept {
     return errors_.clear(catalogue, code, axis);

@@ -10,9 +10,12 @@
 //   - DriveRequest::home = the IP247 reference-point run (§4.2.3) with cam watchdog (fault 59).
 // Faults carry the IP247 error number in category "ip247".
 //
-// Each write() plans the edges of the window (now, now + period] from the position command and
-// hands them to the EdgeSink (mock: recorded on the virtual clock; real: the edge writer thread).
-// Thread: the motion thread only. read/write never block and never throw.
+// Each write() plans the edges of the window (now, now + period] and hands them to the EdgeSink.
+// Profile `motion`: the position command is followed per cycle. Profile `ip247`: the drive is a
+// drive-profile drive (capabilities().drive_profile): each DriveCommand::move runs on the IP247
+// ramp at its own speed (velocity_inc_per_s = the pulse frequency, clamped to [f_ss, fmax]); a
+// raw position command without a move ramps at fmax. Edges go to the EdgeSink (mock: recorded on the virtual clock;
+// real: the edge writer thread). Thread: the motion thread only. read/write never block and never throw.
 
 #include <functional>
 #include <memory>
@@ -83,6 +86,11 @@ class StepDirDrive final : public Drive, public FaultInjectable {
   void emit_enable(std::int64_t t, bool level);
   void step_homing(std::int64_t now);
   void finish_homing(bool ok);
+  /// `ip247` profile: runs DriveCommand::move (position at its velocity, velocity, hold = brake).
+  void ramp_to(const DriveMove& move, bool blocked);
+  /// Where a move goes (velocity: "far away" in its direction; hold: here).
+  [[nodiscard]] std::int64_t move_goal(const DriveMove& move, std::int64_t pos) const noexcept;
+  [[nodiscard]] double move_frequency_hz(double velocity_inc_per_s) const noexcept;
 
   std::string name_;
   StepDirConfig cfg_;
@@ -106,6 +114,7 @@ class StepDirDrive final : public Drive, public FaultInjectable {
   std::uint64_t lag_cycles_ = 0;
   std::uint64_t input_errors_ = 0;
   std::vector<gpio::Edge> batch_;
+  std::uint32_t move_id_ = 0;  ///< DriveMove::id of the move the planner runs (ip247 profile)
 
   HomingPhase homing_ = HomingPhase::idle;
   bool homing_tail_ = false;     ///< report homing_active for one more image after success

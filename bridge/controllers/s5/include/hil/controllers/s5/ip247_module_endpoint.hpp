@@ -14,6 +14,7 @@
 
 #include <array>
 #include <chrono>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
@@ -38,6 +39,15 @@ struct Ip247ModuleOptions {
   std::array<Ip247AxisSwitches, 3> switches{};
 };
 
+/// Per-cycle hooks of a module whose axes drive machine axes (`hilbridge emulate ip247 --machine`).
+struct Ip247ModuleHooks {
+  /// The raw inputs of axis n (1..3) for this cycle, after the mock switches; may change them
+  /// (the drive's limit and reference lines, BB from the machine axis).
+  std::function<void(int axis, Ip247Inputs& in)> inputs;
+  /// After each module cycle ending at `now` (the module's axes have stepped).
+  std::function<void(TimePoint now)> after_cycle;
+};
+
 class Ip247ModulePolicy final : public mocks::legacy::DbPolicy {
  public:
   explicit Ip247ModulePolicy(Ip247ModuleOptions o = {});
@@ -54,6 +64,7 @@ class Ip247ModulePolicy final : public mocks::legacy::DbPolicy {
   void on_time(TimePoint now) override;
   [[nodiscard]] TimePoint next_deadline() const override;
 
+  void set_hooks(Ip247ModuleHooks hooks) { hooks_ = std::move(hooks); }
   /// Load persisted images (battery-backed MD and programs) into the module.
   void adopt(mocks::legacy::DbStore& store);
   [[nodiscard]] Ip247Axis& axis(int n) { return *axes_[static_cast<std::size_t>(n - 1)]; }
@@ -73,6 +84,7 @@ class Ip247ModulePolicy final : public mocks::legacy::DbPolicy {
   TimePoint t_{};
   bool started_ = false;
   std::string rejection_;
+  Ip247ModuleHooks hooks_;
 };
 
 }  // namespace hil::controllers::s5

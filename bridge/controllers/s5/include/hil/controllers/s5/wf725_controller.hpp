@@ -59,10 +59,9 @@ class Wf725Controller final : public Controller {
   [[nodiscard]] std::uint16_t read_db_word(std::uint16_t w) const noexcept { return db_.read_word(w); }
   void write_db_word(std::uint16_t w, std::uint16_t v) noexcept { db_.write_word(w, v); }
   [[nodiscard]] const S5DataBlock& interface_db() const noexcept { return db_.block(); }
-  /// The DB axis as the data block in the image's data area (DW w = bytes 2w, 2w + 1). Same
-  /// signature as the runtime's `Controller::data_blocks()` of the `plc:` steps (ip247rt), which it
-  /// overrides once both are merged, so `read_data_word(db, dw)` serves the DB axis.
-  [[nodiscard]] std::span<const S5DataBlock> data_blocks() const noexcept { return {&db_.block(), 1}; }
+  /// The DB axis as the data block in the image's data area (DW w = bytes 2w, 2w + 1): the
+  /// runtime's `read_data_word(db, dw)` / `write_data_word` and so a scenario's `plc:` steps serve it.
+  [[nodiscard]] std::span<const S5DataBlock> data_blocks() const noexcept override { return {&db_.block(), 1}; }
 
   [[nodiscard]] std::expected<BitAddress, std::string> resolve_bit(std::string_view text) const override;
 

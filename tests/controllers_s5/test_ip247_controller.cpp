@@ -1,0 +1,204 @@
+// SPDX-License-Identifier: MIT
+// The IP247 module on the controller runtime, end to end through the scenario runner on virtual
+// time: the shipped NPV program (vectors ip247.md 11) on the sim transport and on step/dir mock
+// lines (verified edge streams) gives the same positions; the PLC interface DB (plc: steps), the
+// data-word interface of the controller, and the configuration errors of the module and of the
+// plc: keys (file, line, key).
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <regex>
+#include <sstream>
+
+#include <unistd.h>
+
+#include "hil/controllers/s5/ip247_controller.hpp"
+#include "hil/drives/stepdir/transport_factory.hpp"
+#include "hil/mocks/sim_transport.hpp"
+#include "hil/runtime/runner.hpp"
+#include "hil/runtime/scenario_loader.hpp"
+
+namespace fs = std::filesystem;
+
+namespace {
+
+const fs::path examples = fs::absolute("examples/controllers");
+
+std::string slurp(const fs::path& p) {
+  std::ifstream in(p);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+/// Writes `text` as a scenario next to a copy of the example's data files; returns its path.
+fs::path scenario_file(const std::string& name, const std::string& text) {
+  const fs::path dir = fs::temp_directory_path() / ("hil_ip247_" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  for (const auto* f : {"ip247-md-linear.s5db", "ip247-npv-main.txt", "ip247-npv-sub.txt"})
+    fs::copy_file(examples / f, dir / f, fs::copy_options::overwrite_existing);
+  const fs::path p = dir / name;
+  std::ofstream(p) << text;
+  return p;
+}
+
+hil::TransportRegistry transports() {
+  hil::TransportRegistry registry;
+  registry.add("sim", [] { return hil::mocks::make_sim_transport(); });
+  registry.add("stepdir", [] { return std::make_unique<hil::drives::stepdir::StepDirTransportFactory>(); });
+  return registry;
+}
+
+hil::runtime::RunResult run(const fs::path& file) {
+  auto scenario = hil::runtime::load_scenario(file);
+  EXPECT_TRUE(scenario) << (scenario ? "" : scenario.error().describe());
+  if (!scenario) return {};
+  const hil::TransportRegistry registry = transports();
+  hil::runtime::RunOptions opts;
+  opts.virtual_time = true;
+  opts.verify_steps = true;
+  auto result = hil::runtime::run_scenario(*scenario, registry, opts);
+  EXPECT_TRUE(result) << (result ? "" : result.error().describe());
+  return result ? *result : hil::runtime::RunResult{};
+}
+
+std::string load_error(const std::string& text) {
+  auto s = hil::runtime::load_scenario(scenario_file("bad.yaml", text));
+  if (s) {
+    // Errors found when the machine is built (controller, plc operands) come from the runner.
+    const hil::TransportRegistry registry = transports();
+    hil::runtime::RunOptions opts;
+    opts.virtual_time = true;
+    auto r = hil::runtime::run_scenario(*s, registry, opts);
+    return r ? "" : r.error().describe();
+  }
+  return s.error().describe();
+}
+
+const char* head = R"(name: t
+period: 1ms
+controller:
+  device: ip247
+  parameters: ip247-md-linear.s5db
+  programs: [ip247-npv-main.txt, ip247-npv-sub.txt]
+machine:
+  axes:
+    - name: "1"
+      drive: {transport: sim}
+)";
+
+}  // namespace
+
+TEST(Ip247Controller, NpvProgramGivesTheSamePositionsOnSimAndStepDir) {
+  const std::string sim = slurp(examples / "ip247-npv.yaml");
+  auto r_sim = run(scenario_file("npv-sim.yaml", sim));
+  for (const auto& f : r_sim.failures) ADD_FAILURE() << f;
+  ASSERT_TRUE(r_sim.ok);
+  // The same scenario with the axis on a step/dir stage (mock lines), following the module's pulses.
+  const std::string stepdir = std::regex_replace(
+      sim, std::regex(R"(drive: \{transport: sim[^}]*\})"),
+      "drive: {transport: stepdir, profile: motion, fmax_hz: 20000, fss_hz: 500, accel_hz_per_s: 200000, "
+      "pulse_us: 10}");
+  ASSERT_NE(stepdir, sim);
+  auto r_sd = run(scenario_file("npv-stepdir.yaml", stepdir));
+  for (const auto& f : r_sd.failures) ADD_FAILURE() << f;
+  ASSERT_TRUE(r_sd.ok);
+  ASSERT_EQ(r_sim.axes.size(), 1U);
+  ASSERT_EQ(r_sd.axes.size(), 1U);
+  // Open loop: the step/dir axis is exactly where the module's pulses put it (0 mm); the simulated
+  // plant within a pulse of it.
+  EXPECT_EQ(r_sd.axes[0].final_position, 0.0);
+  EXPECT_NEAR(r_sim.axes[0].final_position, r_sd.axes[0].final_position, 0.01);
+  bool verified = false;
+  for (const auto& rep : r_sd.reports)
+    for (const auto& l : rep.report.lines) {
+      EXPECT_EQ(l.find("VIOLATION"), std::string::npos) << l;
+      verified = verified || l.find("timing rules held") != std::string::npos;
+    }
+  EXPECT_TRUE(verified);
+}
+
+TEST(Ip247Controller, DataWordsOfTheInterfaceAndTheImages) {
+  hil::controllers::ControllerSpec spec;
+  spec.device = "ip247";
+  spec.parameters = examples / "ip247-md-linear.s5db";
+  spec.programs = {examples / "ip247-syntax-3.txt", examples / "ip247-syntax-4.txt"};
+  spec.options = {{"interface_db", "12"}};
+  auto c = hil::controllers::s5::Ip247Controller::create(spec);
+  ASSERT_TRUE(c) << c.error().describe();
+  auto& ctl = **c;
+  // Interface DB12: status words from the start (attributes: finished, mm, reference missing).
+  EXPECT_EQ(ctl.read_data_word(12, 12).value(), 0xA200);
+  ASSERT_TRUE(ctl.write_data_word(12, 0, 0x0501));
+  EXPECT_EQ(ctl.read_data_word(12, 0).value(), 0x0501);
+  // The image's data area holds it: DB bits are I/O signals.
+  const auto bit = ctl.resolve_bit("DB12 D 0.8");
+  ASSERT_TRUE(bit) << bit.error();
+  EXPECT_TRUE(ctl.io().get(*bit));
+  // VP DB 3 refused (syntax error 6 in N20), VP DB 4 accepted, MD DB 20 readable, not writable.
+  EXPECT_EQ(ctl.read_data_word(3, 3).value(), 6);
+  EXPECT_EQ(ctl.read_data_word(3, 4).value(), 20);
+  EXPECT_EQ(ctl.read_data_word(4, 3).value(), 0);
+  EXPECT_EQ(ctl.read_data_word(20, 0).value(), 70);
+  EXPECT_EQ(ctl.read_data_word(20, 2).value(), 0x4214);
+  EXPECT_FALSE(ctl.write_data_word(20, 5, 1));
+  EXPECT_FALSE(ctl.write_data_word(4, 5, 1));
+  const auto missing = ctl.read_data_word(30, 0);
+  ASSERT_FALSE(missing);
+  EXPECT_NE(missing.error().find("no DB30"), std::string::npos) << missing.error();
+  EXPECT_FALSE(ctl.read_data_word(12, 20));  // 20 words
+}
+
+TEST(Ip247Controller, ConfigurationErrorsNameFileLineAndKey) {
+  // plc: keys
+  auto e = load_error(std::string(head) + "program:\n  - plc: {write: {db: 10, dw: 0, valu: 1}}\n");
+  EXPECT_NE(e.find(":12"), std::string::npos) << e;
+  EXPECT_NE(e.find("program[0].plc.write"), std::string::npos) << e;
+  EXPECT_NE(e.find("valu"), std::string::npos) << e;
+  e = load_error(std::string(head) + "program:\n  - plc: {wait: {db: 10, dw: 4, bit: 16}}\n");
+  EXPECT_NE(e.find("program[0].plc.wait.bit"), std::string::npos) << e;
+  e = load_error(std::string(head) + "program:\n  - plc: {write: {db: 10, dw: 0, value: 0x10000}}\n");
+  EXPECT_NE(e.find("program[0].plc.write.value"), std::string::npos) << e;
+  e = load_error(std::string(head) + "program:\n  - plc: {write: {db: 10, dw: 0, value: 1}, wait: {db: 10, dw: 0}}\n");
+  EXPECT_NE(e.find("does one thing"), std::string::npos) << e;
+  e = load_error(std::string(head) + "program:\n  - plc: {wait: {db: 10, dw: 4, value: 1, state: true}}\n");
+  EXPECT_NE(e.find("'state' belongs to 'bit'"), std::string::npos) << e;
+  // a DB the module does not have: found before the run, at the step's line
+  e = load_error(std::string(head) + "program:\n  - wait: 1ms\n  - plc: {expect: {db: 77, dw: 0, value: 1}}\n");
+  EXPECT_NE(e.find(":13"), std::string::npos) << e;
+  EXPECT_NE(e.find("no DB77"), std::string::npos) << e;
+  e = load_error(std::string(head) + "program:\n  - plc: {write: {db: 1, dw: 0, value: 1}}\n");
+  EXPECT_NE(e.find("not written word by word"), std::string::npos) << e;
+  // without a controller
+  e = load_error(
+      "name: t\nmachine:\n  axes:\n    - name: x\n      inc_per_unit: 1\n      limits: {velocity: 1, "
+      "acceleration: 1}\n      drive: {transport: sim}\nprogram:\n  - plc: {wait: {db: 10, dw: 4, bit: 0}}\n");
+  EXPECT_NE(e.find("add a 'controller:' block"), std::string::npos) << e;
+  // the module's own keys
+  std::string bad = head;
+  bad.insert(bad.find("machine:"), "  interface_db: 20\n");
+  e = load_error(bad);
+  EXPECT_NE(e.find("machine-data DB"), std::string::npos) << e;
+  bad = head;
+  bad.insert(bad.find("machine:"), "  interfac_db: 11\n");
+  e = load_error(bad);
+  EXPECT_NE(e.find("controller.interfac_db"), std::string::npos) << e;
+  bad = head;
+  bad.insert(bad.find("machine:"), "  interface_db: 1\n");  // program 1 is DB1
+  e = load_error(bad);
+  EXPECT_NE(e.find("program 1 would be DB1"), std::string::npos) << e;
+  // a drive that plans its own trajectory cannot follow the module's pulses
+  bad = head;
+  bad.replace(bad.find("drive: {transport: sim}"), 23,
+              "drive: {transport: stepdir, profile: ip247, fmax_hz: 20000, fss_hz: 500, accel_hz_per_s: 200000, "
+              "pulse_us: 10}");
+  e = load_error(bad);
+  EXPECT_NE(e.find("cyclic drive"), std::string::npos) << e;
+  const fs::path nohead = scenario_file("nohead.txt", "N10 X1 F100\nN20 M02\n");
+  bad = head;
+  bad.replace(bad.find("[ip247-npv-main.txt, ip247-npv-sub.txt]"), 39, nohead.filename().string());
+  e = load_error(bad);
+  EXPECT_NE(e.find("nohead.txt:1"), std::string::npos) << e;
+  EXPECT_NE(e.find("program header"), std::string::npos) << e;
+}
