@@ -37,8 +37,14 @@ ci_build() {
   cmake --preset ci "${launcher[@]}" >/dev/null && cmake --build --preset ci -j"$(nproc)"
 }
 stage "build (ci: ASan+UBSan -Og, -Werror)" ci_build
-# LeakSanitizer runs at every test program's exit; a report fails that test with its output.
+# LeakSanitizer runs at every test program's exit; a report fails that test with its output. It
+# stops the process with ptrace: where a container forbids that, every program would fail at exit,
+# so leak checking is turned off there (and said so) while ASan and UBSan keep checking.
 export ASAN_OPTIONS=${ASAN_OPTIONS:-detect_leaks=1} UBSAN_OPTIONS=${UBSAN_OPTIONS:-print_stacktrace=1}
+if [[ -x build-ci/hilbridge ]] && build-ci/hilbridge --version 2>&1 | grep -q "LeakSanitizer has encountered a fatal error"; then
+  echo "note: LeakSanitizer cannot run here (ptrace refused); leak checks off, ASan and UBSan on"
+  export ASAN_OPTIONS=detect_leaks=0
+fi
 stage "host suite (build-ci)" ctest --test-dir build-ci --output-on-failure -j"$(nproc)" -LE kernel --no-tests=error
 if [[ -x tests/vm/run-in-kernel.sh ]]; then
   stage "kernel tests (VM, build-ci)" tests/vm/run-in-kernel.sh -- ctest --test-dir build-ci --output-on-failure \
