@@ -9,27 +9,15 @@
 #include <cmath>
 
 #include "hil/controllers/clm14/controller.hpp"
+#include "hil/motion/gear_ratio.hpp"
 
 namespace hil::controllers::clm14 {
 
 namespace {
 
+using motion::abs128;
+using motion::gcd128;
 using motion::i128;
-
-i128 abs128(i128 v) {
-  return v < 0 ? -v : v;
-}
-
-i128 gcd128(i128 a, i128 b) {
-  a = abs128(a);
-  b = abs128(b);
-  while (b != 0) {
-    const i128 r = a % b;
-    a = b;
-    b = r;
-  }
-  return a;
-}
 
 std::int64_t e5(double feed_constant) {
   return static_cast<std::int64_t>(std::llround(feed_constant * 1e5));

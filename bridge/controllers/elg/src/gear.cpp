@@ -7,25 +7,14 @@
 #include <numbers>
 #include <numeric>
 
+#include "hil/motion/gear_ratio.hpp"
+
 namespace hil::controllers::elg {
 namespace {
 
-__extension__ typedef __int128 i128;  // exact 128-bit intermediate products (GCC/Clang)
-
-constexpr i128 abs128(i128 v) {
-  return v < 0 ? -v : v;
-}
-
-i128 gcd128(i128 a, i128 b) {
-  a = abs128(a);
-  b = abs128(b);
-  while (b != 0) {
-    const i128 t = a % b;
-    a = b;
-    b = t;
-  }
-  return a;
-}
+using motion::abs128;
+using motion::gcd128;
+using motion::i128;  // exact 128-bit intermediate products
 
 /// Reduces num/den; both must fit 64 bits. A constant whose magnitude exceeds `max_constant` C counts
 /// per input count is the manual's "transmission / differential parameter too high" (2203).

@@ -35,4 +35,21 @@ inline constexpr std::int64_t max_gear_term = std::int64_t{1} << 31;
   return (a % b != 0 && a < 0) ? q - 1 : q;
 }
 
+/// |v| (std::abs has no 128-bit overload).
+[[nodiscard]] constexpr i128 abs128(i128 v) noexcept {
+  return v < 0 ? -v : v;
+}
+
+/// Greatest common divisor of |a| and |b|, for reducing exact ratios (std::gcd takes no __int128).
+[[nodiscard]] constexpr i128 gcd128(i128 a, i128 b) noexcept {
+  a = abs128(a);
+  b = abs128(b);
+  while (b != 0) {
+    const i128 r = a % b;
+    a = b;
+    b = r;
+  }
+  return a;
+}
+
 }  // namespace hil::motion
