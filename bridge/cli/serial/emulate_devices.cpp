@@ -66,22 +66,29 @@ std::optional<std::string> read_file(const std::filesystem::path& p) {
   return *text;
 }
 
-/// Retrofit mode: the CLM's axes 1..4 are the axes of a machine file (a scenario with only
-/// `machine:`), each on its transport (CANopen, Modbus, step/dir, sim), driven once per NC cycle.
-struct Retrofit {
+/// The machine of a machine file (a scenario with only `machine:`), built on its transports, and
+/// what it runs on. A retrofit mode derives from it and adds what binds the device to the axes.
+struct MachineFile {
   asio::io_context io;
   SteadyClock clock;
   hil::runtime::Scenario scenario;
   std::unique_ptr<RunEnvironment> env;
   std::optional<hil::runtime::Machine> machine;
+};
+
+/// Retrofit mode: the CLM's axes 1..4 are the axes of a machine file, each on its transport
+/// (CANopen, Modbus, step/dir, sim), driven once per NC cycle.
+struct Retrofit : MachineFile {
   std::vector<std::unique_ptr<hil::controllers::clm14::MotionAxisPort>> ports;
 };
 
-/// The machine of a machine file (a scenario with only `machine:`), built on its transports.
-std::expected<std::unique_ptr<Retrofit>, std::string> load_machine(
+/// Loads `file` into a new R (a MachineFile): `check` says what is wrong with the scenario for
+/// this device (empty: nothing), before any transport is opened.
+template <class R>
+std::expected<std::unique_ptr<R>, std::string> load_machine(
     const std::string& file, const TransportRegistry& registry,
     const std::function<std::string(const hil::runtime::Scenario&)>& check) {
-  auto r = std::make_unique<Retrofit>();
+  auto r = std::make_unique<R>();
   auto sc = hil::runtime::load_scenario(file);
   if (!sc) return std::unexpected(sc.error().describe());
   r->scenario = std::move(*sc);
@@ -96,7 +103,7 @@ std::expected<std::unique_ptr<Retrofit>, std::string> load_machine(
 
 std::expected<std::unique_ptr<Retrofit>, std::string> make_retrofit(const std::string& file,
                                                                     const TransportRegistry& registry) {
-  auto loaded = load_machine(file, registry, [&](const hil::runtime::Scenario& sc) {
+  auto loaded = load_machine<Retrofit>(file, registry, [&](const hil::runtime::Scenario& sc) {
     return sc.axes.empty() || sc.axes.size() > 4
                ? fmt::format("{}: machine.axes: give 1 to 4 axes (CLM axes 1..4, in IU)", file)
                : std::string();
@@ -111,29 +118,20 @@ std::expected<std::unique_ptr<Retrofit>, std::string> make_retrofit(const std::s
 /// `emulate ip247 --machine`: the module's axes 1..3 drive the axes of a machine file (a scenario
 /// with only `machine:`, axes in pulses: inc_per_unit 1), each on its transport (step/dir on a GPIO
 /// chip, CANopen CSP, sim), through their cyclic set-point once per module cycle.
-struct Ip247Retrofit {
-  asio::io_context io;
-  SteadyClock clock;
-  hil::runtime::Scenario scenario;
-  std::unique_ptr<RunEnvironment> env;
-  std::optional<hil::runtime::Machine> machine;
+struct Ip247Retrofit : MachineFile {
   std::array<hil::controllers::s5::Ip247Follower, 3> followers{};
   bool enabled = false;
 };
 
 std::expected<std::unique_ptr<Ip247Retrofit>, std::string> make_ip247_retrofit(const std::string& file,
                                                                                const TransportRegistry& registry) {
-  auto r = std::make_unique<Ip247Retrofit>();
-  auto sc = hil::runtime::load_scenario(file);
-  if (!sc) return std::unexpected(sc.error().describe());
-  r->scenario = std::move(*sc);
-  if (r->scenario.axes.empty() || r->scenario.axes.size() > 3)
-    return std::unexpected(fmt::format("{}: machine.axes: give 1 to 3 axes (IP247 axes 1..3, in pulses)", file));
-  r->env = std::make_unique<RunEnvironment>(
-      RunEnvironment{r->clock, false, &r->io, r->scenario.file, r->scenario.period, false, {}});
-  auto m = hil::runtime::Machine::build(r->scenario, registry, *r->env);
-  if (!m) return std::unexpected(m.error().describe());
-  r->machine.emplace(std::move(*m));
+  auto loaded = load_machine<Ip247Retrofit>(file, registry, [&](const hil::runtime::Scenario& sc) {
+    return sc.axes.empty() || sc.axes.size() > 3
+               ? fmt::format("{}: machine.axes: give 1 to 3 axes (IP247 axes 1..3, in pulses)", file)
+               : std::string();
+  });
+  if (!loaded) return std::unexpected(loaded.error());
+  auto r = std::move(*loaded);
   for (const auto& a : r->machine->axes()) {
     if (a.axis->drive().capabilities().drive_profile)
       return std::unexpected(
@@ -416,18 +414,20 @@ void register_emulators(Context& ctx) {
     if (!sections) return fail(fmt::format("{}: {}", eo->tape, sections.error().message));
     std::vector<std::pair<std::string, motion::Ratio>> wanted;
     for (const auto& a : setup->axes) wanted.emplace_back(a.name, a.config.inc_per_unit);
-    std::unique_ptr<Retrofit> retrofit;
+    std::unique_ptr<MachineFile> retrofit;
     std::vector<motion::Axis*> real_axes;
     if (!eo->machine.empty()) {
-      auto r = load_machine(eo->machine, ctx.transports, [&](const hil::runtime::Scenario& sc) -> std::string {
-        for (const auto& [name, ratio] : wanted) {
-          const auto it = std::find_if(sc.axes.begin(), sc.axes.end(), [&](const auto& a) { return a.name == name; });
-          if (it == sc.axes.end())
-            return fmt::format("{}: machine.axes: the ELG needs axis {} (B, C, Z, X{})", eo->machine, name,
-                               wanted.size() > 4 ? ", Y" : "");
-        }
-        return {};
-      });
+      auto r =
+          load_machine<MachineFile>(eo->machine, ctx.transports, [&](const hil::runtime::Scenario& sc) -> std::string {
+            for (const auto& [name, ratio] : wanted) {
+              const auto it =
+                  std::find_if(sc.axes.begin(), sc.axes.end(), [&](const auto& a) { return a.name == name; });
+              if (it == sc.axes.end())
+                return fmt::format("{}: machine.axes: the ELG needs axis {} (B, C, Z, X{})", eo->machine, name,
+                                   wanted.size() > 4 ? ", Y" : "");
+            }
+            return {};
+          });
       if (!r) return fail("--machine: " + r.error());
       retrofit = std::move(*r);
       for (const auto& [name, ratio] : wanted) {
