@@ -114,8 +114,8 @@ std::expected<BitAddress, std::string> Wf725Controller::resolve_bit(std::string_
                   text, names, opt_.db));
 }
 
-double Wf725Controller::machine_mm() const noexcept {
-  double m = axis(0).status().position + offset_mm_;
+double Wf725Controller::to_machine(double axis_mm) const noexcept {
+  double m = axis_mm + offset_mm_;
   if (md_.rotary()) {
     const double mod = static_cast<double>(md_.integer(18)) * um;
     m = std::fmod(m, mod);
@@ -124,14 +124,12 @@ double Wf725Controller::machine_mm() const noexcept {
   return m;
 }
 
+double Wf725Controller::machine_mm() const noexcept {
+  return to_machine(axis(0).status().position);
+}
+
 double Wf725Controller::machine_command_mm() const noexcept {
-  double m = axis(0).status().command_position + offset_mm_;
-  if (md_.rotary()) {
-    const double mod = static_cast<double>(md_.integer(18)) * um;
-    m = std::fmod(m, mod);
-    if (m < 0) m += mod;
-  }
-  return m;
+  return to_machine(axis(0).status().command_position);
 }
 
 double Wf725Controller::actual_um() const noexcept {

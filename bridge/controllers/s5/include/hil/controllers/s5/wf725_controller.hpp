@@ -131,6 +131,8 @@ class Wf725Controller final : public Controller {
   [[nodiscard]] double machine_mm() const noexcept;          ///< actual, machine coordinates
   [[nodiscard]] double machine_command_mm() const noexcept;  ///< command, machine coordinates
   [[nodiscard]] double to_axis(double machine_mm) const noexcept { return machine_mm - offset_mm_; }
+  /// Axis position -> machine coordinates (on a rotary axis, into 0 .. MD 18).
+  [[nodiscard]] double to_machine(double axis_mm) const noexcept;
   [[nodiscard]] bool cam() const noexcept;
   [[nodiscard]] bool fast_input(int e) const noexcept;
   [[nodiscard]] bool motion_done() const noexcept;
