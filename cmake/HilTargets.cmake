@@ -70,6 +70,10 @@ function(hil_add_test)
   cmake_parse_arguments(A "" "NAME;TIMEOUT" "SOURCES;LIBS;LABELS" ${ARGN})
   add_executable(test_${A_NAME} ${A_SOURCES})
   target_link_libraries(test_${A_NAME} PRIVATE ${A_LIBS} GTest::gtest GTest::gmock GTest::gtest_main hil::warnings)
+  # Never a unity build (the preset ci builds the libraries and the CLI as unity batches): a test
+  # binary is mostly one file, and googletest fixtures in anonymous namespaces are only legal in
+  # the main file (-Wsubobject-linkage).
+  set_target_properties(test_${A_NAME} PROPERTIES UNITY_BUILD OFF)
   if(NOT A_TIMEOUT)
     set(A_TIMEOUT 120)
   endif()

@@ -48,6 +48,25 @@ TEST(Plant, FeedForwardRemovesLag) {
   EXPECT_LT(std::abs(cmd - plant.position_inc()), 10.0);
 }
 
+TEST(Plant, MeasuredVelocityIsTheFeedWhereTheEndOfCycleValueIsNot) {
+  // A steady feed of 40 000 inc/s in 2 ms set points at Kv 200, full feed-forward, 2 ms velocity
+  // lag (the sim transport's defaults for a scenario axis): the position advances exactly 80 inc
+  // per cycle, and so does the reported velocity; the instantaneous value at the end of a cycle,
+  // which the drives reported before, reads about 3 % low.
+  Plant plant(PlantConfig{.kv_per_s = 200, .velocity_lag_s = 0.002, .velocity_feedforward = 1.0});
+  double cmd = 0.0;
+  for (int i = 0; i < 1000; ++i) {
+    cmd += 80.0;
+    plant.step(2ms, PlantInput{true, hil::CommandMode::position, cmd, 40000.0});
+  }
+  const double before = plant.position_inc();
+  cmd += 80.0;
+  plant.step(2ms, PlantInput{true, hil::CommandMode::position, cmd, 40000.0});
+  EXPECT_NEAR(plant.position_inc() - before, 80.0, 1e-6);
+  EXPECT_NEAR(plant.measured_velocity_inc_per_s(), 40000.0, 1e-3);
+  EXPECT_LT(plant.velocity_inc_per_s(), 0.99 * 40000.0);
+}
+
 TEST(Plant, VelocityLimitClamps) {
   Plant plant(PlantConfig{.kv_per_s = 100, .max_velocity_inc_per_s = 500, .velocity_lag_s = 0.0});
   for (int i = 0; i < 100; ++i) plant.step(1ms, hold(1e6));

@@ -69,12 +69,9 @@ class LoadGenerator {
   std::vector<std::thread> threads_;
 };
 
-double us(Duration d) {
-  return std::chrono::duration<double, std::micro>(d).count();
-}
-
 std::string period_text(Duration d) {
-  return d >= std::chrono::milliseconds(1) ? fmt::format("{:g} ms", us(d) / 1000.0) : fmt::format("{:g} us", us(d));
+  return d >= std::chrono::milliseconds(1) ? fmt::format("{:g} ms", to_microseconds(d) / 1000.0)
+                                           : fmt::format("{:g} us", to_microseconds(d));
 }
 
 int latency_command(const LatencyArgs& args) {
@@ -141,23 +138,26 @@ int latency_command(const LatencyArgs& args) {
         "{{\"seconds\":{:.6f},\"period_us\":{:.3f},\"realtime\":{},\"load\":{},\"interrupted\":{},\"cycles\":{},"
         "\"overruns\":{},\"skipped_cycles\":{},\"max_cycle_work_us\":{:.3f},\"wake_latency\":{},"
         "\"recommended_min_period_us\":{}}}\n",
-        to_seconds(stats.wall), us(period), report.requested ? realtime_json(report) : "null", args.load, interrupted,
-        stats.cycles, stats.overruns, stats.skipped_cycles, us(stats.max_cycle_work), runtime::latency_json(h),
-        recommended ? fmt::format("{:.0f}", us(*recommended)) : "null");
+        to_seconds(stats.wall), to_microseconds(period), report.requested ? realtime_json(report) : "null", args.load,
+        interrupted, stats.cycles, stats.overruns, stats.skipped_cycles, to_microseconds(stats.max_cycle_work),
+        runtime::latency_json(h), recommended ? fmt::format("{:.0f}", to_microseconds(*recommended)) : "null");
     return 0;
   }
   fmt::print("{} wake-ups in {:.3f} s{}\n", stats.cycles, to_seconds(stats.wall), interrupted ? " (interrupted)" : "");
   fmt::print("wake-up latency: min {:.0f} us, mean {:.1f} us, p99 {:.0f} us, p99.9 {:.0f} us, max {:.0f} us\n",
-             us(h.min()), us(h.mean()), us(h.percentile(0.99)), us(h.percentile(0.999)), us(h.max()));
+             to_microseconds(h.min()), to_microseconds(h.mean()), to_microseconds(h.percentile(0.99)),
+             to_microseconds(h.percentile(0.999)), to_microseconds(h.max()));
   fmt::print("{}", runtime::format_latency_histogram(h, "  "));
   fmt::print("overruns: {}, skipped cycles: {}\n", stats.overruns, stats.skipped_cycles);
   if (recommended)
     fmt::print(
         "recommended minimum cycle period: {} (at least twice the worst wake-up latency of {:.0f} us, so a cycle "
         "woken at its worst still has half its period for its work){}\n",
-        period_text(*recommended), us(h.max()), report.priority > 0 ? "" : "; try --realtime for a better figure");
+        period_text(*recommended), to_microseconds(h.max()),
+        report.priority > 0 ? "" : "; try --realtime for a better figure");
   else
-    fmt::print("recommended minimum cycle period: none up to 1 s (worst wake-up latency {:.0f} us)\n", us(h.max()));
+    fmt::print("recommended minimum cycle period: none up to 1 s (worst wake-up latency {:.0f} us)\n",
+               to_microseconds(h.max()));
   return 0;
 }
 

@@ -11,10 +11,6 @@
 namespace hil::cli {
 namespace {
 
-double us(Duration d) {
-  return std::chrono::duration<double, std::micro>(d).count();
-}
-
 // JSON has no inf/nan: those become null.
 std::string number(double v) {
   return std::isfinite(v) ? fmt::format("{:.9g}", v) : "null";
@@ -83,8 +79,8 @@ std::string run_json(const runtime::RunResult& r) {
   const std::string scheduler = fmt::format(
       "{{\"virtual_time\":{},\"period_us\":{},\"cycles\":{},\"overruns\":{},\"skipped_cycles\":{},"
       "\"simulated_s\":{},\"wall_s\":{},\"max_cycle_work_us\":{},\"wake_latency\":{}}}",
-      s.virtual_time, number(us(s.period)), s.cycles, s.overruns, s.skipped_cycles, number(to_seconds(s.simulated)),
-      number(to_seconds(s.wall)), number(us(s.max_cycle_work)),
+      s.virtual_time, number(to_microseconds(s.period)), s.cycles, s.overruns, s.skipped_cycles,
+      number(to_seconds(s.simulated)), number(to_seconds(s.wall)), number(to_microseconds(s.max_cycle_work)),
       s.virtual_time ? std::string("null") : runtime::latency_json(s.wake_latency));
   const std::string axes = array(r.axes, [](const runtime::AxisSummary& a) {
     return fmt::format(

@@ -37,7 +37,7 @@ std::expected<clm::FileKind, std::string> kind_of(const TransferOptions& o, std:
   return std::unexpected(std::string("cannot tell program from parameters: give --what program|parameters"));
 }
 
-clm::ClientOptions client_options(const LinkOptions& l) {
+clm::ClientOptions clm14_client_options(const LinkOptions& l) {
   clm::ClientOptions c;
   c.station = l.station;
   c.response_timeout = l.timeout;
@@ -64,7 +64,7 @@ int clm14_read(const TransferOptions& o) {
     fmt::print(stderr, "error: {}\n", link.error());
     return 1;
   }
-  clm::Client client(**link, clock, client_options(o.link), *data);
+  clm::Client client(**link, clock, clm14_client_options(o.link), *data);
   std::vector<std::string> keys =
       *kind == clm::FileKind::program ? clm::ProgramDevice::all_keys() : (*data)->parameter_numbers(o.axes);
   clm::ProgramDevice prog(client);
@@ -149,7 +149,7 @@ int clm14_send(const TransferOptions& o) {
     fmt::print(stderr, "error: {}\nNothing was sent.\n", link.error());
     return 1;
   }
-  clm::Client client(**link, clock, client_options(o.link), *data);
+  clm::Client client(**link, clock, clm14_client_options(o.link), *data);
   clm::ProgramDevice prog(client);
   clm::ParameterDevice par(client);
   hil::serial::ItemDevice& dev = *kind == clm::FileKind::program ? static_cast<hil::serial::ItemDevice&>(prog) : par;

@@ -20,7 +20,7 @@ namespace s5 = hil::serial::s5;
 
 namespace {
 
-s5::Rk512ClientOptions client_options(const LinkOptions& l) {
+s5::Rk512ClientOptions rk512_client_options(const LinkOptions& l) {
   s5::Rk512ClientOptions c;
   c.procedure.transmit_attempts = l.retries + 1;
   c.procedure.connect_attempts = l.retries + 1;
@@ -73,7 +73,7 @@ int s5_read(const TransferOptions& o) {
     fmt::print(stderr, "error: {}\n", link.error());
     return 1;
   }
-  s5::Rk512Client client(**link, clock, client_options(o.link));
+  s5::Rk512Client client(**link, clock, rk512_client_options(o.link));
   ProgressBar bar(fmt::format("upload {}", o.device), dbs.size(), "DBs", clock);
   std::vector<s5::DbImage> images;
   for (std::size_t i = 0; i < dbs.size(); ++i) {
@@ -180,7 +180,7 @@ int s5_send(const TransferOptions& o) {
     fmt::print(stderr, "error: {}\nNothing was sent.\n", link.error());
     return 1;
   }
-  s5::Rk512Client client(**link, clock, client_options(o.link));
+  s5::Rk512Client client(**link, clock, rk512_client_options(o.link));
   install_interrupt_handler();
   ProgressBar bar(fmt::format("download {}", o.file), images->size(), "DBs", clock);
   std::vector<std::string> done;

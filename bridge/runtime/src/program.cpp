@@ -6,6 +6,7 @@
 
 #include <fmt/format.h>
 
+#include "axis_checks.hpp"
 #include "hil/runtime/scenario_loader.hpp"
 #include "overloaded.hpp"
 
@@ -105,17 +106,8 @@ std::optional<motion::Limits> limits_for(const motion::Axis& a, const MoveLimits
   return l;
 }
 
-bool fault_matches(const Fault& f, const std::string& code) {
-  if (!f) return false;
-  if (code.empty()) return true;
-  const auto c = parse_fault_code(code);
-  return c && f.code.value() == c->value && c->category == f.code.category().name();
-}
-
-bool at_rest(const motion::AxisStatus& s) {
-  return !s.busy && s.state != motion::AxisState::moving && s.state != motion::AxisState::stopping &&
-         s.state != motion::AxisState::homing;
-}
+using detail::at_rest;
+using detail::fault_matches;
 
 }  // namespace
 

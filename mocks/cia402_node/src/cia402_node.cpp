@@ -402,7 +402,7 @@ void Cia402Node::run_device(double dt, TimePoint now) {
   }
   od.set_int(0x6062, 0, static_cast<std::int64_t>(std::llround(demand_)));
   od.set_int(0x6064, 0, static_cast<std::int64_t>(new_actual));
-  od.set_int(0x606C, 0, static_cast<std::int64_t>(std::llround(plant_.velocity_inc_per_s())));
+  od.set_int(0x606C, 0, static_cast<std::int64_t>(std::llround(plant_.measured_velocity_inc_per_s())));
   if (od.find(0x60FD, 0) != nullptr) od.set_int(0x60FD, 0, inputs_.inputs(plant_.position_inc()));
   publish(reached, bit12, bit13);
 }

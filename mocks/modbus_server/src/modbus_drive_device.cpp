@@ -154,7 +154,7 @@ void DriveDevice::publish() noexcept {
   const auto& ap = profile_.field(FieldRole::actual_position);
   write_field(FieldRole::actual_position, std::llround(static_cast<double>(pos) / ap.scale));
   const auto& av = profile_.field(FieldRole::actual_velocity);
-  write_field(FieldRole::actual_velocity, std::llround(plant_.velocity_inc_per_s() / av.scale));
+  write_field(FieldRole::actual_velocity, std::llround(plant_.measured_velocity_inc_per_s() / av.scale));
   const double target =
       static_cast<double>(read_field(FieldRole::target_position)) * profile_.field(FieldRole::target_position).scale;
   const bool reached = std::fabs(target - static_cast<double>(pos)) <= static_cast<double>(config_.target_window_inc);

@@ -21,7 +21,9 @@ std::size_t Plant::step(Duration dt, const PlantInput& in) noexcept {
                             ? max_substeps
                             : std::max<std::size_t>(1, static_cast<std::size_t>(wanted));
   const double h = t / static_cast<double>(n);
+  const double before = position_;
   for (std::size_t i = 0; i < n; ++i) substep(h, in);
+  measured_velocity_ = (position_ - before) / t;
   sample_encoder();
   return n;
 }

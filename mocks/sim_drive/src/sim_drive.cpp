@@ -194,7 +194,7 @@ void SimDrive::read(const CycleTime& cycle) {
     return;
   }
   feedback_.position_inc = plant_.encoder_position_inc();
-  feedback_.velocity_inc_per_s = plant_.velocity_inc_per_s();
+  feedback_.velocity_inc_per_s = plant_.measured_velocity_inc_per_s();
   feedback_.state = state_;
   feedback_.referenced = referenced_;
   feedback_.homing_active = homing_;

@@ -8,15 +8,12 @@
 #include <cstdint>
 #include <optional>
 
+#include "text_trim.hpp"
+
 namespace hil::controllers::amkasyn {
 namespace {
 
-std::string_view trim(std::string_view v) {
-  const auto first = v.find_first_not_of(" \t");
-  if (first == std::string_view::npos) return {};
-  const auto last = v.find_last_not_of(" \t");
-  return v.substr(first, last - first + 1);
-}
+using detail::trim;
 
 std::optional<std::int64_t> whole(std::string_view text, int base = 10) {
   std::int64_t n = 0;

@@ -10,6 +10,8 @@
 
 #include <fmt/format.h>
 
+#include "text_trim.hpp"
+
 namespace hil::controllers::amkasyn {
 namespace {
 
@@ -21,11 +23,7 @@ std::string upper(std::string_view s) {
   return r;
 }
 
-std::string_view trim(std::string_view s) {
-  while (!s.empty() && std::isspace(static_cast<unsigned char>(s.front()))) s.remove_prefix(1);
-  while (!s.empty() && std::isspace(static_cast<unsigned char>(s.back()))) s.remove_suffix(1);
-  return s;
-}
+using detail::trim;
 
 bool number(std::string_view s, long long& v, int base = 10) {
   s = trim(s);

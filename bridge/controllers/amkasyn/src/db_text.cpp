@@ -9,14 +9,12 @@
 
 #include "hil/profiles/db_integer_text.hpp"
 
+#include "text_trim.hpp"
+
 namespace hil::controllers::amkasyn {
 namespace {
 
-std::string_view trim(std::string_view t) {
-  while (!t.empty() && std::isspace(static_cast<unsigned char>(t.front()))) t.remove_prefix(1);
-  while (!t.empty() && std::isspace(static_cast<unsigned char>(t.back()))) t.remove_suffix(1);
-  return t;
-}
+using detail::trim;
 
 enum class Kind : std::uint8_t { dr, dl, dw, dd };
 

@@ -14,14 +14,10 @@
 
 #include "hil/controllers/amkasyn/sf_types.hpp"
 #include "hil/controllers/amkasyn/track_chain.hpp"
+#include "hil/motion/gear_ratio.hpp"
 
 namespace hil::controllers::amkasyn {
 namespace {
-
-std::int64_t mod(std::int64_t v, std::int64_t m) {
-  const std::int64_t r = v % m;
-  return r < 0 ? r + m : r;
-}
 
 class Cam final : public FastFunction {
  public:
@@ -98,12 +94,12 @@ class Cam final : public FastFunction {
         const auto lo = static_cast<std::int16_t>(io.source.value & 0xFFFF);
         const auto d = static_cast<std::int16_t>(static_cast<std::uint16_t>(lo - prev_lo_));
         prev_lo_ = lo;
-        x_ = mod(x_ + d, m);
+        x_ = motion::floor_mod(x_ + d, m);
         v = d;
         break;
       }
       default:
-        x_ = mod(x_ + io.cycle_half_ms, m);
+        x_ = motion::floor_mod(x_ + io.cycle_half_ms, m);
         v = io.cycle_half_ms;
         break;
     }
@@ -113,7 +109,7 @@ class Cam final : public FastFunction {
       const std::int16_t now = tab->dw(8 + k);
       off_[k] += static_cast<std::int16_t>(static_cast<std::uint16_t>(now - prev_off_[k]));
       prev_off_[k] = now;
-      if (ba_ != 0) off_[k] = mod(off_[k], m);
+      if (ba_ != 0) off_[k] = motion::floor_mod(off_[k], m);
       const double lead = lead_.lead(tab->dw(16 + k), io.cycle_half_ms);
       double x = static_cast<double>(x_ + off_[k]) + lead;
       if (ba_ != 0)

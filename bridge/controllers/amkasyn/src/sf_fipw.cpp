@@ -34,15 +34,12 @@
 
 #include "hil/controllers/amkasyn/sf_types.hpp"
 #include "hil/motion/cam.hpp"
+#include "hil/motion/gear_ratio.hpp"
 
 namespace hil::controllers::amkasyn {
 namespace {
 
 enum class Kind : std::uint8_t { cyclic, single, sequence, clocked };
-
-std::int64_t mod(std::int64_t a, std::int64_t p) noexcept {
-  return ((a % p) + p) % p;
-}
 
 class Interpolator final : public FastFunction {
  public:
@@ -68,7 +65,7 @@ class Interpolator final : public FastFunction {
     if (sync_) sync_seen_ = sync_latch(io).count;  // X is assigned at the next zero pulse
     if (kind_ == Kind::cyclic && !sync_wait_) {
       cam_.set_table(&table(set_, 0));
-      cam_.start(master, raw0, mod(offset_, period(set_, 0)));
+      cam_.start(master, raw0, motion::floor_mod(offset_, period(set_, 0)));
       running_ = true;
     }
     corr_total_ = corr_applied_ = corr_active_ = corr_pending_ = corr_at_start_ = 0.0;
@@ -119,7 +116,7 @@ class Interpolator final : public FastFunction {
       sync_wait_ = false;
       if (kind_ == Kind::cyclic) {
         cam_.set_table(&table(set_, 0));
-        cam_.start(master, cam_.slave_position(), mod(master - origin_, period(set_, 0)));
+        cam_.start(master, cam_.slave_position(), motion::floor_mod(master - origin_, period(set_, 0)));
         switches_seen_ = cam_.switches();
         running_ = true;
       }
@@ -290,7 +287,7 @@ class Interpolator final : public FastFunction {
     const double sc = work_lift_ / fl;
     const std::int64_t sd = cmd.dd(20), ss = cmd.dw(22);
     const std::int64_t f = static_cast<std::int64_t>(fl);
-    xm_cmd_ = std::round(sc * static_cast<double>(mod(f - mod(sd - ss, f), f)));
+    xm_cmd_ = std::round(sc * static_cast<double>(motion::floor_mod(f - motion::floor_mod(sd - ss, f), f)));
     valid_ = sc * cmd.dw(23);
     const std::int64_t p = period(0, q_);
     sk_ = cmd.dw(24);
@@ -481,8 +478,8 @@ class Interpolator final : public FastFunction {
   [[nodiscard]] double raw_at(int set, std::int64_t x) const noexcept {
     const auto& t = table(set, 0);
     const std::int64_t p = period(set, 0);
-    const std::int64_t k = (x - mod(x, p)) / p;
-    return static_cast<double>(k) * t.lift() + t.value(static_cast<double>(mod(x, p)));
+    const std::int64_t k = (x - motion::floor_mod(x, p)) / p;
+    return static_cast<double>(k) * t.lift() + t.value(static_cast<double>(motion::floor_mod(x, p)));
   }
 
   // Table set inputs: without a start bit (cyclic) E1 = E_SUEn, E2.. = E_SU0..; with one
@@ -544,7 +541,7 @@ class Interpolator final : public FastFunction {
     take_set();
     plan_ = first_plan();
     const std::int64_t p = period(set_, 0);
-    const std::int64_t xm = mod(x, p);
+    const std::int64_t xm = motion::floor_mod(x, p);
     if (xm <= start_angle_) {
       cam_.set_table(&table(set_, 0));
       cam_.start(master, cam_.slave_position(), xm);

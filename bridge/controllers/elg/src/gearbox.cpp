@@ -5,12 +5,12 @@
 #include <cmath>
 #include <cstdlib>
 
+#include "edge.hpp"
+
 namespace hil::controllers::elg {
 namespace {
 __extension__ typedef __int128 i128;  // exact index arithmetic (GCC/Clang)
-bool rising(bool now, bool before) {
-  return now && !before;
-}
+using detail::rising;
 }  // namespace
 
 Gearbox::Gearbox(GearboxConfig config) : config_(config), setup_(config.setup) {

@@ -1,16 +1,13 @@
 // SPDX-License-Identifier: MIT
 #include "hil/controllers/elg/setup_modes.hpp"
 
+#include "hil/motion/gear_ratio.hpp"
+
+#include "edge.hpp"
+
 namespace hil::controllers::elg {
 namespace {
-bool rising(bool now, bool before) {
-  return now && !before;
-}
-/// Floor division for the zero-mark grid (negative positions included).
-std::int64_t floor_div(std::int64_t a, std::int64_t b) {
-  const std::int64_t q = a / b;
-  return (a % b != 0 && ((a < 0) != (b < 0))) ? q - 1 : q;
-}
+using detail::rising;
 }  // namespace
 
 std::int64_t SetupModes::override_percent(int position) const noexcept {
@@ -19,7 +16,7 @@ std::int64_t SetupModes::override_percent(int position) const noexcept {
 }
 
 std::int64_t SetupModes::zero_mark_index(std::int64_t counts) const noexcept {
-  return floor_div(counts, md_.zero_mark_counts > 0 ? md_.zero_mark_counts : 1);
+  return motion::floor_div(counts, md_.zero_mark_counts > 0 ? md_.zero_mark_counts : 1);  // the grid, negative too
 }
 
 void SetupModes::abort() noexcept {

@@ -12,9 +12,6 @@ using Kind = Ip247Action::Kind;
 
 namespace {
 constexpr std::int64_t far_pulses = std::int64_t{1} << 40;  ///< "endless" jog / search target
-int sign(std::int64_t v) noexcept {
-  return v > 0 ? 1 : (v < 0 ? -1 : 0);
-}
 bool outside(std::int64_t v) noexcept {
   return v <= -ip247_coordinate_limit || v >= ip247_coordinate_limit;
 }
@@ -366,7 +363,7 @@ void Ip247Axis::command(const Ip247Job& job) {
       if (!md.rotary && referenced_ && (target < md.sw_start || target > md.sw_end)) {
         return raise(Ip247Error::traversing_range_exceeded);
       }
-      const int d = sign(target - p);
+      const int d = ip247_sign(target - p);
       if (d != 0 && d == lock_dir_)
         return raise(d > 0 ? Ip247Error::limit_end_overrun : Ip247Error::limit_start_overrun);
       const double v = clamp_speed(job.speed, md.incremental_speed, clamped);
@@ -577,7 +574,7 @@ void Ip247Axis::program_step(std::int64_t now_ns) {
       case ProgState::motion: {
         const std::int64_t p = internal_position();
         if (next_) {
-          const int d = sign(next_->target - action_.target);
+          const int d = ip247_sign(next_->target - action_.target);
           if ((p - transition_p_) * d >= 0) {  // flying change point passed: new speed, new M
             const Ip247Action nx = *next_;
             next_.reset();
@@ -716,7 +713,7 @@ void Ip247Axis::step(std::int64_t now_ns, std::int64_t period_ns, const Ip247Inp
     raise(Ip247Error::external_stop);
   }
   // Limit switches: only the one in the direction of travel, only while moving toward it.
-  const int dir = busy() ? sign(planner_->target() - planner_->position()) : 0;
+  const int dir = busy() ? ip247_sign(planner_->target() - planner_->position()) : 0;
   if (phase_ != Phase::reference) {
     if ((dir > 0 && actuated_end(in)) || (dir < 0 && actuated_start(in))) {
       lock_dir_ = dir;

@@ -8,12 +8,6 @@ namespace hil::controllers::s5 {
 using stepdir::Ip247Error;
 using Kind = Ip247Action::Kind;
 
-namespace {
-int sign(std::int64_t v) noexcept {
-  return v > 0 ? 1 : (v < 0 ? -1 : 0);
-}
-}  // namespace
-
 Ip247Error Ip247Interpreter::start(int program, const Ip247MachineData& md, std::int64_t from, bool single_block) {
   const Ip247Program* p = lookup_ ? lookup_(program) : nullptr;
   if (p == nullptr) return Ip247Error::db_not_present;
@@ -109,7 +103,7 @@ Ip247Action Ip247Interpreter::motion(const Ip247Block& b, Ip247Offsets& off) {
       a.speed = f;
     }
   }
-  const int dir = sign(target - from_);
+  const int dir = ip247_sign(target - from_);
   if (flying_prev_ && dir != flying_dir_) {
     return fail(md_->rotary && rotary_ == Ip247Rotary::shortest ? Ip247Error::no_direction_change_in_flying_change
                                                                 : Ip247Error::flying_change_failed,

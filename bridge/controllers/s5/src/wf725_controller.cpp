@@ -18,8 +18,6 @@ namespace {
 
 using namespace wf_db;
 
-constexpr double um = 1e-3;  // mm per µm
-
 IoLayout wf_layout() {
   return IoLayout{{2, 2, 1, 2U * wf_db::words}};
 }

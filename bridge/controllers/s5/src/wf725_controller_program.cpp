@@ -13,7 +13,6 @@ namespace hil::controllers::s5 {
 namespace {
 
 using namespace wf_db;
-constexpr double um = 1e-3;
 constexpr int loop_budget = 32;  // blocks without motion interpreted per cycle (no run can hang)
 
 }  // namespace

@@ -22,7 +22,7 @@ std::string shown(std::string_view s) {
   }
   return out;
 }
-std::string_view trim_right(std::string_view s) {
+std::string_view trim_trailing_spaces(std::string_view s) {
   while (!s.empty() && s.back() == ' ') s.remove_suffix(1);
   return s;
 }
@@ -98,7 +98,8 @@ std::expected<Telegram, ClientError> Client::transact(char lead, std::string_vie
     auto line = read_line(options_.response_timeout);
     if (!line) {
       last = line.error();
-      last.message = fmt::format("'{}': {}", shown(trim_right(request.substr(0, request.size() - 2))), last.message);
+      last.message =
+          fmt::format("'{}': {}", shown(trim_trailing_spaces(request.substr(0, request.size() - 2))), last.message);
       continue;
     }
     auto t = parse_telegram(*line, true);
@@ -110,10 +111,11 @@ std::expected<Telegram, ClientError> Client::transact(char lead, std::string_vie
     if (t->lead == 'X') {
       if (auto rep = parse_error_body(t->body)) {
         const std::string text = data_ ? data_->serial_error_text(rep->code) : rep->text;
-        last = ClientError{static_cast<SerialError>(rep->code),
-                           fmt::format("station {} rejected '{}': CLM serial error {:02d} \"{}\"", options_.station,
-                                       shown(trim_right(request.substr(0, request.size() - 2))), rep->code, text),
-                           rep->code};
+        last = ClientError{
+            static_cast<SerialError>(rep->code),
+            fmt::format("station {} rejected '{}': CLM serial error {:02d} \"{}\"", options_.station,
+                        shown(trim_trailing_spaces(request.substr(0, request.size() - 2))), rep->code, text),
+            rep->code};
         // A checksum error means the request was damaged on the way: send it again.
         if (rep->code == static_cast<int>(SerialError::checksum_error) ||
             rep->code == static_cast<int>(SerialError::format_error))
@@ -138,11 +140,11 @@ std::expected<std::string, ClientError> Client::read_program_line(int n) {
   if (t->lead != '#' || !t->body.starts_with(prefix))
     return std::unexpected(
         ClientError{SerialError::format_error, fmt::format("asked for line {:04d}, got '{}{}'", n, t->lead, t->body)});
-  return std::string(trim_right(std::string_view(t->body).substr(prefix.size())));
+  return std::string(trim_trailing_spaces(std::string_view(t->body).substr(prefix.size())));
 }
 
 std::expected<void, ClientError> Client::write_program_line(int n, std::string_view text) {
-  auto t = transact('#', fmt::format("N{:04d} {} ", n, trim_right(text)), options_.expect_confirmation);
+  auto t = transact('#', fmt::format("N{:04d} {} ", n, trim_trailing_spaces(text)), options_.expect_confirmation);
   if (!t) return std::unexpected(t.error());
   if (options_.expect_confirmation && !t->is_confirmation())
     return std::unexpected(ClientError{SerialError::format_error,
@@ -159,12 +161,12 @@ std::expected<std::string, ClientError> Client::read_parameter(std::string_view 
         ClientError{SerialError::format_error, fmt::format("asked for {}, got '{}{}'", number, t->lead, t->body)});
   std::string_view rest = std::string_view(t->body).substr(prefix.size());
   if (!rest.empty() && rest.front() == ' ') rest.remove_prefix(1);
-  return std::string(trim_right(rest));
+  return std::string(trim_trailing_spaces(rest));
 }
 
 std::expected<void, ClientError> Client::write_parameter(std::string_view number, std::string_view data) {
   // Parameters are sent without a space before '$' (manual Figs 9-14..16).
-  auto t = transact('#', fmt::format("K {} {}", number, trim_right(data)), options_.expect_confirmation);
+  auto t = transact('#', fmt::format("K {} {}", number, trim_trailing_spaces(data)), options_.expect_confirmation);
   if (!t) return std::unexpected(t.error());
   if (options_.expect_confirmation && !t->is_confirmation())
     return std::unexpected(
@@ -178,7 +180,7 @@ std::expected<std::string, ClientError> Client::read_variable(int n) {
   if (t->lead != 'V' || t->body.size() < 4)
     return std::unexpected(
         ClientError{SerialError::format_error, fmt::format("asked for V{:03d}, got '{}{}'", n, t->lead, t->body)});
-  return std::string(trim_right(std::string_view(t->body).substr(4)));
+  return std::string(trim_trailing_spaces(std::string_view(t->body).substr(4)));
 }
 
 std::expected<void, ClientError> Client::write_variable(int n, std::string_view value) {
@@ -195,7 +197,7 @@ std::expected<std::string, ClientError> Client::read_status(int n, std::string_v
                                        fmt::format("asked for status {:02d}, got '{}{}'", n, t->lead, t->body)});
   std::string_view rest = std::string_view(t->body).substr(2);
   if (!rest.empty() && rest.front() == ' ') rest.remove_prefix(1);
-  return std::string(trim_right(rest));
+  return std::string(trim_trailing_spaces(rest));
 }
 
 std::expected<void, ClientError> Client::command(std::string_view name) {

@@ -9,7 +9,7 @@
 namespace hil::serial::clm14 {
 
 namespace {
-std::string_view trim_right(std::string_view s) {
+std::string_view trim_line_end(std::string_view s) {
   while (!s.empty() && (s.back() == ' ' || s.back() == '\r' || s.back() == '\t')) s.remove_suffix(1);
   return s;
 }
@@ -35,7 +35,7 @@ std::expected<DeviceFile, FileProblems> parse_device_file(std::string_view text,
     std::string_view line = text.substr(pos, nl == std::string_view::npos ? std::string_view::npos : nl - pos);
     pos = nl == std::string_view::npos ? text.size() + 1 : nl + 1;
     ++lineno;
-    line = trim_right(line);
+    line = trim_line_end(line);
     if (line.empty() || line.front() == ';') continue;
     const auto where = [&](std::string_view what) { problems.push_back(fmt::format("{}:{}: {}", name, lineno, what)); };
     const std::size_t sp = line.find(' ');
@@ -91,7 +91,7 @@ std::string make_device_file(const DeviceFile& file, std::string_view header_com
   for (const auto& it : file.items) {
     out += it.key;
     out += ' ';
-    out += trim_right(it.text);
+    out += trim_line_end(it.text);
     if (out.back() == ' ') out.pop_back();
     out += '\n';
   }

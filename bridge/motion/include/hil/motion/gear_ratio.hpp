@@ -30,6 +30,11 @@ inline constexpr std::int64_t max_gear_term = std::int64_t{1} << 31;
   const std::int64_t q = a / b;
   return (a % b != 0 && a < 0) ? q - 1 : q;
 }
+/// a mod b in [0, b) for b > 0 (the remainder of floor_div; C++'s % keeps the sign of a).
+[[nodiscard]] constexpr std::int64_t floor_mod(std::int64_t a, std::int64_t b) noexcept {
+  const std::int64_t r = a % b;
+  return r < 0 ? r + b : r;
+}
 [[nodiscard]] constexpr i128 floor_div(i128 a, i128 b) noexcept {
   const i128 q = a / b;
   return (a % b != 0 && a < 0) ? q - 1 : q;

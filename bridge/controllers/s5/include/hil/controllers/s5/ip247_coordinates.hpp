@@ -28,6 +28,11 @@ struct Ip247Offsets {
   return r < 0 ? r + m : r;
 }
 
+/// -1, 0 or +1.
+[[nodiscard]] constexpr int ip247_sign(std::int64_t v) noexcept {
+  return v > 0 ? 1 : (v < 0 ? -1 : 0);
+}
+
 /// Rotary direction rule for absolute targets (G25/G26/G27, BA6 Start/Vorwärts/Rückwärts).
 enum class Ip247Rotary : std::uint8_t { shortest, forward, backward };
 

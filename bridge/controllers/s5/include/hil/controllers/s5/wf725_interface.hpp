@@ -12,6 +12,7 @@
 namespace hil::controllers::s5::wf_db {
 
 inline constexpr std::uint16_t words = 48;  ///< DW 0..47
+inline constexpr double um = 1e-3;          ///< mm per µm, the unit of the position double words
 
 // ---- PLC -> WF -----------------------------------------------------------------------------
 inline constexpr std::uint16_t dw_mode = 0;                ///< DL 0: mode bits, DR 0: submode number
