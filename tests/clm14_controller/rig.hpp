@@ -35,7 +35,7 @@ inline std::map<std::string, std::string> base_parameters() {
     p[n(10)] = "0.000";
     p[n(19)] = "01024 1024";
     p[n(20)] = "0 0 00 1";
-    p[n(24)] = "00.00.0 +100 0";
+    p[n(24)] = "00.00.0 +100 1";  // homing option 2 (marker only): HOM needs no switch
     p[n(27)] = ax == 1 ? "M2.00.0 0000.010" : "00.00.0 0000.010";
     p[n(29)] = "00.00.0 0.0 0000";
   }

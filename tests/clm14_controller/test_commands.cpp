@@ -287,11 +287,11 @@ TEST(ClmCommands, CounterWithVariablePresetWritesTheCountToTheNextVariable) {
 
 TEST(ClmCommands, PoaNeedsHomingAndMovesAbsolute) {
   // vector #29: from -100, POA +200 moves +300; from +400, -200.
-  Rig r({{"A124", "M2.01.0 +100 0"}});
+  Rig r({{"A124", "M2.01.0 +100 1"}});
   r.program({{0, "POA 1 +000200.000 999"}});
   r.start_auto();
   EXPECT_EQ(r.clm.error(), 0x48) << "not homed";
-  Rig h({{"A124", "M2.01.0 +100 0"}, {"A125", "-00100.000"}});
+  Rig h({{"A124", "M2.01.0 +100 1"}, {"A125", "-00100.000"}});
   h.program(
       {{0, "HOM 1"}, {1, "AKN M2.01.0 1"}, {2, "PSA 1 +000200.000 999"}, {3, "SET V600 = V100"}, {4, "JMP 0004"}});
   h.start_auto();
@@ -301,12 +301,12 @@ TEST(ClmCommands, PoaNeedsHomingAndMovesAbsolute) {
 }
 
 TEST(ClmCommands, TravelLimitsOnTargets) {
-  Rig r({{"A124", "M2.01.0 +100 0"}, {"A103", "-000010.000"}, {"A104", "+000050.000"}});
+  Rig r({{"A124", "M2.01.0 +100 1"}, {"A103", "-000010.000"}, {"A104", "+000050.000"}});
   r.program({{0, "HOM 1"}, {1, "AKN M2.01.0 1"}, {2, "POA 1 +000060.000 999"}});
   r.start_auto();
   r.run_until([&] { return r.clm.error() != 0; }, 5s);
   EXPECT_EQ(r.clm.error(), 0x51);
-  Rig s({{"A124", "M2.01.0 +100 0"}, {"A203", "-000010.000"}, {"A204", "+000050.000"}}, 2);
+  Rig s({{"A124", "M2.01.0 +100 1"}, {"A203", "-000010.000"}, {"A204", "+000050.000"}}, 2);
   s.program({{0, "HOM 2"}, {1, "AKN M2.01.0 0"}, {2, "WAI 00.200"}, {3, "POA 2 -000020.000 999"}});
   s.start_auto();
   s.run_until([&] { return s.clm.error() != 0; }, 5s);
@@ -496,7 +496,7 @@ TEST(ClmCommands, SacSetsAndOffsetsCoordinates) {
 }
 
 TEST(ClmCommands, RotaryTableTakesTheShortestPathWithRtm) {
-  Rig r({{"A100", "2 0 0 0 0"}, {"A105", "000360.000 0"}, {"A124", "M2.01.0 +100 0"}, {"A106", "001000.000"}});
+  Rig r({{"A100", "2 0 0 0 0"}, {"A105", "000360.000 0"}, {"A124", "M2.01.0 +100 1"}, {"A106", "001000.000"}});
   r.program({{0, "HOM 1"},
              {1, "AKN M2.01.0 1"},
              {2, "RTM 1 1"},

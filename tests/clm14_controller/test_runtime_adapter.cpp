@@ -3,6 +3,8 @@
 // registry, its inputs and outputs on the runtime's IoImage, its axes the runtime's motion::Axis.
 #include <gtest/gtest.h>
 
+#include <array>
+
 #include <filesystem>
 #include <fstream>
 
@@ -214,6 +216,23 @@ TEST(ClmRuntime, UnknownControllerKeyAndUnusedEncoderAreConfigErrors) {
   c = registry.create(spec);
   ASSERT_FALSE(c);
   EXPECT_NE(c.error().describe().find("C002 = 0"), std::string::npos) << c.error().describe();
+  // homing / markerN / master_encoder2: their values are checked, errors name the key.
+  const std::array<std::array<const char*, 3>, 4> bad{{{"homing", "both", "controller.homing"},
+                                                       {"marker1", "I1.05", "controller.marker1"},
+                                                       {"marker5", "0", "controller.marker5"},
+                                                       {"master_encoder2", "W", "C006 = 0"}}};
+  for (const auto& [key, value, expected] : bad) {
+    spec.options.clear();
+    spec.options.emplace(key, value);
+    c = registry.create(spec);
+    ASSERT_FALSE(c) << key;
+    EXPECT_NE(c.error().describe().find(expected), std::string::npos) << c.error().describe();
+  }
+  spec.options.clear();
+  spec.options.emplace("homing", "drive");
+  spec.options.emplace("marker1", "I1.05.0");
+  spec.options.emplace("marker2", "-1024");
+  EXPECT_TRUE(registry.create(spec).has_value());
 }
 
 }  // namespace

@@ -173,6 +173,9 @@ void Controller::power_up(TimePoint now) {
     a.rtm = 0;
     a.override_permille = 1000;
     a.override_limit = false;
+    a.homing = a.homing_restart = false;
+    a.homer.abort();
+    a.homed_out.reset();
   }
   reset_coupled_state();
   apply_parameters(now);
@@ -196,8 +199,10 @@ void Controller::cycle(TimePoint now) {
   ++cycle_count_;
   update_axes_in(now);
   update_master_in();
+  update_master2_in();
   update_mode(now);
   update_safety(now);
+  step_axis_inputs();
   jog(now);
   step_axis_functions(now);
   run_tasks(now);
@@ -235,6 +240,7 @@ void Controller::update_mode(TimePoint now) {
 void Controller::enter_mode(Mode m, TimePoint now) {
   const Mode old = mode_;
   mode_ = m;
+  for (int ax = 1; ax <= 4; ++ax) abort_homing(ax, false);  // a mode change aborts homing (§7.9)
   if (old == Mode::automatic) {
     if (run_ == RunState::running) save_restart();
     stop_program(false);
@@ -331,6 +337,7 @@ void Controller::update_safety(TimePoint now) {
     if (on != a.drive_enable && a.port != nullptr) a.port->set_enabled(on);
     if (!on && a.drive_enable) {
       a.has_target = a.feeding = a.held = a.pending = a.con = a.srm = false;
+      abort_homing(ax, false);
     }
     a.drive_enable = on;
   }
@@ -438,6 +445,7 @@ void Controller::command_clear() {
     a.fak = micro_one;
     a.rtm = 0;
     a.acc_permille = a.dec_permille = 0;
+    a.homed_out.reset();  // the Ax24 output is shown again after outputs were cleared
     if (a.port != nullptr) a.port->reset();
   }
   for (std::size_t t = 0; t < 5; ++t)
@@ -521,6 +529,11 @@ void Controller::resume_program() {
   for (int ax = 1; ax <= 4; ++ax) {
     resume_axis(ax);
     pause_follow(ax, false);  // FOL mode 2 re-synchronises on Start
+    auto& a = axes_[static_cast<std::size_t>(ax - 1)];
+    if (a.homing_restart && a.port != nullptr) {
+      a.homing_restart = false;
+      (void)start_homing(ax, 0);
+    }
   }
 }
 
@@ -543,6 +556,8 @@ void Controller::stop_program(bool keep_position) {
     auto& a = axes_[static_cast<std::size_t>(ax - 1)];
     a.con = false;
     a.srm = false;
+    // Homing stops; in Automatic HOM runs again at the next Start (§7.9 "Termination").
+    abort_homing(ax, keep_position && mode_ == Mode::automatic);
     if (follow_[static_cast<std::size_t>(ax - 1)].active) {
       if (keep_position) pause_follow(ax, true);  // mode 2 ramps down; mode 1 keeps following (§5.7)
       continue;
@@ -684,6 +699,7 @@ void Controller::update_outputs() {
   image_.set_bit(sys::out_run, mode_ == Mode::automatic && run_ == RunState::running &&
                                    image_.bit(sys::immediate_stop_ok) && !tasks_[0].manual_vector);
   image_.set_bit(sys::out_restart_possible, restart_.valid && !restart_blocked_);
+  image_.set_bit(sys::out_inhibit, inhibit_);
   for (int ax = 1; ax <= 4; ++ax) {
     const auto& a = axes_[static_cast<std::size_t>(ax - 1)];
     image_.set_bit(sys::out_drive_enable[static_cast<std::size_t>(ax - 1)], a.drive_enable);

@@ -238,6 +238,8 @@ void Controller::update_measurements() {
       if (axes_[ch].port != nullptr) m = clm_position(static_cast<int>(ch) + 1);
     } else if (ch == 4) {
       if (master_available()) m = master_position();
+    } else if (ch == 5) {
+      if (master2_available()) m = master2_position();
     } else if (ch == 6) {
       if (master_available()) m = processed_length();
     }
@@ -291,13 +293,12 @@ void Controller::step_couplings(TimePoint now) {
   for (int ax = 1; ax <= 4; ++ax) {
     auto& a = axes_[static_cast<std::size_t>(ax - 1)];
     if (!a.override_master || a.port == nullptr || error_ != 0) continue;
-    const auto& f = follow_[static_cast<std::size_t>(ax - 1)];
-    const double vmax = settings_.axes[static_cast<std::size_t>(ax - 1)].vmax;
-    const double ov = std::abs(master_velocity()) / vmax * to_double(f.factor);
+    const double ov = encoder_override(ax);
     if (ov > 1.25) {
+      const bool me2 = a.override_encoder == 2;
       raise(axis_code(ClmError::max_override, ax),
-            fmt::format("axis {}: VEO 5 override {:.3f} from master encoder 1 ({:.3f} IU/s) exceeds 1.25 × Vmax", ax,
-                        ov, master_velocity()));
+            fmt::format("axis {}: VEO {} override {:.3f} from master encoder {} ({:.3f} IU/s) exceeds 1.25 × Vmax", ax,
+                        me2 ? 6 : 5, ov, me2 ? 2 : 1, me2 ? master2_velocity() : master_velocity()));
       return;
     }
     a.master_override = ov;
@@ -427,9 +428,9 @@ Controller::Flow Controller::exec_coupled(int t, Task& k, const Instruction& in)
       return Flow::next;
     }
     case Op::fun: {
-      if (in.pattern[5] != 2) {
+      if (in.pattern[5] != 2 && !master2_available()) {
         fail(t, static_cast<int>(ClmError::invalid_program_command),
-             "FUN: master encoder 2 (measuring wheel of axis 2) is not modelled; give 2 for its channel");
+             "FUN: master encoder 2 (C004-C006) is not used or not connected; give 2 for its channel");
         return Flow::halt;
       }
       if ((in.pattern[4] != 2 || in.pattern[6] != 2) && !need_master("FUN on master encoder 1 / the tool"))

@@ -59,12 +59,13 @@ double Controller::feed_velocity(int axis, int permille) const {
   return std::max(v, as.vmax / 1000.0);
 }
 
-MoveLimits Controller::limits_for(int axis, double velocity) const {
+MoveLimits Controller::limits_for(int axis, double velocity, bool overridden) const {
   const auto& as = settings_.axes[static_cast<std::size_t>(axis - 1)];
   const auto& a = axes_[static_cast<std::size_t>(axis - 1)];
   const int pm = a.acc_permille != 0 ? a.acc_permille : as.accel_permille;
   MoveLimits l;
-  l.velocity = std::abs(velocity);
+  // B017 input override (axis_inputs.cpp): a factor on every move's velocity but homing's.
+  l.velocity = std::abs(velocity) * (overridden ? a.input_override : 1.0);
   l.acceleration = as.acceleration * (pm == 0 ? 1000 : pm) / 1000.0;
   if (a.aeo && master_available()) {
     // AEO (§5.7): Ax08 × (v_ME1 / Ax06)² × sss ‰, at least mmm ‰ of Ax08 (and 1 ‰ [decided]):
@@ -119,7 +120,8 @@ bool Controller::command_move(int axis, double target, double velocity, int t) {
   if (run_ == RunState::running || tasks_[0].manual_vector) {
     a.held = false;
     a.pending = !a.fb.enabled;  // the drive is still enabling: the feed starts once it is
-    if (!a.pending) a.port->move_to(raw_of(axis, target), limits_for(axis, velocity));
+    a.override_stopped = !a.pending && a.input_override == 0.0;  // B017 at 0 %: the feed waits
+    if (!a.pending && !a.override_stopped) a.port->move_to(raw_of(axis, target), limits_for(axis, velocity));
   } else {
     a.held = true;
   }
@@ -182,13 +184,14 @@ void Controller::step_axis_functions(TimePoint now) {
       a.pending = false;
       a.port->move_to(raw_of(ax, a.target), limits_for(ax, a.velocity));
     }
-    if (a.homing && a.fb.referenced && !a.fb.busy) {
-      a.homing = false;
-      a.homed = true;
-      a.base = as.home_offset - a.fb.position;
-      a.sac = 0.0;
+    step_homing(ax);
+    // The Ax24 "homed" output follows homed on a change only: the program may clear it while
+    // the axis stays homed (§7.9).
+    const bool homed_now = homed(ax) && !a.homing;
+    if (as.homed_output && a.homed_out != homed_now) {
+      write_bit(*as.homed_output, homed_now);
+      a.homed_out = homed_now;
     }
-    if (as.homed_output) write_bit(*as.homed_output, homed(ax) && !a.homing);
     // SRM: latch the mark, then move the offset from it; REP limits the search.
     if (a.srm) {
       const bool in = image_.bit(a.srm_input);
@@ -234,15 +237,22 @@ void Controller::jog(TimePoint now) {
   for (int ax = 1; ax <= 4; ++ax) {
     auto& a = axes_[static_cast<std::size_t>(ax - 1)];
     const auto& as = settings_.axes[static_cast<std::size_t>(ax - 1)];
-    if (a.port == nullptr || !as.enabled || follow_[static_cast<std::size_t>(ax - 1)].active) continue;
-    const bool allowed = mode_ == Mode::manual && error_ == 0 && a.drive_enable && !tasks_[0].manual_vector;
+    if (a.port == nullptr || !as.enabled || follow_[static_cast<std::size_t>(ax - 1)].active || a.homing) continue;
+    // Jog is blocked by Immediate Stop, the Ax15 inputs and an open feed roll (Inhibit Operation).
+    const bool blocked = feed_blocked(ax) || !image_.bit(sys::immediate_stop_ok);
+    const bool allowed = mode_ == Mode::manual && error_ == 0 && a.drive_enable && !tasks_[0].manual_vector && !blocked;
+    if (blocked && mode_ == Mode::manual &&
+        (image_.bit(sys::jog_forward[static_cast<std::size_t>(ax - 1)]) ||
+         image_.bit(sys::jog_reverse[static_cast<std::size_t>(ax - 1)])))
+      inhibit_ = true;
     const bool fwd = allowed && image_.bit(sys::jog_forward[static_cast<std::size_t>(ax - 1)]);
     const bool rev = allowed && image_.bit(sys::jog_reverse[static_cast<std::size_t>(ax - 1)]);
     const int dir = fwd == rev ? 0 : fwd ? 1 : -1;
     if (dir != 0 && !a.jog) {
       double v = as.jog_velocity;
       if (a.override_permille != 1000) v = std::max(v * a.override_permille / 1000.0, as.vmax / 1000.0);
-      a.port->run(dir * v, limits_for(ax, v));
+      v *= a.input_override;  // B017, taken when the jog starts [decided]
+      a.port->run(dir * v, limits_for(ax, v, false));
       a.jog = true;
       a.has_target = false;
     } else if (dir == 0 && a.jog) {
@@ -287,6 +297,17 @@ Controller::Flow Controller::exec_motion(int t, Task& k, const Instruction& in, 
     fail(t, axis_code(ClmError::axis_disabled, ax), fmt::format("axis {} is not enabled (B000 or !M{}OFF)", ax, ax));
     return Flow::halt;
   }
+  // "Do not move the axis meanwhile" (§5.7 HOM) [decided]: a command that moves a homing axis
+  // waits until the homing has ended.
+  if (a.homing && in.op != Op::hom && moves_axis(in.op)) return Flow::wait;
+  // §7.4 / §5.13: without the Ax15 feed-angle or interrupt signal, or with the Ax30 feed roll
+  // open, no feed starts: the task waits at the feed line (Inhibit Operation).
+  const bool starts_feed = in.op == Op::poa || in.op == Op::poi || in.op == Op::psa || in.op == Op::psi ||
+                           in.op == Op::srm || (in.op == Op::con && !(in.n[1].value == 0 && !in.n[1].is_var()));
+  if (starts_feed && k.phase == 0 && feed_blocked(ax)) {
+    inhibit_ = true;
+    return Flow::wait;
+  }
   const auto permille = [&](const Num& n, int lo) { return integer(n, t, lo, 999); };
   auto& fo = follow_[static_cast<std::size_t>(ax - 1)];
   const bool feed = in.op == Op::poi || in.op == Op::psi;
@@ -330,7 +351,7 @@ Controller::Flow Controller::exec_motion(int t, Task& k, const Instruction& in, 
         return Flow::next;
       }
       const double vel = feed_velocity(ax, std::abs(*v)) * (*v < 0 ? -1.0 : 1.0);
-      a.port->run(vel, limits_for(ax, vel));
+      a.port->run(vel * a.input_override, limits_for(ax, vel));
       a.con = true;
       a.con_velocity = vel;
       a.has_target = a.feeding = a.held = false;
@@ -353,15 +374,7 @@ Controller::Flow Controller::exec_motion(int t, Task& k, const Instruction& in, 
       return Flow::next;
     }
     case Op::hom:
-      if (as.absolute_encoder()) {
-        fail(t, axis_code(ClmError::hom_command, ax), "HOM with an absolute encoder");
-        return Flow::halt;
-      }
-      a.homed = false;
-      a.homing = true;
-      a.has_target = a.feeding = false;
-      a.port->home();
-      return Flow::next;
+      return start_homing(ax, t) ? Flow::next : Flow::halt;
     case Op::pbk: {
       // PBK brakes with the current deceleration and discards the rest of the motion (§5.7 PBK):
       // the target becomes the point where that braking ends, so a POI that follows adds to it
@@ -584,7 +597,7 @@ Controller::Flow Controller::exec_motion(int t, Task& k, const Instruction& in, 
       a.has_target = a.feeding = false;
       last_srm_axis_ = ax;
       const double vel = *v < 0 ? -a.velocity : a.velocity;
-      a.port->run(vel, limits_for(ax, vel));
+      a.port->run(vel * a.input_override, limits_for(ax, vel));
       k.phase = 1;
       return Flow::wait;
     }
@@ -627,21 +640,31 @@ Controller::Flow Controller::exec_motion(int t, Task& k, const Instruction& in, 
       auto v = permille(in.n[3], 0);
       auto lim = integer(in.n[4], t, 0, 1);
       if (!s || !v || !lim) return Flow::halt;
-      if (*s == 5) {
-        if (!master_available()) {
+      if (*s == 5 || *s == 6) {
+        // 5 = master encoder 1 (§5.7); 6 = master encoder 2 [decided: the second encoder, as 5]
+        if (*s == 5 ? !master_available() : !master2_available()) {
           fail(t, static_cast<int>(ClmError::invalid_program_command),
-               "VEO source 5 needs master encoder 1 (C002 > 0 and an encoder attached)");
+               *s == 5 ? "VEO source 5 needs master encoder 1 (C002 > 0 and an encoder attached)"
+                       : "VEO source 6 needs master encoder 2 (C006 > 0 and an encoder attached)");
           return Flow::halt;
         }
         a.override_master = true;
-        a.master_override = std::abs(master_velocity()) / as.vmax * to_double(fo.factor);
+        a.override_encoder = *s == 5 ? 1 : 2;
+        a.master_override = encoder_override(ax);
         a.override_limit = *lim == 1;
+        return Flow::next;
+      }
+      if (*s == 0) {
+        // [decided] source 0 = off: the VEO is cancelled, the B017 override inputs act again
+        a.override_master = false;
+        a.override_permille = 1000;
+        a.override_limit = false;
         return Flow::next;
       }
       if (*s != 4) {
         fail(t, static_cast<int>(ClmError::invalid_program_command),
-             fmt::format("VEO source {}: the B017 analog/binary/Gray override inputs are not modelled (4 = value "
-                         "from the command, 5 = master encoder 1)",
+             fmt::format("VEO source {}: not documented (0 = off, 4 = value from the command, 5 = master encoder 1, "
+                         "6 = master encoder 2)",
                          *s));
         return Flow::halt;
       }

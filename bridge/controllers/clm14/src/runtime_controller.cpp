@@ -3,6 +3,7 @@
 
 #include <fmt/format.h>
 
+#include <charconv>
 #include <fstream>
 #include <sstream>
 
@@ -51,9 +52,10 @@ std::optional<std::pair<std::string, std::string>> parameter_line(std::string_vi
 }  // namespace
 
 RuntimeController::RuntimeController(std::shared_ptr<const profiles::Profile> profile,
-                                     std::map<std::string, std::string> parameters, Duration cycle)
+                                     std::map<std::string, std::string> parameters, Duration cycle, Options options)
     : hc::Controller(std::move(profile), profiles::ParameterSet{}, hc::clm_io_layout(3, 3, 7), cycle),
-      parameters_(std::move(parameters)) {
+      parameters_(std::move(parameters)),
+      model_(options) {
   model_.set_parameters([this](std::string_view n) {
     const auto it = parameters_.find(std::string(n));
     return it == parameters_.end() ? std::string{} : it->second;
@@ -83,14 +85,50 @@ std::expected<std::unique_ptr<hc::Controller>, ConfigError> RuntimeController::c
   if (!settings)
     return std::unexpected(ConfigError{spec.parameters.string(), 0, 0, "controller.parameters",
                                        fmt::format("CLM error 02: {}", settings.error().message)});
-  // Controller keys: master_encoder = the machine axis whose drive counts master encoder 1.
+  // Controller keys: master_encoder = the machine axis whose drive counts master encoder 1;
+  // homing = clm | drive; marker1..marker4 = an encoder count offset or a CLM input address.
   std::string master_name;
+  std::string master2_name;
+  Options options;
   for (const auto& [key, value] : spec.options) {
-    if (key != "master_encoder")
-      return std::unexpected(
-          ConfigError{spec.file, spec.line, 0, fmt::format("controller.{}", key),
-                      fmt::format("unknown clm14 controller key '{}' (known: master_encoder)", key)});
-    master_name = value;
+    const auto bad = [&](std::string what) {
+      return std::unexpected(ConfigError{spec.file, spec.line, 0, fmt::format("controller.{}", key), std::move(what)});
+    };
+    if (key == "master_encoder") {
+      master_name = value;
+    } else if (key == "master_encoder2") {
+      if (!settings->me2.used())
+        return bad(fmt::format("master_encoder2 '{}': {} sets C006 = 0 (master encoder 2 not used)", value,
+                               spec.parameters.string()));
+      if (value.size() == 1 && value[0] >= '1' && value[0] <= '4')
+        return bad(fmt::format("master_encoder2 '{}' is the name of CLM axis {}: give the encoder axis its own name",
+                               value, value));
+      master2_name = value;
+    } else if (key == "homing") {
+      if (value != "clm" && value != "drive")
+        return bad(
+            fmt::format("homing '{}': expected clm (the CLM's own homing options, Ax23-Ax25) or drive "
+                        "(the drive's homing method)",
+                        value));
+      options.drive_homing = value == "drive";
+    } else if (key.size() == 7 && key.starts_with("marker") && key[6] >= '1' && key[6] <= '4') {
+      MarkerSource& m = options.markers[static_cast<std::size_t>(key[6] - '1')];
+      if (auto b = parse_bit(value); b && b->byte.area == Area::input) {
+        m.input = *b;
+      } else {
+        std::int64_t n = 0;
+        const auto [end, ec] = std::from_chars(value.data(), value.data() + value.size(), n);
+        if (ec != std::errc{} || end != value.data() + value.size())
+          return bad(
+              fmt::format("{} '{}': expected the marker's count offset (an integer, increments of the "
+                          "axis' encoder) or a CLM input address such as I1.05.0",
+                          key, value));
+        m.offset_inc = n;
+      }
+    } else {
+      return bad(fmt::format(
+          "unknown clm14 controller key '{}' (known: master_encoder, master_encoder2, homing, marker1..marker4)", key));
+    }
   }
   if (!master_name.empty()) {
     if (!settings->me1.used())
@@ -107,7 +145,7 @@ std::expected<std::unique_ptr<hc::Controller>, ConfigError> RuntimeController::c
   }
   const Duration cycle = spec.cycle.value_or(
       std::chrono::duration_cast<Duration>(std::chrono::duration<double, std::milli>(settings->cycle_ms)));
-  auto c = std::make_unique<RuntimeController>(*profile, std::move(params), cycle);
+  auto c = std::make_unique<RuntimeController>(*profile, std::move(params), cycle, options);
   for (int ax = 1; ax <= 4; ++ax) {
     const auto& as = settings->axes[static_cast<std::size_t>(ax - 1)];
     if (!as.enabled) continue;
@@ -127,6 +165,19 @@ std::expected<std::unique_ptr<hc::Controller>, ConfigError> RuntimeController::c
     a.config = master_encoder_config(settings->me1, settings->axes[0], master_name);
     c->add_axis(std::move(a));
     c->has_master_ = true;
+  }
+  if (!master2_name.empty()) {
+    if (master2_name == master_name)
+      return std::unexpected(ConfigError{spec.file, spec.line, 0, "controller.master_encoder2",
+                                         fmt::format("master_encoder2 '{}' is master encoder 1's axis", master2_name)});
+    // Master encoder 2 (C004 × 4 counts per C006 IU; the measuring wheel of axis 2): one more
+    // machine axis, limits as master encoder 1's from axis 2 (axis 1 when axis 2 is disabled).
+    hc::ControllerAxis a;
+    a.name = master2_name;
+    a.units = "IU";
+    a.config = master_encoder_config(settings->me2, settings->axes[settings->axes[1].enabled ? 1 : 0], master2_name);
+    c->add_axis(std::move(a));
+    c->has_master2_ = true;
   }
   std::vector<std::pair<int, std::string>> lines;
   for (const auto& prg : spec.programs) {
@@ -168,6 +219,10 @@ void RuntimeController::on_cycle(const CycleTime& cycle) noexcept {
     if (has_master_) {
       master_ = std::make_unique<MotionMasterEncoder>(axis(clm_axes_));
       model_.attach_master_encoder(master_.get());
+    }
+    if (has_master2_) {
+      master2_ = std::make_unique<MotionMasterEncoder>(axis(clm_axes_ + (has_master_ ? 1 : 0)));
+      model_.attach_master_encoder2(master2_.get());
     }
   }
   // The runtime's image holds CLM group x byte yy at x * 64 + yy (io_address_clm.hpp).

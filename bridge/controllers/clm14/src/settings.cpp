@@ -76,6 +76,21 @@ std::expected<Settings, ProgramError> make_settings(const ParameterLookup& looku
   s.interrupt_vector_aborts_move = b015[2] == "1";
   s.interrupt_vector_line = r.integer("B015", b015[3]);
   s.restart_line = r.integer("B016", r.fields("B016", 1)[0]);
+  if (!lookup("B017").empty()) {
+    // [decided, profile] digit order: averaging, override source of axes 1..4, reserved.
+    const auto b017 = r.fields("B017", 5);
+    for (std::size_t ax = 0; ax < 4; ++ax) {
+      s.override_source[ax] = r.integer("B017", b017[ax + 1]);
+      if (r.failed.empty() && (s.override_source[ax] < 0 || s.override_source[ax] > 6))
+        r.failed = fmt::format("B017: override source {} of axis {} (0 off, 1-4 analog, 5 binary, 6 Gray)",
+                               s.override_source[ax], ax + 1);
+      if (r.failed.empty() && s.axes[ax].enabled && s.override_source[ax] >= 1 && s.override_source[ax] <= 4)
+        r.failed = fmt::format(
+            "B017: axis {} takes its override from analog input {}: the analog inputs are not "
+            "modelled (use 5 binary or 6 Gray code)",
+            ax + 1, s.override_source[ax]);
+    }
+  }
   const auto b018 = r.fields("B018", 2);
   s.error_code_byte = r.integer("B018", b018[0]);
   for (std::size_t i = 0; i < 7; ++i) s.output_clear[i] = i < b018[1].size() ? b018[1][i] - '0' : 0;
@@ -123,6 +138,11 @@ std::expected<Settings, ProgramError> make_settings(const ParameterLookup& looku
     a.presignal_output = r.io(p(29), x29[0]);
     a.presignal_pulse_s = r.number(p(29), x29[1]);
     a.presignal_distance = r.number(p(29), x29[2]);
+    if (!lookup(p(30)).empty()) {
+      const auto x30 = r.fields(p(30), 2);
+      a.open_feed_roll_input = r.io(p(30), x30[0]);
+      a.open_feed_roll_output = r.io(p(30), x30[1]);
+    }
     const auto x32 = r.fields(p(32), 2);
     a.velocity_reached_output = r.io(p(32), x32[0]);
     a.decelerating_output = r.io(p(32), x32[1]);
@@ -145,6 +165,15 @@ std::expected<Settings, ProgramError> make_settings(const ParameterLookup& looku
   }
   s.me1.feed_constant = lookup("C002").empty() ? 0.0 : r.number("C002", r.fields("C002", 1)[0]);
   if (r.failed.empty() && s.me1.feed_constant < 0.0) r.failed = "C002: the feed constant must be >= 0";
+  // Master encoder 2 (C004-C006: "the same for master encoder 2", §8.4).
+  if (!lookup("C004").empty()) s.me2.pulses = r.integer("C004", r.fields("C004", 1)[0]);
+  if (!lookup("C005").empty()) {
+    const auto c005 = r.fields("C005", 6);
+    s.me2.inverted = c005[4] == "1";
+    s.me2.averaging = std::clamp(r.integer("C005", c005[5]), 0, 7);
+  }
+  s.me2.feed_constant = lookup("C006").empty() ? 0.0 : r.number("C006", r.fields("C006", 1)[0]);
+  if (r.failed.empty() && s.me2.feed_constant < 0.0) r.failed = "C006: the feed constant must be >= 0";
   if (!r.failed.empty()) return std::unexpected(ProgramError{ClmError::parameter_invalid, -1, r.failed});
   return s;
 }

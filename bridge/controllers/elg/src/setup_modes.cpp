@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
 #include "hil/controllers/elg/setup_modes.hpp"
 
-#include "hil/motion/gear_ratio.hpp"
+#include "hil/motion/zero_mark.hpp"
 
 #include "edge.hpp"
 
@@ -13,10 +13,6 @@ using detail::rising;
 std::int64_t SetupModes::override_percent(int position) const noexcept {
   if (position < 2 || position > 16) return 0;  // position 1: 0 %, always a hard stop (7.1)
   return md_.override_percent[static_cast<std::size_t>(position - 2)];
-}
-
-std::int64_t SetupModes::zero_mark_index(std::int64_t counts) const noexcept {
-  return motion::floor_div(counts, md_.zero_mark_counts > 0 ? md_.zero_mark_counts : 1);  // the grid, negative too
 }
 
 void SetupModes::abort() noexcept {
@@ -98,11 +94,10 @@ std::optional<Alarm> SetupModes::run_ref(const PanelSignals& p, std::int64_t c_a
     return behind_cam;
   }
   command_.velocity_counts_per_s = direction_ * md_speed_counts_per_s(md_.ref_cutoff_speed, percent);
-  const std::int64_t before = zero_mark_index(last_actual_), now = zero_mark_index(c_actual);
-  const std::int64_t zm = md_.zero_mark_counts > 0 ? md_.zero_mark_counts : 1;
-  std::optional<std::int64_t> mark;
-  if (direction_ > 0 && now > before) mark = (before + 1) * zm;
-  if (direction_ < 0 && now < before) mark = before * zm;
+  const motion::ZeroMarkGrid grid{md_.zero_mark_counts, 0};
+  const std::optional<std::int64_t> mark = direction_ > 0   ? grid.passed_forward(last_actual_, c_actual)
+                                           : direction_ < 0 ? grid.passed_backward(last_actual_, c_actual)
+                                                            : std::nullopt;
   last_actual_ = c_actual;
   if (mark) {
     // Reference point reached: the actual value at the zero mark becomes MD 240* (7.3).

@@ -25,6 +25,7 @@
 
 #include "hil/controllers/clm14/address.hpp"
 #include "hil/controllers/clm14/axis_port.hpp"
+#include "hil/controllers/clm14/homing.hpp"
 #include "hil/controllers/clm14/instruction.hpp"
 #include "hil/controllers/clm14/logic_task.hpp"
 #include "hil/controllers/clm14/master_encoder.hpp"
@@ -50,6 +51,12 @@ struct Options {
   /// MLO: true = the bit toggles each time the processed length passes the programmed length;
   /// false = it is set each time (the program clears it). The manual: "set/clear a bit".
   bool mlo_toggles = true;
+  /// HOM and the Ax23 homing input: false = the CLM's own homing options 1-4 against the home
+  /// switch and the encoder marker (homing.hpp); true = the drive's homing (hil::Drive request,
+  /// e.g. a CiA 402 method with the switch wired to the drive), after which the position is Ax25.
+  bool drive_homing = false;
+  /// The marker pulse of axes 1..4 (homing options 1 and 2).
+  std::array<MarkerSource, 4> markers{};
 };
 
 /// LMR (manual §5.7, vector 37): the raster distance (material from the previous mark at the
@@ -115,6 +122,9 @@ class Controller {
   /// Attach master encoder 1 (not owned; nullptr = none). Without it, FOL from master encoder 1,
   /// VEO source 5, AEO and the flying cutoff stop the program with 0A naming the encoder.
   void attach_master_encoder(MasterEncoderPort* port);
+  /// Attach master encoder 2 (C004-C006; not owned; nullptr = none): FUN's channel 6 (V042 /
+  /// V043) and VEO source 6 [decided]. Without it they stop the program with 0A naming it.
+  void attach_master_encoder2(MasterEncoderPort* port);
 
   // ---- run ---------------------------------------------------------------------------------
   /// Power-up sequence (§7.4): parameter check (02), logic compile (38), task 3 start.
@@ -175,6 +185,9 @@ class Controller {
   /// Master encoder 1: travel in IU (C002 × FAK 5 per C000 × 4 counts) and velocity (V011).
   [[nodiscard]] double master_position() const noexcept;
   [[nodiscard]] double master_velocity() const noexcept;
+  /// Master encoder 2: travel in IU (C006 per C004 × 4 counts) and velocity (IU/s, 8 NC cycles).
+  [[nodiscard]] double master2_position() const noexcept;
+  [[nodiscard]] double master2_velocity() const noexcept;
   /// Flying cutoff: synchronisations (cuts) so far, and the material point (ME1 IU) of the last.
   [[nodiscard]] std::uint64_t cuts() const noexcept { return cut_.cuts; }
   [[nodiscard]] double last_cut_point() const noexcept;
@@ -222,15 +235,28 @@ class Controller {
     double base = 0.0;  ///< CLM position = raw + base (homing) + sac
     double sac = 0.0;   ///< SAC offset
     bool homed = false;
-    bool homing = false;
-    double target = 0.0;      ///< CLM coordinates
-    bool has_target = false;  ///< a feed is commanded (target valid)
-    bool feeding = false;     ///< the target is not reached yet (remaining distance > window)
-    bool held = false;        ///< stopped by JST/Immediate Stop/!STOP: resume to target on Start
-    bool pending = false;     ///< commanded while the drive was still enabling: sent once it is
-    double move_start = 0.0;  ///< CLM position where the last move started (VCC mode 0)
-    double velocity = 0.0;    ///< IU/s of the current feed
-    int acc_permille = 0;     ///< ACC (0 = Ax09)
+    bool homing = false;          ///< a homing run is active (HOM, the Ax23 input)
+    bool homing_restart = false;  ///< Automatic: stopped by Immediate Stop / JST, HOM again on Start
+    Homing homer;
+    std::int64_t marker_last_inc = 0;  ///< actual increments of the previous cycle (marker passage)
+    bool marker_input_last = false;    ///< MarkerSource::input in the previous cycle
+    bool home_switch_last = false;     ///< the Ax23 home switch in the previous cycle (option 5)
+    std::optional<bool> homed_out;     ///< the Ax24 output as last written (written on change)
+    // axis_inputs.cpp: B017 override inputs, Ax15, Ax30, Ax32
+    double input_override = 1.0;         ///< B017 factor applied now (1 when off or VEO rules)
+    bool override_stopped = false;       ///< a feed stopped by a B017 override of 0
+    bool feed_angle_last = false;        ///< Ax15 feed-angle input in the previous cycle
+    bool interrupted = false;            ///< Ax15 interrupt input lost: the feed / CON stopped, resumes on its return
+    bool roll_open = false;              ///< Ax30: the feed roll is open (command 0: the drive is disabled)
+    double command_velocity_last = 0.0;  ///< Ax32: the set-point velocity of the previous cycle
+    double target = 0.0;                 ///< CLM coordinates
+    bool has_target = false;             ///< a feed is commanded (target valid)
+    bool feeding = false;                ///< the target is not reached yet (remaining distance > window)
+    bool held = false;                   ///< stopped by JST/Immediate Stop/!STOP: resume to target on Start
+    bool pending = false;                ///< commanded while the drive was still enabling: sent once it is
+    double move_start = 0.0;             ///< CLM position where the last move started (VCC mode 0)
+    double velocity = 0.0;               ///< IU/s of the current feed
+    int acc_permille = 0;                ///< ACC (0 = Ax09)
     int dec_permille = 0;
     Micro fak = micro_one;
     int rtm = 0;  ///< 0 from Ax05, 1 shortest, 2 programmed direction
@@ -250,7 +276,8 @@ class Controller {
     bool drive_enable = false;
     TimePoint enable_since{};
     int override_permille = 1000;  ///< VEO source 4
-    bool override_master = false;  ///< VEO source 5: override = ME1 velocity / Vmax × FOL factor
+    bool override_master = false;  ///< VEO source 5 / 6: override = ME velocity / Vmax × FOL factor
+    int override_encoder = 1;      ///< VEO source 5: master encoder 1; 6: master encoder 2 [decided]
     double master_override = 1.0;
     int feed_permille = 999;  ///< ‰ of the running feed (re-planned when the VEO 5 override moves)
     bool aeo = false;         ///< AEO: acceleration from the ME1 velocity
@@ -367,7 +394,9 @@ class Controller {
   bool store_variable(int var, Micro v, int t);
   // motion.cpp
   Flow exec_motion(int t, Task& task, const Instruction& in, TimePoint now);
-  [[nodiscard]] MoveLimits limits_for(int axis, double velocity) const;
+  /// The move limits of `axis` at `velocity` (IU/s): Ax08 × ACC/Ax09 ‰, AEO, the Ax10 jerk;
+  /// `overridden` = the B017 input override scales the velocity (not for homing, §7.3).
+  [[nodiscard]] MoveLimits limits_for(int axis, double velocity, bool overridden = true) const;
   [[nodiscard]] double feed_velocity(int axis, int permille) const;
   bool command_move(int axis, double target_clm, double velocity, int t);
   void resume_axis(int axis);
@@ -377,6 +406,22 @@ class Controller {
   [[nodiscard]] bool reached(int axis) const;
   void step_axis_functions(TimePoint now);
   void jog(TimePoint now);
+  // axis_inputs.cpp: B017 override inputs, Ax15 feed angle / interrupt, Ax30 open feed roll, Ax32
+  /// The B017 override factor of `axis` from the inputs now (1 = off; VEO has priority).
+  [[nodiscard]] double input_override(int axis) const;
+  /// Feed lines of `axis` wait: Ax15 feed angle or interrupt missing, Ax30 roll open.
+  [[nodiscard]] bool feed_blocked(int axis) const;
+  void step_axis_inputs();
+  // homing_run.cpp: the CLM's own homing (homing.hpp), the Ax23 input, option 5, the Ax24 output
+  /// Start homing axis `axis` (HOM in task `t`, or t = 0 for the Ax23 homing input). False when
+  /// it cannot start (the error is raised).
+  bool start_homing(int axis, int t);
+  void step_homing(int axis);
+  /// End a homing run; `restart` = HOM again at the next Start (Automatic, §7.9).
+  void abort_homing(int axis, bool restart);
+  [[nodiscard]] HomingInput homing_input(int axis);
+  void apply_homing(int axis, const HomingCommand& c);
+  void set_home(int axis, std::int64_t home_inc);
   // coupled.cpp: master encoder, FOL, FUN, MLO/MLT, AEO, VEO 5, SRP
   void update_master_in();
   Flow exec_coupled(int t, Task& task, const Instruction& in);
@@ -386,6 +431,11 @@ class Controller {
   void pause_follow(int axis, bool pause);
   void reset_coupled_state();
   [[nodiscard]] bool master_available() const noexcept;
+  // master_encoder2.cpp
+  void update_master2_in();
+  [[nodiscard]] bool master2_available() const noexcept;
+  /// The override of VEO source 5 / 6 of `axis` now: |v_ME| / Ax06 × FOL factor.
+  [[nodiscard]] double encoder_override(int axis) const;
   [[nodiscard]] double me_iu_per_count() const noexcept;
   [[nodiscard]] std::optional<std::int64_t> master_counts(int axis) const;
   [[nodiscard]] std::optional<motion::GearRatio> follow_ratio(int axis, Micro factor) const;
@@ -446,6 +496,8 @@ class Controller {
   Mlo mlo_{};
   Srp srp_{};
   int last_srm_axis_ = 0;
+  bool inhibit_ = false;  ///< Inhibit Operation (Q0.01.5): a move was blocked this cycle
+  MasterIn me2_{};        ///< master encoder 2 (C004-C006)
 };
 
 [[nodiscard]] const char* to_string(Mode m) noexcept;

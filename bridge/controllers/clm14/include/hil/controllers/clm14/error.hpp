@@ -42,8 +42,12 @@ enum class ClmError : std::uint8_t {
   min_travel = 0x46,
   max_travel = 0x47,
   not_homed = 0x48,
+  cam_too_short = 0x49,          ///< homing: braked past the cam, or the cam ended before its marker
+  no_marker_pulse = 0x4A,        ///< homing: no marker within one revolution
+  marker_pulse_position = 0x4B,  ///< homing: cam edge - marker outside 1/16 .. 15/16 revolution
   max_override = 0x4D,
   axis_disabled = 0x4E,
+  marker_high = 0x4F,  ///< homing: the marker line stays high
   target_below_limit = 0x50,
   target_above_limit = 0x51,
   hom_command = 0x52,

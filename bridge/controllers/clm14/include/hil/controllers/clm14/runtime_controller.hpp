@@ -5,7 +5,10 @@
 // io_address_clm.hpp) and whose axes are the runtime's motion::Axis objects. A scenario names
 // it with `controller: {device: clm14, parameters: clm.par, program: clm.prg}`; the key
 // `master_encoder: NAME` declares one more axis, NAME, whose actual increments are master
-// encoder 1's counts (C000 × 4 per C002 IU): the material of a flying cutoff, a FOL master.
+// encoder 1's counts (C000 × 4 per C002 IU): the material of a flying cutoff, a FOL master;
+// `master_encoder2: NAME` likewise master encoder 2 (C004 × 4 per C006 IU); `homing: clm | drive`
+// (Options::drive_homing) and `marker1` .. `marker4` (the marker pulse of an axis: a count offset of the encoder's
+// marker, or a CLM input address, MarkerSource).
 //
 // Parameter files: one parameter per line, either the hilbridge text form "B002 019200 0 1 8 1"
 // or the CLM telegram "# K B002 019200 0 1 8 1$E4"; program files "0000 POI 1 +000100.000 999".
@@ -45,7 +48,7 @@ class RuntimeController final : public hil::controllers::Controller {
   [[nodiscard]] clm14::Controller& model() noexcept { return model_; }
 
   RuntimeController(std::shared_ptr<const profiles::Profile> profile, std::map<std::string, std::string> parameters,
-                    Duration cycle);
+                    Duration cycle, Options options = {});
 
  protected:
   void on_cycle(const CycleTime& cycle) noexcept override;
@@ -59,6 +62,8 @@ class RuntimeController final : public hil::controllers::Controller {
   std::size_t clm_axes_ = 0;  ///< axes 1..n of the CLM, declared first
   bool has_master_ = false;   ///< then master encoder 1's axis (controller key master_encoder)
   std::unique_ptr<MotionMasterEncoder> master_;
+  bool has_master2_ = false;  ///< then master encoder 2's axis (controller key master_encoder2)
+  std::unique_ptr<MotionMasterEncoder> master2_;
   int shown_error_ = 0;
   int shown_axis_ = -1;  ///< the runtime axis index shown_error_ was raised on (-1: the controller)
 };

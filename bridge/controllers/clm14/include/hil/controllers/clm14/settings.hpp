@@ -53,6 +53,8 @@ struct AxisSettings {
   std::optional<BitAddress> presignal_output;         ///< Ax29
   double presignal_pulse_s = 0.0;                     ///< 0 = steady
   double presignal_distance = 0.0;                    ///< IU
+  std::optional<BitAddress> open_feed_roll_input;     ///< Ax30 field 1
+  std::optional<BitAddress> open_feed_roll_output;    ///< Ax30 field 2: "open feed roll enabled"
   std::optional<BitAddress> velocity_reached_output;  ///< Ax32 left
   std::optional<BitAddress> decelerating_output;      ///< Ax32 right
   int feedforward = 0;                                ///< Ax11 f: 0 off, 1 on, 2..9 averaging of 2..256 values
@@ -74,6 +76,8 @@ struct MasterEncoderSettings {
 
 struct Settings {
   MasterEncoderSettings me1{};
+  /// Master encoder 2 (C004-C006: the measuring wheel of axis 2, FUN's channel 6). C006 = 0: not used.
+  MasterEncoderSettings me2{0, false, 0, 0.0};
   std::array<AxisSettings, 4> axes{};
   int axis_count = 1;               ///< highest enabled axis
   double cycle_ms = 2.0;            ///< B010 (0.0 = auto: 2 ms for 1-2 axes, 3 for 3, 4 for 4)
@@ -89,6 +93,8 @@ struct Settings {
   int restart_line = 0;               ///< B016; 0 = no restart program
   int error_code_byte = 0;            ///< B018 f: 0 off, 1..6 = Q1.00..Q1.05
   std::array<int, 7> output_clear{};  ///< B018 g per output byte Q1.00..Q1.06: 0 clear, 1 keep until cleared, 2 never
+  /// B017 override source of axes 1..4: 0 off, 1-4 analog input 1-4, 5 binary I1.01.0-7, 6 Gray I1.01.4-7.
+  std::array<int, 4> override_source{};
 };
 
 /// Reads a parameter's stored text ("" when the set has none).

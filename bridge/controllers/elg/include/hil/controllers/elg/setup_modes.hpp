@@ -100,7 +100,6 @@ class SetupModes {
  private:
   std::optional<Alarm> start(const PanelSignals& p, std::int64_t c_set, int direction);
   std::optional<Alarm> run_ref(const PanelSignals& p, std::int64_t c_actual);
-  std::int64_t zero_mark_index(std::int64_t counts) const noexcept;
 
   SetupMachineData md_;
   SetupState state_ = SetupState::idle;
