@@ -38,6 +38,7 @@ Wf725Controller::Wf725Controller(LoadedParameters parameters, Wf725MachineData m
   admin_cat_ = catalogue("memory_admin");
   standard2_cat_ = catalogue("standard2");
   std::copy(std::begin(opt_.ref_speeds), std::end(opt_.ref_speeds), std::begin(ref_speeds_));
+  if (auto syntax = wf725_program_syntax(profile())) syntax_ = *syntax;
   jog_feed_ = opt_.jog_feed;
   const std::string s = "_" + axis.name;
   for (std::uint8_t e = 0; e < 6; ++e) {
@@ -457,13 +458,24 @@ void Wf725Controller::handle_start(TimePoint now) {
 void Wf725Controller::run_job(const CycleTime& cycle) {
   const TimePoint now = cycle.now;
   auto& ax = axis(0);
+  const auto state = ax.status().state;
+  if (job_ != Job::none && job_ != Job::clamping &&
+      (state == motion::AxisState::error || state == motion::AxisState::disabled)) {
+    // A supervision fault (a hard limit switch 15/16, following error 11, ...) ended the motion:
+    // the job is over and a pre-limit it aimed at was not reached (no 95/96).
+    abort_job();
+    return;
+  }
   switch (job_) {
     case Job::none:
       return;
     case Job::jog:
     case Job::move:
       if (motion_done()) {
-        if (limit_side_ != 0) raise_wf(limit_side_ < 0 ? 0x95 : 0x96, now);
+        // 95/96 only where the move really ended on the pre-limit switch MD 11/13.
+        const double pre = static_cast<double>(md_.integer(limit_side_ < 0 ? 11 : 13)) * um;
+        if (limit_side_ != 0 && std::abs(machine_command_mm() - pre) < 0.5 * um)
+          raise_wf(limit_side_ < 0 ? 0x95 : 0x96, now);
         limit_side_ = 0;
         if (job_ == Job::move) job_ = Job::none;
       }
@@ -606,27 +618,28 @@ void Wf725Controller::handle_data_code(TimePoint now) {
       }
       break;
     case code::write_md:
-    case code::read_md: {
+      if (const int e = write_machine_data(p1, p2))
+        raise_io(e, now,
+                 e == 121 ? fmt::format("MD {}", p1) : "machine data are written in mode machine data input/output",
+                 e == 121 ? "program_io" : "memory_admin");
+      break;
+    case code::read_md:
       if (p1 < 1 || p1 > 50) {
         raise_io(121, now, fmt::format("MD {}", p1));
-        break;
+      } else {
+        result = read_machine_data(p1);
       }
-      const long double lsb = (p1 == 3 || p1 == 22) ? 0.01L : 1.0L;
-      if (c == code::read_md) {
-        result = static_cast<std::int32_t>(std::llround(static_cast<double>(md_.get(p1) / lsb)));
-        break;
-      }
-      if (mode_bits_ != (1U << (bit_mode_machine_data - 8))) {
-        raise_io(201, now, "machine data are written in mode machine data input/output", "memory_admin");
-        break;
-      }
-      const long double v = static_cast<long double>(p2) * lsb;
-      if (wf725_md_shapes_axis(p1) && v != md_.get(p1) &&
-          std::find(pending_md_.begin(), pending_md_.end(), p1) == pending_md_.end())
-        pending_md_.push_back(p1);
-      md_.set(p1, v);
       break;
-    }
+    case code::program_in:
+    case code::program_out:
+      if (mode_bits_ != (1U << (bit_mode_program_io - 8))) {
+        raise_io(201, now, "programs are read in and out in mode program input/output (D 0.9)", "memory_admin");
+      } else if (c == code::program_in) {
+        program_input(p1, now);
+      } else {
+        program_output(p1, p2, now);
+      }
+      break;
     default:
       raise_io(113, now, fmt::format("data code {:X}", c));
       break;

@@ -24,6 +24,7 @@
 // Thread: the cycle thread (Controller); read_db_word/write_db_word between cycles.
 
 #include <cstdint>
+#include <map>
 #include <memory>
 #include <optional>
 #include <span>
@@ -47,6 +48,13 @@ struct Wf725Options {
   std::int64_t jog_feed = 0;               ///< 10^-2 mm/min (data code 1C)
 };
 
+/// The S5 user data blocks beside the module: the PLC's DBs that the "Software Schale" FB copies
+/// programs between (digest §5.5, errors 401/402), DB number -> words (DW 0..255). Each controller
+/// owns one; `hilbridge emulate wf725` lends its endpoint's DB store to every axis of the module
+/// (so the user DBs a PG tool writes over RK512 are the ones data code 44 reads, and persist).
+using Wf725UserBlocks = std::map<std::uint8_t, std::vector<std::uint16_t>>;
+inline constexpr std::size_t wf725_user_block_words = 256;  ///< DW 0..255 (what RK512 addresses)
+
 class Wf725Controller final : public Controller {
  public:
   Wf725Controller(LoadedParameters parameters, Wf725MachineData md, ControllerAxis axis, Duration cycle,
@@ -64,6 +72,26 @@ class Wf725Controller final : public Controller {
   [[nodiscard]] std::span<const S5DataBlock> data_blocks() const noexcept override { return {&db_.block(), 1}; }
 
   [[nodiscard]] std::expected<BitAddress, std::string> resolve_bit(std::string_view text) const override;
+  /// DB `db` = the DB axis (as the base class), any other DB number a user data block (created
+  /// by its first write, at most DW 255): program input/output by data codes 44/45 reads and
+  /// writes them (docs/wf725.md, "Program input/output").
+  [[nodiscard]] std::expected<std::uint16_t, std::string> read_data_word(int db, int dw) const override;
+  std::expected<void, std::string> write_data_word(int db, int dw, std::uint16_t value) override;
+  /// Uses `blocks` (shared with the module's other axes; must outlive every later cycle) as the
+  /// user data blocks; nullptr: the controller's own again.
+  void use_user_blocks(Wf725UserBlocks* blocks) noexcept { user_blocks_ = blocks != nullptr ? blocks : &own_blocks_; }
+  [[nodiscard]] Wf725UserBlocks& user_blocks() noexcept { return *user_blocks_; }
+
+  // ---- machine data as the module holds them (data codes 50/51, the MD image of DB 1) ------
+  /// MD n as its stored integer (MD 3, MD 22 in their 0.01 steps; the binary input format).
+  [[nodiscard]] std::int32_t read_machine_data(int n) const noexcept;
+  /// Writes MD n (stored integer): 0, or 121 (n outside 1..50) / 201 (not in mode machine-data
+  /// input/output). MD that shape the axis apply at the next power-up (pending_md()).
+  [[nodiscard]] int write_machine_data(int n, std::int32_t stored) noexcept;
+  /// Whether the module is in mode machine-data input/output (D 0.10 accepted).
+  [[nodiscard]] bool machine_data_mode() const noexcept {
+    return mode_bits_ == (1U << (wf_db::bit_mode_machine_data - 8));
+  }
 
   // ---- observation (tests, summary) ------------------------------------------------------------
   /// Actual value as the module shows it (program coordinates), µm (10^-3 degree).
@@ -117,6 +145,9 @@ class Wf725Controller final : public Controller {
   void handle_mode(TimePoint now);
   void handle_drive(TimePoint now);
   void handle_data_code(TimePoint now);
+  /// Data codes 44/45: program input from / output to a user data block (Software Schale).
+  void program_input(int db, TimePoint now);
+  void program_output(int program, int db, TimePoint now);
   void handle_start(TimePoint now);
   void run_job(const CycleTime& cycle);
   void check_limits(TimePoint now);
@@ -159,6 +190,9 @@ class Wf725Controller final : public Controller {
   Wf725Options opt_;
   Wf725ProgramStore store_;
   S5InterfaceDb db_;
+  Wf725ProgramSyntax syntax_ = wf725_default_syntax();
+  Wf725UserBlocks own_blocks_;
+  Wf725UserBlocks* user_blocks_ = &own_blocks_;
   const profiles::ErrorCatalogue* traversing_cat_ = nullptr;
   const profiles::ErrorCatalogue* io_cat_ = nullptr;
   const profiles::ErrorCatalogue* admin_cat_ = nullptr;
