@@ -114,7 +114,7 @@ Wf725CalcResult wf725_calculate(const Wf725CalcInput& in) {
       add("Factor_DAC", f, "", "data code 29 reads it");
       if (f >= 3) problem(fmt::format("Factor_DAC = {:.4f} must be < 3: raise MD 3 or lower MD 22/MD 23", f));
     }
-    if (factor > 0) add("following_error_per_DAC_step", std::ceil(1.0 / factor), "um");
+    if (factor > 0) add("following_error_per_DAC_step", std::ceil(1.0 / factor), "increments");
     const double md24 = in.md24_um.value_or(std::round(1.2 * *smax));
     const double md26 = in.md26_um.value_or(std::round(0.1 * *smax));
     if (!in.md24_um) add("MD24", md24, "um", "MD 24");
@@ -138,7 +138,7 @@ Wf725CalcResult wf725_calculate(const Wf725CalcInput& in) {
   if (in.absolute && vmax && a > 0 && bi) {
     const double tz = in.series == 725 ? 4.0 : (in.jerk_limit ? 8.0 : 6.0);
     add("cycle", tz, "ms");
-    add("MD34_minimum", 5.0 * tz * *vmax / (60.0 * *bi * a), "steps", "MD 34 > this");
+    add("MD34_minimum", 5.0 * tz * *vmax / (60.0 * *bi * a), "steps", "MD 34 (more than this)");
   }
   if (in.possible_steps && in.used_steps) {
     const double md7 = (*in.possible_steps - *in.used_steps) / 2.0;
