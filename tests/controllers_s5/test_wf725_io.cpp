@@ -76,6 +76,86 @@ TEST_F(W, ProgramInputAndOutputByDataCodes) {
   EXPECT_EQ(ctl->programs().find(32), nullptr);
 }
 
+TEST_F(W, AutomaticBufferRunsReloadsAndChangesWithM12) {
+  auto md = base_md();
+  md[8] = "10";  // timed M output: M11/M12 need no handshake
+  start(md);
+  synchronize();
+  traverse(db::Submode::automatic_buffer);
+  // Setting the length: buffer 0 155, another axis' buffer 151, more than 50 blocks 152.
+  data_code(db::code::buffer_length, 0, 2);
+  EXPECT_EQ(io_error(), 0x0155);
+  data_code(db::code::buffer_length, 3, 2);
+  EXPECT_EQ(io_error(), 0x0151);
+  data_code(db::code::buffer_length, 1, 51);
+  EXPECT_EQ(io_error(), 0x0152);
+  // Reloading: no length yet 143; not from N1 144; N 51 147; a block of a number only 146; more
+  // blocks than the length 143; nothing of a refused reload is taken.
+  put_db(*ctl, 20, text_words("N1 G90 X 10 000 F 300 000\nN2 G90 X 20 000 F 300 000 M12\n"));
+  data_code(db::code::buffer_reload, 1, 20);
+  EXPECT_EQ(io_error(), 0x0143);
+  data_code(db::code::buffer_length, 1, 2);
+  EXPECT_EQ(io_error(), 0);
+  put_db(*ctl, 21, text_words("N2 G90 X 1 F 100\n"));
+  data_code(db::code::buffer_reload, 1, 21);
+  EXPECT_EQ(io_error(), 0x0144);
+  put_db(*ctl, 22, text_words("N51 G90 X 1 F 100\n"));
+  data_code(db::code::buffer_reload, 1, 22);
+  EXPECT_EQ(io_error(), 0x0147);
+  put_db(*ctl, 23, text_words("N1\n"));
+  data_code(db::code::buffer_reload, 1, 23);
+  EXPECT_EQ(io_error(), 0x0146);
+  put_db(*ctl, 24, text_words("N1 G90 X 1 F 100\nN2 G90 X 2 F 100\nN3 G90 X 3 F 100\n"));
+  data_code(db::code::buffer_reload, 1, 24);
+  EXPECT_EQ(io_error(), 0x0143);
+  EXPECT_TRUE(ctl->buffer(1).program.blocks.empty());
+  data_code(db::code::buffer_reload, 1, 20);
+  EXPECT_EQ(io_error(), 0);
+  EXPECT_TRUE(ctl->buffer(1).complete());
+  // Starting: another axis' buffer B0, an incomplete buffer B1.
+  ctl->write_db_word(db::dw_program, 3);
+  start_pulse();
+  EXPECT_EQ(error(), 0xB0);
+  ctl->write_db_word(db::dw_program, 2);
+  start_pulse();
+  EXPECT_EQ(error(), 0xB1);
+  // Buffer 2: one block, loaded in two reloads of part of it is not possible (length 1).
+  data_code(db::code::buffer_length, 2, 1);
+  put_db(*ctl, 25, text_words("N1 G90 X 5 000 F 300 000\n"));
+  data_code(db::code::buffer_reload, 2, 25);
+  EXPECT_EQ(io_error(), 0);
+  // Run buffer 1: N1, N2 with M12 -> buffer 2 -> end at 5 mm. Reloading the running buffer: 203.
+  ctl->write_db_word(db::dw_program, 1);
+  start_pulse();
+  EXPECT_EQ(error(), 0);
+  data_code(db::code::buffer_reload, 1, 20);
+  EXPECT_EQ(io_error(), 0x0203);
+  ASSERT_TRUE(run_until([&] { return !bit(db::dw_flags, 1) && bit(db::dw_status, db::bit_peh); }));
+  run(milliseconds(300));  // settles inside the PEH window
+  EXPECT_EQ(actual(), 5000);
+  EXPECT_EQ(error(), 0);
+  EXPECT_EQ(ctl->m_history(), (std::vector<int>{12}));
+  // Both buffers ran and are consumed: a new start needs a reload (B1).
+  EXPECT_FALSE(ctl->buffer(1).complete());
+  EXPECT_FALSE(ctl->buffer(2).complete());
+  start_pulse();
+  EXPECT_EQ(error(), 0xB1);
+  // M11 in an odd buffer: B2 at the start.
+  data_code(db::code::buffer_length, 1, 1);
+  put_db(*ctl, 26, text_words("N1 G91 X 100 F 100 000 M11\n"));
+  data_code(db::code::buffer_reload, 1, 26);
+  ctl->write_db_word(db::dw_program, 1);
+  start_pulse();
+  EXPECT_EQ(error(), 0xB2);
+  // M12 in an even buffer: B3.
+  data_code(db::code::buffer_length, 2, 1);
+  put_db(*ctl, 27, text_words("N1 G91 X 100 F 100 000 M12\n"));
+  data_code(db::code::buffer_reload, 2, 27);
+  ctl->write_db_word(db::dw_program, 2);
+  start_pulse();
+  EXPECT_EQ(error(), 0xB3);
+}
+
 TEST_F(W, ModulePolicyServesTheDbAxisMdImageAndUserBlocks) {
   start(base_md());
   Wf725ModulePolicy policy({ctl.get()}, std::chrono::milliseconds(1),

@@ -283,6 +283,7 @@ void Wf725Controller::abort_job() {
   step_ = Step::fetch;
   limit_side_ = 0;
   running_program_ = running_block_ = 0;
+  running_buffer_ = 0;
   continuous_measure_ = false;
   g99_wait_ = false;
 }
@@ -444,6 +445,9 @@ void Wf725Controller::handle_start(TimePoint now) {
     case Submode::automatic:
     case Submode::automatic_step:
       (void)start_program(now, submode_ != Submode::automatic);
+      return;
+    case Submode::automatic_buffer:
+      (void)start_buffer(now);
       return;
     case Submode::clamping:
       if (md_.integer(25) < md_.integer(32)) return raise_wf(0x10, now, "clamping with MD 25 < MD 32");
@@ -629,6 +633,12 @@ void Wf725Controller::handle_data_code(TimePoint now) {
       } else {
         result = read_machine_data(p1);
       }
+      break;
+    case code::buffer_length:
+      buffer_length(p1, p2, now);
+      break;
+    case code::buffer_reload:
+      buffer_reload(p1, p2, now);
       break;
     case code::program_in:
     case code::program_out:

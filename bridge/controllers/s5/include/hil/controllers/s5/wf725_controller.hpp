@@ -23,6 +23,8 @@
 // (D 2.1 with MD 15 = 1, else X7 E<axis>).
 // Thread: the cycle thread (Controller); read_db_word/write_db_word between cycles.
 
+#include <algorithm>
+#include <array>
 #include <cstdint>
 #include <map>
 #include <memory>
@@ -54,6 +56,18 @@ struct Wf725Options {
 /// (so the user DBs a PG tool writes over RK512 are the ones data code 44 reads, and persist).
 using Wf725UserBlocks = std::map<std::uint8_t, std::vector<std::uint16_t>>;
 inline constexpr std::size_t wf725_user_block_words = 256;  ///< DW 0..255 (what RK512 addresses)
+
+/// One buffer of the automatic buffer (digest §6.2, errors B0-B3, 143-155): the PLC sets its length,
+/// reloads blocks 1..length in ascending order without gaps; a completely loaded buffer can be
+/// started; a buffer that ran is consumed (reloaded before it runs again).
+struct Wf725Buffer {
+  Wf725Program program;  ///< number = buffer number 1..6, the blocks loaded so far
+  int length = 0;        ///< set by data code 48 (1..50), 0 = not set
+  [[nodiscard]] bool complete() const noexcept {
+    return length > 0 && static_cast<int>(program.blocks.size()) == length;
+  }
+};
+inline constexpr int wf725_buffer_blocks = 50;
 
 class Wf725Controller final : public Controller {
  public:
@@ -101,6 +115,10 @@ class Wf725Controller final : public Controller {
   [[nodiscard]] wf_db::Submode submode() const noexcept { return submode_; }
   [[nodiscard]] const Wf725MachineData& machine_data() const noexcept { return md_; }
   [[nodiscard]] const Wf725ProgramStore& programs() const noexcept { return store_; }
+  /// Buffer n (1..6) of the automatic buffer.
+  [[nodiscard]] const Wf725Buffer& buffer(int n) const noexcept {
+    return buffers_[static_cast<std::size_t>(std::clamp(n, 1, 6) - 1)];
+  }
   /// Machine position latched at the last flying-measurement edge, µm.
   [[nodiscard]] std::optional<double> measured_um() const noexcept { return measured_um_; }
   /// Every M function output, in order.
@@ -148,6 +166,18 @@ class Wf725Controller final : public Controller {
   /// Data codes 44/45: program input from / output to a user data block (Software Schale).
   void program_input(int db, TimePoint now);
   void program_output(int program, int db, TimePoint now);
+  /// Data codes 48/49: set the length of a buffer / reload blocks into it from a user data block.
+  void buffer_length(int buffer, int length, TimePoint now);
+  void buffer_reload(int buffer, int db, TimePoint now);
+  /// 0 when `buffer` is one of this axis' pair (A: 1/2, B: 3/4, C: 5/6), else false.
+  [[nodiscard]] bool own_buffer(int buffer) const noexcept;
+  /// Start of the automatic buffer (submode 9) with the buffer of DW 5: B0, B1, B2, B3.
+  bool start_buffer(TimePoint now);
+  /// Runs buffer n from its first block (checks B1/B2/B3); false when it cannot.
+  bool enter_buffer(int n, TimePoint now);
+  /// After a finished block of a running buffer: M11/M12 change to the pair's other buffer.
+  /// True when the block changed the buffer (or ended the job).
+  bool buffer_change(TimePoint now);
   void handle_start(TimePoint now);
   void run_job(const CycleTime& cycle);
   void check_limits(TimePoint now);
@@ -245,6 +275,8 @@ class Wf725Controller final : public Controller {
   bool m0_pending_ = false;
   int after_m_ = -1;  ///< M output after the motion (MD 9 = 3)
   int running_program_ = 0;
+  int running_buffer_ = 0;  ///< 1..6 while the automatic buffer runs
+  std::array<Wf725Buffer, 6> buffers_{};
   int running_block_ = 0;
   bool continuous_measure_ = false;  ///< G68/G69 block waits for the fast-input edge
   int continuous_input_ = 0;
