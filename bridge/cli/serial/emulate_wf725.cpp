@@ -130,7 +130,9 @@ void register_wf725_emulator(Context& ctx) {
       ->check(CLI::ExistingFile);
   cmd->footer(
       "Console commands (stdin): 'status' (mode, submode, actual value, PEH/SYN, error DR 4, DW 40, program and "
-      "block), 'machine' (the machine axis: position, state, fault), 'rejection' (why the last RK512 job was "
+      "block), 'machine' (the machine axis: position, state, fault), 'input NAME 0|1' (an input of the module: "
+      "X7 x7_e1..6, limit_plus_A, the encoder fault inputs encoder_cable_break_A, ...), 'rejection' (why the last "
+      "RK512 job was "
       "refused), 'dbs' (user data blocks), 'quit'.\n"
       "Examples: hilbridge emulate wf725 --pty --md examples/controllers/wf725-axis-a.txt --program progs.wf\n"
       "          hilbridge emulate wf725 --tcp 4001 --machine wf-canopen.yaml   (retrofit mode, e.g. behind a "
@@ -203,6 +205,19 @@ void register_wf725_emulator(Context& ctx) {
         }
         return out;
       }
+      if (c.starts_with("input ")) {
+        std::istringstream in(c.substr(6));
+        std::string name;
+        int v = -1;
+        in >> name >> v;
+        auto* a = pol->axes().front();
+        const auto bit = a->resolve_bit(name);
+        if (!bit || bit->area != hil::controllers::IoArea::input || (v != 0 && v != 1))
+          return "error: input NAME 0|1 with an input of the module (x7_e1..x7_e6, limit_plus_A, "
+                 "encoder_cable_break_A, ...)";
+        a->io().set(*bit, v == 1);
+        return "ok " + c;
+      }
       if (c == "rejection") return pol->last_rejection().empty() ? std::string("none") : pol->last_rejection();
       if (c == "dbs") {
         std::string out;
@@ -210,7 +225,7 @@ void register_wf725_emulator(Context& ctx) {
           out += fmt::format("{}DB{} {} words", out.empty() ? "" : "\n", n, w.size());
         return out.empty() ? std::string("no user data blocks") : out;
       }
-      return "error: unknown command (status, machine, rejection, dbs, quit)";
+      return "error: unknown command (status, machine, input NAME 0|1, rejection, dbs, quit)";
     });
   });
 }

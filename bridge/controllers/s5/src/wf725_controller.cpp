@@ -21,7 +21,7 @@ using namespace wf_db;
 constexpr double um = 1e-3;  // mm per µm
 
 IoLayout wf_layout() {
-  return IoLayout{{2, 2, 1, 2U * wf_db::words}};
+  return IoLayout{{3, 2, 1, 2U * wf_db::words}};
 }
 
 }  // namespace
@@ -55,6 +55,11 @@ Wf725Controller::Wf725Controller(LoadedParameters parameters, Wf725MachineData m
   (void)io().name_bit("error" + s, {IoArea::output, 1, 2});
   (void)io().name_bit("drive_enable" + s, {IoArea::output, 1, 3});
   (void)io().name_bit("device_error", {IoArea::marker, 0, 0});
+  // Encoder fault inputs (our model of the measuring circuit, docs/wf725.md "Encoder faults").
+  constexpr const char* faults[] = {"encoder_cable_break",  "encoder_level_low",    "encoder_zero_mark_missing",
+                                    "encoder_pulse_loss",   "encoder_parity_error", "encoder_telegram_fault",
+                                    "encoder_position_jump"};
+  for (std::uint8_t b = 0; b < 7; ++b) (void)io().name_bit(faults[b] + s, {IoArea::input, 2, b});
   const auto d = [&](const char* name, std::uint16_t w, std::uint8_t b) {
     (void)io().name_bit(name + s, db_.bit_address(w, b));
   };
@@ -206,6 +211,7 @@ void Wf725Controller::on_cycle(const CycleTime& cycle) noexcept {
     (void)acknowledge(Acknowledgement::reset);
   }
   handle_mode(now);
+  encoder_cycle(now);
   handle_drive(now);
   if (db_.rising(dw_data_execute, 0)) {
     handle_data_code(now);
@@ -520,6 +526,10 @@ void Wf725Controller::run_job(const CycleTime& cycle) {
       const double p = ax.status().command_position;
       const double zm = side > 0 ? std::ceil(p / rev) * rev : std::floor(p / rev) * rev;
       ref_target_axis_ = zm + static_cast<double>(md_.integer(17)) * um;
+      // A missing zero mark (the encoder fault input): with the zero-mark check (MD 41 N = 0) the
+      // axis runs one encoder revolution past it and stops with 09; masked, the point is taken.
+      const bool zm_check = (md_.integer(41) & 131'072) == 0 && md_.integer(40) == 0;
+      if (encoder_input(2) && zm_check) ref_target_axis_ = zm + side * rev;
       motion::Limits lim = c.limits;
       lim.velocity = std::min(lim.velocity, static_cast<double>(ref_speeds_[2]) / 100.0 / 60.0);
       if (const auto ec = ax.move_absolute(ref_target_axis_, motion::Direction::shortest, lim)) {
@@ -532,6 +542,11 @@ void Wf725Controller::run_job(const CycleTime& cycle) {
     }
     case RefPhase::slow:
       if (!motion_done()) return;
+      if (encoder_input(2) && (md_.integer(41) & 131'072) == 0 && md_.integer(40) == 0) {
+        job_ = Job::none;
+        raise_encoder(0x09, now, "no zero mark within MD 34 pulses after leaving the cam");
+        return;
+      }
       offset_mm_ = static_cast<double>(md_.integer(16)) * um - ref_target_axis_;
       zero_shift_mm_ = 0.0;
       synced_ = true;

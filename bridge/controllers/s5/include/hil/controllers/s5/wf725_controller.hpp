@@ -48,6 +48,8 @@ struct Wf725Options {
   std::uint16_t db = 10;
   std::int64_t ref_speeds[3] = {0, 0, 0};  ///< 10^-2 mm/min (data codes 8, 9, A)
   std::int64_t jog_feed = 0;               ///< 10^-2 mm/min (data code 1C)
+  char variant = 'A';                      ///< module variant: A incremental, B parallel absolute, C SSI (WF 726)
+  int difference_cycles = 4;               ///< error 33 after this many jumps > MD 34 in a row (manual: 4 or 5)
 };
 
 /// The S5 user data blocks beside the module: the PLC's DBs that the "Software Schale" FB copies
@@ -163,6 +165,13 @@ class Wf725Controller final : public Controller {
   void handle_mode(TimePoint now);
   void handle_drive(TimePoint now);
   void handle_data_code(TimePoint now);
+  /// The measuring-circuit checks of every cycle (docs/wf725.md, "Encoder faults"): 07, 08, 0B,
+  /// 30-34 by their conditions and the encoder fault inputs, masked by MD 41 / MD 40.
+  void encoder_cycle(TimePoint now);
+  /// Raises an encoder error once (a measuring-circuit error < 60: drive off, position lost; 17
+  /// as well when it strikes in a data mode with the drive enabled).
+  void raise_encoder(int code, TimePoint now, std::string_view context);
+  [[nodiscard]] bool encoder_input(int bit) const noexcept;
   /// Data codes 44/45: program input from / output to a user data block (Software Schale).
   void program_input(int db, TimePoint now);
   void program_output(int program, int db, TimePoint now);
@@ -261,6 +270,10 @@ class Wf725Controller final : public Controller {
   std::int64_t mdi_feed_ = 0;
   double clamp_command_mm_ = 0.0;
   std::optional<double> measured_um_;
+  bool powered_up_ = false;
+  std::int64_t zero_mark_count_ = 0;  ///< zero marks passed (position_inc / MD 34), pulse monitor 08
+  bool zero_mark_known_ = false;
+  int jumps_ = 0;  ///< successive position jumps > MD 34 (absolute, 33)
 
   // program
   std::vector<Frame> stack_;
