@@ -14,6 +14,8 @@
 #include <thread>
 
 #include "hil/cli/duration_option.hpp"
+#include "hil/core/text_file.hpp"
+#include "hil/serial/file_lock.hpp"
 #include "hil/serial/linux/ports.hpp"
 #include "hil/serial/serial_stream.hpp"
 
@@ -175,6 +177,33 @@ int serve(mocks::legacy::Endpoint& endpoint, const EmulateOptions& o, const std:
   stop = true;
   line.join();
   return 0;
+}
+
+/// The state file, locked for the life of this emulator: a second emulator on the same file
+/// (the default path is per device, so two `emulate clm14` share it) is refused.
+std::expected<std::filesystem::path, std::string> resolve_state(const EmulateOptions& o, const std::string& device) {
+  if (o.state_file == "none") return std::filesystem::path{};
+  const std::filesystem::path p =
+      o.state_file.empty() ? default_state_path(device) : std::filesystem::path(o.state_file);
+  std::error_code ec;
+  if (p.has_parent_path()) std::filesystem::create_directories(p.parent_path(), ec);
+  static std::optional<hil::serial::FileLock> held;
+  auto lock = hil::serial::FileLock::acquire(p);
+  if (!lock) return std::unexpected(lock.error());
+  held.emplace(std::move(*lock));
+  return p;
+}
+
+std::optional<std::string> read_file(const std::filesystem::path& p) {
+  if (p.empty()) return std::nullopt;
+  std::error_code ec;
+  if (!std::filesystem::exists(p, ec)) return std::nullopt;
+  auto text = read_text_file(p);
+  if (!text) {
+    fmt::print(stderr, "warning: {}; starting from defaults\n", text.error());
+    return std::nullopt;
+  }
+  return *text;
 }
 
 }  // namespace hil::cli::serial_cli

@@ -2,9 +2,11 @@
 #pragma once
 // `hilbridge emulate clm14|elg-tape|ip247|wf725`: emulated controllers on a pty or TCP port.
 
+#include <expected>
 #include <filesystem>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 
 #include "hil/mocks/legacy/endpoint.hpp"
@@ -25,6 +27,13 @@ struct EmulateOptions {
 void add_emulate_options(CLI::App& cmd, EmulateOptions& o);
 /// Default state path: $XDG_STATE_HOME/hilbridge/<device>.json (or ~/.local/state/...).
 [[nodiscard]] std::filesystem::path default_state_path(const std::string& device);
+
+/// The state file of `device` (or --state), locked for the life of this emulator: a second
+/// emulator on the same file is refused. Empty path for `--state none`.
+[[nodiscard]] std::expected<std::filesystem::path, std::string> resolve_state(const EmulateOptions& o,
+                                                                              const std::string& device);
+/// The saved state at `p`, nullopt when there is none (a read error is a warning on stderr).
+[[nodiscard]] std::optional<std::string> read_file(const std::filesystem::path& p);
 
 /// Serve `endpoint` on the line `o` describes until SIGINT/SIGTERM. Prints the pty path or TCP
 /// port on stdout (first line), then reads commands from stdin and hands them to `on_command`

@@ -13,6 +13,7 @@
 #include <sstream>
 
 #include "emulate.hpp"
+#include "emulate_machine.hpp"
 #include "hil/cli/context.hpp"
 #include "hil/cli/duration_option.hpp"
 #include "hil/controllers/clm14/motion_axis_port.hpp"
@@ -37,69 +38,15 @@ namespace hil::cli::serial_cli {
 
 namespace lg = hil::mocks::legacy;
 
+void register_wf725_emulator(Context& ctx);  // emulate_wf725.cpp
+
 namespace {
-
-/// The state file, locked for the life of this emulator: a second emulator on the same file
-/// (the default path is per device, so two `emulate clm14` share it) is refused.
-std::expected<std::filesystem::path, std::string> resolve_state(const EmulateOptions& o, const std::string& device) {
-  if (o.state_file == "none") return std::filesystem::path{};
-  const std::filesystem::path p =
-      o.state_file.empty() ? default_state_path(device) : std::filesystem::path(o.state_file);
-  std::error_code ec;
-  if (p.has_parent_path()) std::filesystem::create_directories(p.parent_path(), ec);
-  static std::optional<hil::serial::FileLock> held;
-  auto lock = hil::serial::FileLock::acquire(p);
-  if (!lock) return std::unexpected(lock.error());
-  held.emplace(std::move(*lock));
-  return p;
-}
-
-std::optional<std::string> read_file(const std::filesystem::path& p) {
-  if (p.empty()) return std::nullopt;
-  std::error_code ec;
-  if (!std::filesystem::exists(p, ec)) return std::nullopt;
-  auto text = read_text_file(p);
-  if (!text) {
-    fmt::print(stderr, "warning: {}; starting from defaults\n", text.error());
-    return std::nullopt;
-  }
-  return *text;
-}
-
-/// The machine of a machine file (a scenario with only `machine:`), built on its transports, and
-/// what it runs on. A retrofit mode derives from it and adds what binds the device to the axes.
-struct MachineFile {
-  asio::io_context io;
-  SteadyClock clock;
-  hil::runtime::Scenario scenario;
-  std::unique_ptr<RunEnvironment> env;
-  std::optional<hil::runtime::Machine> machine;
-};
 
 /// Retrofit mode: the CLM's axes 1..4 are the axes of a machine file, each on its transport
 /// (CANopen, Modbus, step/dir, sim), driven once per NC cycle.
 struct Retrofit : MachineFile {
   std::vector<std::unique_ptr<hil::controllers::clm14::MotionAxisPort>> ports;
 };
-
-/// Loads `file` into a new R (a MachineFile): `check` says what is wrong with the scenario for
-/// this device (empty: nothing), before any transport is opened.
-template <class R>
-std::expected<std::unique_ptr<R>, std::string> load_machine(
-    const std::string& file, const TransportRegistry& registry,
-    const std::function<std::string(const hil::runtime::Scenario&)>& check) {
-  auto r = std::make_unique<R>();
-  auto sc = hil::runtime::load_scenario(file);
-  if (!sc) return std::unexpected(sc.error().describe());
-  r->scenario = std::move(*sc);
-  if (auto why = check(r->scenario); !why.empty()) return std::unexpected(why);
-  r->env = std::make_unique<RunEnvironment>(
-      RunEnvironment{r->clock, false, &r->io, r->scenario.file, r->scenario.period, false, {}});
-  auto m = hil::runtime::Machine::build(r->scenario, registry, *r->env);
-  if (!m) return std::unexpected(m.error().describe());
-  r->machine.emplace(std::move(*m));
-  return r;
-}
 
 std::expected<std::unique_ptr<Retrofit>, std::string> make_retrofit(const std::string& file,
                                                                     const TransportRegistry& registry) {
@@ -512,16 +459,16 @@ void register_emulators(Context& ctx) {
     });
   });
 
-  // --- IP247 / WF 725/726 -------------------------------------------------------------------
-  for (const std::string dev : {"ip247", "wf725"}) {
+  // --- IP247 (the WF 725/726: emulate_wf725.cpp) ----------------------------------------------
+  register_wf725_emulator(ctx);
+  for (const std::string dev : {"ip247"}) {
     auto so = std::make_shared<EmulateOptions>();
     so->link.format = "8E1";
     so->link.baud = 9600;
     auto* cmd = ctx.emulate.add_subcommand(
-        dev, dev == "ip247"
-                 ? "Emulated SIMATIC S5 IP247: MD and traversing-program DBs behind 3964R/RK512 (SEND writes, FETCH "
-                   "reads; no overwrite, delete = SEND of one word 0000 to DW0)"
-                 : "Emulated WF 725/726 data codes behind 3964R/RK512 (DB number = data code; code 1 = MD1..MD50)");
+        dev,
+        "Emulated SIMATIC S5 IP247: MD and traversing-program DBs behind 3964R/RK512 (SEND writes, FETCH "
+        "reads; no overwrite, delete = SEND of one word 0000 to DW0)");
     add_emulate_options(*cmd, *so);
     auto switches = std::make_shared<std::vector<std::string>>();
     auto cycle = std::make_shared<Duration>(std::chrono::milliseconds(1));
@@ -579,20 +526,8 @@ void register_emulators(Context& ctx) {
           retrofit = std::move(*r);
           module->set_hooks(ip247_retrofit_hooks(*retrofit, *module, mo.cycle));
         }
-      } else {
-        auto check = hil::serial::load_wf725_check();
-        if (!check) {
-          fmt::print(stderr, "error: device profile: {}\n", check.error());
-          ctx.exit_code = 2;
-          return;
-        }
-        policy = lg::make_wf725_policy([c = *check](const std::vector<std::uint16_t>& w) { return c(w).empty(); });
       }
       lg::S5BlockEndpoint ep(std::move(policy));
-      if (dev == "wf725") {
-        // A fresh module holds the profile's default machine data (data code 1).
-        if (auto img = hil::serial::load_wf725_default_image()) ep.store()[1] = *img;
-      }
       const auto locked = resolve_state(*so, dev);
       if (!locked) {
         fmt::print(stderr, "error: {}\n", locked.error());

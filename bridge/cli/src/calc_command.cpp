@@ -22,7 +22,7 @@ CLI::App* calc_command(Context& ctx) {
   if (CLI::App* calc = find_subcommand(*profile, "calc")) return calc;
   CLI::App* calc = profile->add_subcommand(
       "calc",
-      "Setting-up calculators from a device manual's formulas: `profile calc DEVICE --help` (ip247, "
+      "Setting-up calculators from a device manual's formulas: `profile calc DEVICE --help` (ip247, wf725-726, "
       "sinumerik-elg). Exit 1 when a value breaks a machine-data rule, 2 on bad use.");
   calc->require_subcommand(1);
   return calc;

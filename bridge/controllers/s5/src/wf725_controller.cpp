@@ -19,7 +19,7 @@ namespace {
 using namespace wf_db;
 
 IoLayout wf_layout() {
-  return IoLayout{{2, 2, 1, 2U * wf_db::words}};
+  return IoLayout{{3, 2, 1, 2U * wf_db::words}};
 }
 
 }  // namespace
@@ -36,6 +36,7 @@ Wf725Controller::Wf725Controller(LoadedParameters parameters, Wf725MachineData m
   admin_cat_ = catalogue("memory_admin");
   standard2_cat_ = catalogue("standard2");
   std::copy(std::begin(opt_.ref_speeds), std::end(opt_.ref_speeds), std::begin(ref_speeds_));
+  if (auto syntax = wf725_program_syntax(profile())) syntax_ = *syntax;
   jog_feed_ = opt_.jog_feed;
   const std::string s = "_" + axis.name;
   for (std::uint8_t e = 0; e < 6; ++e) {
@@ -52,6 +53,11 @@ Wf725Controller::Wf725Controller(LoadedParameters parameters, Wf725MachineData m
   (void)io().name_bit("error" + s, {IoArea::output, 1, 2});
   (void)io().name_bit("drive_enable" + s, {IoArea::output, 1, 3});
   (void)io().name_bit("device_error", {IoArea::marker, 0, 0});
+  // Encoder fault inputs (our model of the measuring circuit, docs/wf725.md "Encoder faults").
+  constexpr const char* faults[] = {"encoder_cable_break",  "encoder_level_low",    "encoder_zero_mark_missing",
+                                    "encoder_pulse_loss",   "encoder_parity_error", "encoder_telegram_fault",
+                                    "encoder_position_jump"};
+  for (std::uint8_t b = 0; b < 7; ++b) (void)io().name_bit(faults[b] + s, {IoArea::input, 2, b});
   const auto d = [&](const char* name, std::uint16_t w, std::uint8_t b) {
     (void)io().name_bit(name + s, db_.bit_address(w, b));
   };
@@ -203,6 +209,7 @@ void Wf725Controller::on_cycle(const CycleTime& cycle) noexcept {
     (void)acknowledge(Acknowledgement::reset);
   }
   handle_mode(now);
+  encoder_cycle(now);
   handle_drive(now);
   if (db_.rising(dw_data_execute, 0)) {
     handle_data_code(now);
@@ -280,6 +287,7 @@ void Wf725Controller::abort_job() {
   step_ = Step::fetch;
   limit_side_ = 0;
   running_program_ = running_block_ = 0;
+  running_buffer_ = 0;
   continuous_measure_ = false;
   g99_wait_ = false;
 }
@@ -442,6 +450,9 @@ void Wf725Controller::handle_start(TimePoint now) {
     case Submode::automatic_step:
       (void)start_program(now, submode_ != Submode::automatic);
       return;
+    case Submode::automatic_buffer:
+      (void)start_buffer(now);
+      return;
     case Submode::clamping:
       if (md_.integer(25) < md_.integer(32)) return raise_wf(0x10, now, "clamping with MD 25 < MD 32");
       clamp_command_mm_ = machine_command_mm();
@@ -455,13 +466,24 @@ void Wf725Controller::handle_start(TimePoint now) {
 void Wf725Controller::run_job(const CycleTime& cycle) {
   const TimePoint now = cycle.now;
   auto& ax = axis(0);
+  const auto state = ax.status().state;
+  if (job_ != Job::none && job_ != Job::clamping &&
+      (state == motion::AxisState::error || state == motion::AxisState::disabled)) {
+    // A supervision fault (a hard limit switch 15/16, following error 11, ...) ended the motion:
+    // the job is over and a pre-limit it aimed at was not reached (no 95/96).
+    abort_job();
+    return;
+  }
   switch (job_) {
     case Job::none:
       return;
     case Job::jog:
     case Job::move:
       if (motion_done()) {
-        if (limit_side_ != 0) raise_wf(limit_side_ < 0 ? 0x95 : 0x96, now);
+        // 95/96 only where the move really ended on the pre-limit switch MD 11/13.
+        const double pre = static_cast<double>(md_.integer(limit_side_ < 0 ? 11 : 13)) * um;
+        if (limit_side_ != 0 && std::abs(machine_command_mm() - pre) < 0.5 * um)
+          raise_wf(limit_side_ < 0 ? 0x95 : 0x96, now);
         limit_side_ = 0;
         if (job_ == Job::move) job_ = Job::none;
       }
@@ -502,6 +524,10 @@ void Wf725Controller::run_job(const CycleTime& cycle) {
       const double p = ax.status().command_position;
       const double zm = side > 0 ? std::ceil(p / rev) * rev : std::floor(p / rev) * rev;
       ref_target_axis_ = zm + static_cast<double>(md_.integer(17)) * um;
+      // A missing zero mark (the encoder fault input): with the zero-mark check (MD 41 N = 0) the
+      // axis runs one encoder revolution past it and stops with 09; masked, the point is taken.
+      const bool zm_check = (md_.integer(41) & 131'072) == 0 && md_.integer(40) == 0;
+      if (encoder_input(2) && zm_check) ref_target_axis_ = zm + side * rev;
       motion::Limits lim = c.limits;
       lim.velocity = std::min(lim.velocity, static_cast<double>(ref_speeds_[2]) / 100.0 / 60.0);
       if (const auto ec = ax.move_absolute(ref_target_axis_, motion::Direction::shortest, lim)) {
@@ -514,6 +540,11 @@ void Wf725Controller::run_job(const CycleTime& cycle) {
     }
     case RefPhase::slow:
       if (!motion_done()) return;
+      if (encoder_input(2) && (md_.integer(41) & 131'072) == 0 && md_.integer(40) == 0) {
+        job_ = Job::none;
+        raise_encoder(0x09, now, "no zero mark within MD 34 pulses after leaving the cam");
+        return;
+      }
       offset_mm_ = static_cast<double>(md_.integer(16)) * um - ref_target_axis_;
       zero_shift_mm_ = 0.0;
       synced_ = true;
@@ -604,27 +635,34 @@ void Wf725Controller::handle_data_code(TimePoint now) {
       }
       break;
     case code::write_md:
-    case code::read_md: {
+      if (const int e = write_machine_data(p1, p2))
+        raise_io(e, now,
+                 e == 121 ? fmt::format("MD {}", p1) : "machine data are written in mode machine data input/output",
+                 e == 121 ? "program_io" : "memory_admin");
+      break;
+    case code::read_md:
       if (p1 < 1 || p1 > 50) {
         raise_io(121, now, fmt::format("MD {}", p1));
-        break;
+      } else {
+        result = read_machine_data(p1);
       }
-      const long double lsb = (p1 == 3 || p1 == 22) ? 0.01L : 1.0L;
-      if (c == code::read_md) {
-        result = static_cast<std::int32_t>(std::llround(static_cast<double>(md_.get(p1) / lsb)));
-        break;
-      }
-      if (mode_bits_ != (1U << (bit_mode_machine_data - 8))) {
-        raise_io(201, now, "machine data are written in mode machine data input/output", "memory_admin");
-        break;
-      }
-      const long double v = static_cast<long double>(p2) * lsb;
-      if (wf725_md_shapes_axis(p1) && v != md_.get(p1) &&
-          std::find(pending_md_.begin(), pending_md_.end(), p1) == pending_md_.end())
-        pending_md_.push_back(p1);
-      md_.set(p1, v);
       break;
-    }
+    case code::buffer_length:
+      buffer_length(p1, p2, now);
+      break;
+    case code::buffer_reload:
+      buffer_reload(p1, p2, now);
+      break;
+    case code::program_in:
+    case code::program_out:
+      if (mode_bits_ != (1U << (bit_mode_program_io - 8))) {
+        raise_io(201, now, "programs are read in and out in mode program input/output (D 0.9)", "memory_admin");
+      } else if (c == code::program_in) {
+        program_input(p1, now);
+      } else {
+        program_output(p1, p2, now);
+      }
+      break;
     default:
       raise_io(113, now, fmt::format("data code {:X}", c));
       break;

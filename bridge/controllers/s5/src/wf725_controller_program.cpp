@@ -77,6 +77,11 @@ bool Wf725Controller::advance() noexcept {
 }
 
 void Wf725Controller::end_program() {
+  if (running_buffer_ != 0) {
+    // A buffer that ran is consumed: the PLC reloads it (same length) before it runs again.
+    buffers_[static_cast<std::size_t>(running_buffer_ - 1)].program.blocks.clear();
+    running_buffer_ = 0;
+  }
   job_ = Job::none;
   stack_.clear();
   step_ = Step::fetch;
@@ -258,6 +263,7 @@ void Wf725Controller::finish_block() {
     step_ = Step::wait_start;  // M0 / automatic single step: the next start continues
     return;
   }
+  if (running_buffer_ != 0 && buffer_change(last_now_)) return;
   if (!advance()) {
     end_program();
     return;

@@ -26,7 +26,7 @@ std::optional<double> number(std::string_view s) {
 
 bool wf725_wants_module(const ControllerSpec& spec) noexcept {
   if (!spec.programs.empty()) return true;
-  for (const char* key : {"db", "module", "reference_speeds", "jog_feed"})
+  for (const char* key : {"db", "module", "reference_speeds", "jog_feed", "difference_cycles"})
     if (spec.options.contains(key)) return true;
   return false;
 }
@@ -46,6 +46,7 @@ void register_wf725(ControllerRegistry& registry) {
         if (value != "WF725A" && value != "WF725B" && value != "WF726A" && value != "WF726B" && value != "WF726C")
           return fail(key, "module: WF725A, WF725B, WF726A, WF726B or WF726C");
         settings["module"] = value;
+        opt.variant = value.back();
       } else if (key == "db") {
         const auto v = number(value);
         if (!v || *v < 1 || *v > 255 || *v != static_cast<int>(*v)) return fail(key, "db: a DB number 1..255");
@@ -60,13 +61,19 @@ void register_wf725(ControllerRegistry& registry) {
           opt.ref_speeds[i++] = std::llround(*v * 100.0);
         }
         if (i != 3) return fail(key, "reference_speeds: three speeds \"RAPID,REDUCED,SLOW\" in mm/min");
+      } else if (key == "difference_cycles") {
+        if (value != "4" && value != "5")
+          return fail(key,
+                      "difference_cycles: 4 or 5 (error 33 after that many jumps > MD 34 in a row; the manual "
+                      "gives both)");
+        opt.difference_cycles = value[0] - '0';
       } else if (key == "jog_feed") {
         const auto v = number(value);
         if (!v) return fail(key, "jog_feed: the set-up speed in mm/min (data code 1C)");
         opt.jog_feed = std::llround(*v * 100.0);
       } else {
         return fail(key, fmt::format("unknown controller key '{}' (known: device, parameters, programs, cycle, axis, "
-                                     "module, db, reference_speeds, jog_feed)",
+                                     "module, db, reference_speeds, jog_feed, difference_cycles)",
                                      key));
       }
     }

@@ -23,7 +23,10 @@
 // (D 2.1 with MD 15 = 1, else X7 E<axis>).
 // Thread: the cycle thread (Controller); read_db_word/write_db_word between cycles.
 
+#include <algorithm>
+#include <array>
 #include <cstdint>
+#include <map>
 #include <memory>
 #include <optional>
 #include <span>
@@ -45,7 +48,28 @@ struct Wf725Options {
   std::uint16_t db = 10;
   std::int64_t ref_speeds[3] = {0, 0, 0};  ///< 10^-2 mm/min (data codes 8, 9, A)
   std::int64_t jog_feed = 0;               ///< 10^-2 mm/min (data code 1C)
+  char variant = 'A';                      ///< module variant: A incremental, B parallel absolute, C SSI (WF 726)
+  int difference_cycles = 4;               ///< error 33 after this many jumps > MD 34 in a row (manual: 4 or 5)
 };
+
+/// The S5 user data blocks beside the module: the PLC's DBs that the "Software Schale" FB copies
+/// programs between (digest §5.5, errors 401/402), DB number -> words (DW 0..255). Each controller
+/// owns one; `hilbridge emulate wf725` lends its endpoint's DB store to every axis of the module
+/// (so the user DBs a PG tool writes over RK512 are the ones data code 44 reads, and persist).
+using Wf725UserBlocks = std::map<std::uint8_t, std::vector<std::uint16_t>>;
+inline constexpr std::size_t wf725_user_block_words = 256;  ///< DW 0..255 (what RK512 addresses)
+
+/// One buffer of the automatic buffer (digest §6.2, errors B0-B3, 143-155): the PLC sets its length,
+/// reloads blocks 1..length in ascending order without gaps; a completely loaded buffer can be
+/// started; a buffer that ran is consumed (reloaded before it runs again).
+struct Wf725Buffer {
+  Wf725Program program;  ///< number = buffer number 1..6, the blocks loaded so far
+  int length = 0;        ///< set by data code 48 (1..50), 0 = not set
+  [[nodiscard]] bool complete() const noexcept {
+    return length > 0 && static_cast<int>(program.blocks.size()) == length;
+  }
+};
+inline constexpr int wf725_buffer_blocks = 50;
 
 class Wf725Controller final : public Controller {
  public:
@@ -64,6 +88,26 @@ class Wf725Controller final : public Controller {
   [[nodiscard]] std::span<const S5DataBlock> data_blocks() const noexcept override { return {&db_.block(), 1}; }
 
   [[nodiscard]] std::expected<BitAddress, std::string> resolve_bit(std::string_view text) const override;
+  /// DB `db` = the DB axis (as the base class), any other DB number a user data block (created
+  /// by its first write, at most DW 255): program input/output by data codes 44/45 reads and
+  /// writes them (docs/wf725.md, "Program input/output").
+  [[nodiscard]] std::expected<std::uint16_t, std::string> read_data_word(int db, int dw) const override;
+  std::expected<void, std::string> write_data_word(int db, int dw, std::uint16_t value) override;
+  /// Uses `blocks` (shared with the module's other axes; must outlive every later cycle) as the
+  /// user data blocks; nullptr: the controller's own again.
+  void use_user_blocks(Wf725UserBlocks* blocks) noexcept { user_blocks_ = blocks != nullptr ? blocks : &own_blocks_; }
+  [[nodiscard]] Wf725UserBlocks& user_blocks() noexcept { return *user_blocks_; }
+
+  // ---- machine data as the module holds them (data codes 50/51, the MD image of DB 1) ------
+  /// MD n as its stored integer (MD 3, MD 22 in their 0.01 steps; the binary input format).
+  [[nodiscard]] std::int32_t read_machine_data(int n) const noexcept;
+  /// Writes MD n (stored integer): 0, or 121 (n outside 1..50) / 201 (not in mode machine-data
+  /// input/output). MD that shape the axis apply at the next power-up (pending_md()).
+  [[nodiscard]] int write_machine_data(int n, std::int32_t stored) noexcept;
+  /// Whether the module is in mode machine-data input/output (D 0.10 accepted).
+  [[nodiscard]] bool machine_data_mode() const noexcept {
+    return mode_bits_ == (1U << (wf_db::bit_mode_machine_data - 8));
+  }
 
   // ---- observation (tests, summary) ------------------------------------------------------------
   /// Actual value as the module shows it (program coordinates), µm (10^-3 degree).
@@ -73,6 +117,10 @@ class Wf725Controller final : public Controller {
   [[nodiscard]] wf_db::Submode submode() const noexcept { return submode_; }
   [[nodiscard]] const Wf725MachineData& machine_data() const noexcept { return md_; }
   [[nodiscard]] const Wf725ProgramStore& programs() const noexcept { return store_; }
+  /// Buffer n (1..6) of the automatic buffer.
+  [[nodiscard]] const Wf725Buffer& buffer(int n) const noexcept {
+    return buffers_[static_cast<std::size_t>(std::clamp(n, 1, 6) - 1)];
+  }
   /// Machine position latched at the last flying-measurement edge, µm.
   [[nodiscard]] std::optional<double> measured_um() const noexcept { return measured_um_; }
   /// Every M function output, in order.
@@ -117,6 +165,28 @@ class Wf725Controller final : public Controller {
   void handle_mode(TimePoint now);
   void handle_drive(TimePoint now);
   void handle_data_code(TimePoint now);
+  /// The measuring-circuit checks of every cycle (docs/wf725.md, "Encoder faults"): 07, 08, 0B,
+  /// 30-34 by their conditions and the encoder fault inputs, masked by MD 41 / MD 40.
+  void encoder_cycle(TimePoint now);
+  /// Raises an encoder error once (a measuring-circuit error < 60: drive off, position lost; 17
+  /// as well when it strikes in a data mode with the drive enabled).
+  void raise_encoder(int code, TimePoint now, std::string_view context);
+  [[nodiscard]] bool encoder_input(int bit) const noexcept;
+  /// Data codes 44/45: program input from / output to a user data block (Software Schale).
+  void program_input(int db, TimePoint now);
+  void program_output(int program, int db, TimePoint now);
+  /// Data codes 48/49: set the length of a buffer / reload blocks into it from a user data block.
+  void buffer_length(int buffer, int length, TimePoint now);
+  void buffer_reload(int buffer, int db, TimePoint now);
+  /// 0 when `buffer` is one of this axis' pair (A: 1/2, B: 3/4, C: 5/6), else false.
+  [[nodiscard]] bool own_buffer(int buffer) const noexcept;
+  /// Start of the automatic buffer (submode 9) with the buffer of DW 5: B0, B1, B2, B3.
+  bool start_buffer(TimePoint now);
+  /// Runs buffer n from its first block (checks B1/B2/B3); false when it cannot.
+  bool enter_buffer(int n, TimePoint now);
+  /// After a finished block of a running buffer: M11/M12 change to the pair's other buffer.
+  /// True when the block changed the buffer (or ended the job).
+  bool buffer_change(TimePoint now);
   void handle_start(TimePoint now);
   void run_job(const CycleTime& cycle);
   void check_limits(TimePoint now);
@@ -159,6 +229,9 @@ class Wf725Controller final : public Controller {
   Wf725Options opt_;
   Wf725ProgramStore store_;
   S5InterfaceDb db_;
+  Wf725ProgramSyntax syntax_ = wf725_default_syntax();
+  Wf725UserBlocks own_blocks_;
+  Wf725UserBlocks* user_blocks_ = &own_blocks_;
   const profiles::ErrorCatalogue* traversing_cat_ = nullptr;
   const profiles::ErrorCatalogue* io_cat_ = nullptr;
   const profiles::ErrorCatalogue* admin_cat_ = nullptr;
@@ -197,6 +270,10 @@ class Wf725Controller final : public Controller {
   std::int64_t mdi_feed_ = 0;
   double clamp_command_mm_ = 0.0;
   std::optional<double> measured_um_;
+  bool powered_up_ = false;
+  std::int64_t zero_mark_count_ = 0;  ///< zero marks passed (position_inc / MD 34), pulse monitor 08
+  bool zero_mark_known_ = false;
+  int jumps_ = 0;  ///< successive position jumps > MD 34 (absolute, 33)
 
   // program
   std::vector<Frame> stack_;
@@ -211,6 +288,8 @@ class Wf725Controller final : public Controller {
   bool m0_pending_ = false;
   int after_m_ = -1;  ///< M output after the motion (MD 9 = 3)
   int running_program_ = 0;
+  int running_buffer_ = 0;  ///< 1..6 while the automatic buffer runs
+  std::array<Wf725Buffer, 6> buffers_{};
   int running_block_ = 0;
   bool continuous_measure_ = false;  ///< G68/G69 block waits for the fast-input edge
   int continuous_input_ = 0;

@@ -59,15 +59,16 @@ inline constexpr std::uint16_t dw_io_error = 40;     ///< program-I/O error as t
 
 /// Operating submodes (DR 0).
 enum class Submode : std::uint8_t {
-  none = 0,            ///< submode "0"
-  set_up = 1,          ///< jog with D 1.1 / D 1.3
-  reference = 2,       ///< reference point approach
-  set_actual = 3,      ///< setting actual value (MD 28)
-  mdi = 4,             ///< manual data input (data codes 19h position, 1Ah feed)
-  single_step = 5,     ///< one block (DL 2) of the program (DW 5)
-  automatic = 6,       ///< automatic cycle
-  automatic_step = 7,  ///< automatic single step: one block per start
-  clamping = 8,        ///< clamping (MD 32)
+  none = 0,              ///< submode "0"
+  set_up = 1,            ///< jog with D 1.1 / D 1.3
+  reference = 2,         ///< reference point approach
+  set_actual = 3,        ///< setting actual value (MD 28)
+  mdi = 4,               ///< manual data input (data codes 19h position, 1Ah feed)
+  single_step = 5,       ///< one block (DL 2) of the program (DW 5)
+  automatic = 6,         ///< automatic cycle
+  automatic_step = 7,    ///< automatic single step: one block per start
+  clamping = 8,          ///< clamping (MD 32)
+  automatic_buffer = 9,  ///< automatic buffer: buffer DW 5 (this axis' pair), M11/M12 change buffers
 };
 
 /// Data codes (DW 11), hex as the manual writes them; ours marked (decision).
@@ -82,6 +83,10 @@ inline constexpr std::uint16_t measured = 0x32;        ///< actual value latched
 inline constexpr std::uint16_t teach_in = 0x40;        ///< (decision) param1 program, param2 block
 inline constexpr std::uint16_t tool_offset = 0x42;     ///< (decision) param1 number 1..20, param2 µm
 inline constexpr std::uint16_t delete_program = 0x43;  ///< (decision) param1 program
+inline constexpr std::uint16_t program_in = 0x44;      ///< (decision) param1 user DB: read in the program text there
+inline constexpr std::uint16_t program_out = 0x45;     ///< (decision) param1 program, param2 user DB to write
+inline constexpr std::uint16_t buffer_length = 0x48;   ///< (decision) param1 buffer 1..6, param2 length 1..50
+inline constexpr std::uint16_t buffer_reload = 0x49;   ///< (decision) param1 buffer, param2 user DB with blocks
 inline constexpr std::uint16_t write_md = 0x50;        ///< (decision) param1 MD number, param2 value (MD I/O mode)
 inline constexpr std::uint16_t read_md = 0x51;         ///< (decision) param1 MD number -> result
 inline constexpr std::uint16_t acknowledge = 0x800C;
