@@ -147,7 +147,8 @@ TEST(Ip247Controller, DataWordsOfTheInterfaceAndTheImages) {
   const auto missing = ctl.read_data_word(30, 0);
   ASSERT_FALSE(missing);
   EXPECT_NE(missing.error().find("no DB30"), std::string::npos) << missing.error();
-  EXPECT_FALSE(ctl.read_data_word(12, 20));  // 20 words
+  EXPECT_TRUE(ctl.read_data_word(12, 74));  // 3 axis DBs of 20 words and the data-job block
+  EXPECT_FALSE(ctl.read_data_word(12, 75));
 }
 
 TEST(Ip247Controller, ConfigurationErrorsNameFileLineAndKey) {

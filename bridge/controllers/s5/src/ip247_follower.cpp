@@ -6,6 +6,9 @@ namespace hil::controllers::s5 {
 void Ip247Follower::step(motion::Axis& axis, const Ip247Axis& module, std::int64_t period_ns) noexcept {
   if (module.planner() == nullptr) return;  // no machine data: no pulses
   const std::int64_t pulses = module.planner()->motor_position();
+  // A new MD set (BA20) gives the module a new pulse counter: the motor has not moved.
+  if (module.planner() != planner_) anchored_ = false;
+  planner_ = module.planner();
   if (!anchored_) {
     base_inc_ = axis.status().command_inc;
     base_pulses_ = last_pulses_ = pulses;
