@@ -445,8 +445,8 @@ void Ip247Controller::report_errors(TimePoint now) noexcept {
   // The data channel's error (a data job refused: 48, 49, 13 ...), until its next job or BA17.
   const int d = module_.data_channel_error() >= 10 ? module_.data_channel_error() : 0;
   if (d != shown_data_error_) {
-    if (shown_data_error_ != 0) (void)clear_error(*cat, shown_data_error_, 0);
-    if (d != 0) raise(*cat, d, now, 0, "data channel", hc::AckRule::self_clearing, false);
+    if (shown_data_error_ != 0) (void)clear_error(*cat, shown_data_error_, -1);
+    if (d != 0) raise(*cat, d, now, -1, "data channel", hc::AckRule::self_clearing, false);
     shown_data_error_ = d;
   }
 }
