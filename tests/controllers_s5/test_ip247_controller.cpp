@@ -18,6 +18,7 @@
 #include "hil/mocks/sim_transport.hpp"
 #include "hil/runtime/runner.hpp"
 #include "hil/runtime/scenario_loader.hpp"
+#include "ip247_program_rig.hpp"
 
 namespace fs = std::filesystem;
 
@@ -117,6 +118,23 @@ TEST(Ip247Controller, NpvProgramGivesTheSamePositionsOnSimAndStepDir) {
       verified = verified || l.find("timing rules held") != std::string::npos;
     }
   EXPECT_TRUE(verified);
+}
+
+TEST(Ip247Controller, SameProgramSamePositionsOnMockLinesAndSim) {
+  // The program the kernel test runs on gpio-sim (test_ip247_gpiosim.cpp), here on mock step/dir
+  // lines (verified edge streams) and on the sim plant.
+  const auto lines = ip247_rig::run(
+      "mock",
+      "{transport: stepdir, profile: motion, fmax_hz: 20000, fss_hz: 500, accel_hz_per_s: 200000, pulse_us: 10}");
+  for (const auto& f : lines.failures) ADD_FAILURE() << f;
+  EXPECT_TRUE(lines.ok);
+  EXPECT_TRUE(lines.verified);
+  for (const auto& l : lines.report) EXPECT_EQ(l.find("VIOLATION"), std::string::npos) << l;
+  EXPECT_EQ(lines.final_position_mm, 2.5);
+  const auto sim = ip247_rig::run("sim", "{transport: sim, kv: 1000, feedforward: 1.0, velocity_lag: 0}");
+  for (const auto& f : sim.failures) ADD_FAILURE() << f;
+  EXPECT_TRUE(sim.ok);
+  EXPECT_NEAR(sim.final_position_mm, 2.5, 0.01);
 }
 
 TEST(Ip247Controller, DataWordsOfTheInterfaceAndTheImages) {
