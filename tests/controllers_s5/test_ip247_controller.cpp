@@ -18,6 +18,7 @@
 #include "hil/mocks/sim_transport.hpp"
 #include "hil/runtime/runner.hpp"
 #include "hil/runtime/scenario_loader.hpp"
+#include "ip247_program_rig.hpp"
 
 namespace fs = std::filesystem;
 
@@ -119,6 +120,23 @@ TEST(Ip247Controller, NpvProgramGivesTheSamePositionsOnSimAndStepDir) {
   EXPECT_TRUE(verified);
 }
 
+TEST(Ip247Controller, SameProgramSamePositionsOnMockLinesAndSim) {
+  // The program the kernel test runs on gpio-sim (test_ip247_gpiosim.cpp), here on mock step/dir
+  // lines (verified edge streams) and on the sim plant.
+  const auto lines = ip247_rig::run(
+      "mock",
+      "{transport: stepdir, profile: motion, fmax_hz: 20000, fss_hz: 500, accel_hz_per_s: 200000, pulse_us: 10}");
+  for (const auto& f : lines.failures) ADD_FAILURE() << f;
+  EXPECT_TRUE(lines.ok);
+  EXPECT_TRUE(lines.verified);
+  for (const auto& l : lines.report) EXPECT_EQ(l.find("VIOLATION"), std::string::npos) << l;
+  EXPECT_EQ(lines.final_position_mm, 2.5);
+  const auto sim = ip247_rig::run("sim", "{transport: sim, kv: 1000, feedforward: 1.0, velocity_lag: 0}");
+  for (const auto& f : sim.failures) ADD_FAILURE() << f;
+  EXPECT_TRUE(sim.ok);
+  EXPECT_NEAR(sim.final_position_mm, 2.5, 0.01);
+}
+
 TEST(Ip247Controller, DataWordsOfTheInterfaceAndTheImages) {
   hil::controllers::ControllerSpec spec;
   spec.device = "ip247";
@@ -147,7 +165,46 @@ TEST(Ip247Controller, DataWordsOfTheInterfaceAndTheImages) {
   const auto missing = ctl.read_data_word(30, 0);
   ASSERT_FALSE(missing);
   EXPECT_NE(missing.error().find("no DB30"), std::string::npos) << missing.error();
-  EXPECT_FALSE(ctl.read_data_word(12, 20));  // 20 words
+  EXPECT_TRUE(ctl.read_data_word(12, 74));  // 3 axis DBs of 20 words and the data-job block
+  EXPECT_FALSE(ctl.read_data_word(12, 75));
+}
+
+TEST(Ip247Controller, OneMachineAxisPerMachineDataSet) {
+  hil::controllers::ControllerSpec spec;
+  spec.device = "ip247";
+  spec.parameters = examples / "ip247-md-two-axes.s5db";
+  auto c = hil::controllers::s5::Ip247Controller::create(spec);
+  ASSERT_TRUE(c) << c.error().describe();
+  auto& ctl = **c;
+  ASSERT_EQ(ctl.axis_specs().size(), 2U);
+  EXPECT_EQ(ctl.axis_specs()[0].name, "1");
+  EXPECT_EQ(ctl.axis_specs()[1].name, "2");
+  // Axis k's inputs and outputs are image byte k-1; its axis DB starts at DW 20(k-1).
+  const auto bit = ctl.resolve_bit("limit_minus_2");
+  ASSERT_TRUE(bit) << bit.error();
+  EXPECT_EQ(bit->byte, 1U);
+  EXPECT_EQ(bit->bit, 0);
+  EXPECT_EQ(ctl.read_data_word(10, 12).value(), 0xA200);  // axis 1: finished, mm, reference missing
+  EXPECT_EQ(ctl.read_data_word(10, 32).value(), 0xA200);  // axis 2
+  EXPECT_EQ(ctl.read_data_word(10, 52).value(), 0xE000);  // axis 3: no MD (40h)
+  EXPECT_EQ(ctl.read_data_word(21, 3).value(), 0x0002);   // MD DB21 = axis 2
+  EXPECT_EQ(ctl.trace_signals().size(), 6U);
+  EXPECT_EQ(ctl.trace_signals()[3], "actual_value_BU_2");
+  // 'axis' names the machine axis of a one-axis module only.
+  spec.options = {{"axis", "X"}};
+  auto e = hil::controllers::s5::Ip247Controller::create(spec);
+  ASSERT_FALSE(e);
+  EXPECT_NE(e.error().describe().find("one-axis module"), std::string::npos) << e.error().describe();
+  // Two sets for one axis.
+  std::string twice = slurp(examples / "ip247-md-two-axes.s5db");
+  twice.replace(twice.find("3: KH = 0002"), 12, "3: KH = 0001");
+  const fs::path dup = scenario_file("dup.s5db", twice);
+  spec.options.clear();
+  spec.parameters = dup;
+  e = hil::controllers::s5::Ip247Controller::create(spec);
+  ASSERT_FALSE(e);
+  EXPECT_NE(e.error().describe().find("DB20 and DB21 are both MD of axis 1"), std::string::npos)
+      << e.error().describe();
 }
 
 TEST(Ip247Controller, ConfigurationErrorsNameFileLineAndKey) {

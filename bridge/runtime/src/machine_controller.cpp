@@ -41,12 +41,13 @@ std::optional<ConfigError> Machine::build_controller(const Scenario& scenario,
     builtin.add("clm14", [programs, parameters](const controllers::ControllerSpec& s) {
       return s.programs.empty() ? parameters->create(s) : programs->create(s);
     });
-    // ip247: with programs or an interface DB the module runs (its modes and programs, commanded
+    // ip247: with programs, an interface DB or PLC DBs the module runs (its modes and programs, commanded
     // through the interface DB by `plc:` steps, issue 19); without, the parameter-only controller.
     auto module = std::make_shared<controllers::ControllerRegistry>();
     controllers::s5::register_ip247(*module);
     builtin.add("ip247", [module, parameters](const controllers::ControllerSpec& s) {
-      return s.programs.empty() && !s.options.contains("interface_db") ? parameters->create(s) : module->create(s);
+      const bool module_keys = s.options.contains("interface_db") || s.options.contains("plc_dbs");
+      return s.programs.empty() && !module_keys ? parameters->create(s) : module->create(s);
     });
     controllers::elg::register_elg(builtin);
     controllers::amkasyn::register_amkasyn(builtin);

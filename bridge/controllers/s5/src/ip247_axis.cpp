@@ -59,7 +59,7 @@ std::uint8_t Ip247Axis::attributes() const noexcept {
     // Unit bits as printed (metric 10b, inch 00b, degree 01b).
     if (md_->unit == Ip247Unit::mm) a |= 0x02;
     if (md_->unit == Ip247Unit::degree) a |= 0x01;
-  } else {
+  } else if (!faulty_md_) {
     a |= ip247_attr::md_missing;
   }
   if (pe_) a |= ip247_attr::position_reached;
@@ -93,10 +93,13 @@ Ip247MdError Ip247Axis::load_machine_data(const Ip247MachineData& md, int sysid_
     return ramp.error();
   }
   // The reference point survives only if the reference-relevant MD are unchanged (§2.5).
-  const bool keep_ref = md_ && referenced_ && md_->reference_coordinate == md.reference_coordinate &&
-                        md_->pulses_per_rev == md.pulses_per_rev && md_->gear_bu_per_rev == md.gear_bu_per_rev &&
-                        md_->reference_direction == md.reference_direction && md_->reference_sync == md.reference_sync;
-  const std::int64_t pulses = planner_ ? planner_->position() : 0;
+  const auto& old = md_ ? md_ : deleted_md_;
+  const bool keep_ref = old && referenced_ && old->reference_coordinate == md.reference_coordinate &&
+                        old->pulses_per_rev == md.pulses_per_rev && old->gear_bu_per_rev == md.gear_bu_per_rev &&
+                        old->reference_direction == md.reference_direction && old->reference_sync == md.reference_sync;
+  const std::int64_t pulses = planner_ ? planner_->position() : deleted_pulses_;
+  faulty_md_ = false;
+  deleted_md_.reset();
   md_ = md;
   md_->md_error = 0;
   kin_ = ip247_kinematics(md);
@@ -111,8 +114,11 @@ Ip247MdError Ip247Axis::load_machine_data(const Ip247MachineData& md, int sysid_
 
 Ip247Error Ip247Axis::delete_machine_data() {
   if (running_) return Ip247Error::axis_running;
+  if (md_) deleted_md_ = md_;
+  if (planner_) deleted_pulses_ = planner_->position();
   md_.reset();  // the "reference set" bit stays as it was
   planner_.reset();
+  faulty_md_ = false;
   return Ip247Error::none;
 }
 

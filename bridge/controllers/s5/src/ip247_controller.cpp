@@ -12,6 +12,7 @@
 #include <sstream>
 
 #include "hil/controllers/io_address_s5.hpp"
+#include "hil/controllers/s5/ip247_data_job.hpp"
 #include "hil/controllers/s5/ip247_interface.hpp"
 #include "hil/controllers/s5/ip247_program.hpp"
 #include "hil/controllers/s5/ip247_program_db.hpp"
@@ -24,16 +25,25 @@ namespace {
 
 namespace hc = hil::controllers;
 
-constexpr hc::BitAddress in_limit_start{hc::IoArea::input, 0, 0};
-constexpr hc::BitAddress in_limit_end{hc::IoArea::input, 0, 1};
-constexpr hc::BitAddress in_reference{hc::IoArea::input, 0, 2};
-constexpr hc::BitAddress in_external_stop{hc::IoArea::input, 0, 3};
-constexpr hc::BitAddress out_in_position{hc::IoArea::output, 0, 0};
-constexpr hc::BitAddress out_moving{hc::IoArea::output, 0, 1};
-constexpr hc::BitAddress out_error{hc::IoArea::output, 0, 2};
+/// Bits of axis k's input and output bytes (byte k-1).
+constexpr std::uint8_t in_limit_start = 0;
+constexpr std::uint8_t in_limit_end = 1;
+constexpr std::uint8_t in_reference = 2;
+constexpr std::uint8_t in_external_stop = 3;
+constexpr std::uint8_t out_in_position = 0;
+constexpr std::uint8_t out_moving = 1;
+constexpr std::uint8_t out_error = 2;
+hc::BitAddress in_bit(int axis, std::uint8_t bit) {
+  return {hc::IoArea::input, static_cast<std::uint32_t>(axis - 1), bit};
+}
+hc::BitAddress out_bit(int axis, std::uint8_t bit) {
+  return {hc::IoArea::output, static_cast<std::uint32_t>(axis - 1), bit};
+}
 
-/// The interface DB lies at the start of the data area (20 words = 40 bytes).
-constexpr std::uint32_t interface_bytes = 2 * ip247_axis_db_words;
+/// The interface DB: three axis DBs of 20 words (FB164, next axis at n+20), then the FB165 job block.
+constexpr std::size_t data_job_dw = ip247_axes * ip247_axis_db_words;
+constexpr std::size_t interface_words = data_job_dw + ip247_data_job_words;
+constexpr std::uint32_t interface_bytes = 2 * interface_words;
 
 std::expected<std::string, ConfigError> read_text(const std::filesystem::path& file, const ControllerSpec& spec,
                                                   std::string_view key) {
@@ -102,40 +112,87 @@ std::expected<int, ConfigError> option_int(const ControllerSpec& spec, std::stri
 
 std::expected<std::unique_ptr<hc::Controller>, ConfigError> Ip247Controller::create(const ControllerSpec& spec) {
   for (const auto& [k, v] : spec.options) {
-    if (k != "axis" && k != "interface_db" && k != "sysid_module")
+    if (k != "axis" && k != "interface_db" && k != "sysid_module" && k != "plc_dbs" && k != "tile")
       return std::unexpected(ConfigError{
           spec.file, spec.line, 0, "controller." + k,
           fmt::format("unknown key '{}' of the ip247 controller (allowed: device, parameters, programs, cycle, axis, "
-                      "interface_db, sysid_module)",
+                      "interface_db, sysid_module, plc_dbs, tile)",
                       k)});
   }
   auto profile = profiles::find_profile("ip247");
   if (!profile) return std::unexpected(profile.error());
   auto interface_db = option_int(spec, "interface_db", 1, 255, 10);
   if (!interface_db) return std::unexpected(interface_db.error());
-  auto sysid = option_int(spec, "sysid_module", 0, 255, 0);
+  auto sysid = option_int(spec, "sysid_module", 0, 99, 0);
   if (!sysid) return std::unexpected(sysid.error());
+  auto tile = option_int(spec, "tile", 0, 252, 0);
+  if (!tile) return std::unexpected(tile.error());
+  if (*tile % 4 != 0)
+    return std::unexpected(ConfigError{spec.file, spec.line, 0, "controller.tile",
+                                       fmt::format("the IP247 tile base (switch S2) is a multiple of 4 "
+                                                   "(0, 4, ... 252), got {}",
+                                                   *tile)});
 
-  // The MD DB: a STEP 5 DB listing with one 70-word image.
+  // The MD DBs: a STEP 5 DB listing with one 70-word image per axis the module has at start.
   auto text = read_text(spec.parameters, spec, "parameters");
   if (!text) return std::unexpected(text.error());
   auto dbs = serial::s5::parse_db_listing(*text, spec.parameters.string());
   if (!dbs) return std::unexpected(listing_error(dbs.error(), spec.parameters, "controller.parameters"));
-  const auto md_it = std::find_if(dbs->begin(), dbs->end(),
-                                  [](const serial::s5::DbImage& d) { return d.words.size() == ip247_md_words; });
-  if (md_it == dbs->end())
+  std::vector<std::pair<int, Ip247MachineData>> mds;
+  std::vector<std::pair<int, std::vector<std::uint16_t>>> md_images;
+  for (const auto& d : *dbs) {
+    if (d.words.size() != ip247_md_words) continue;
+    auto md = parse_ip247_md_db(d.words);
+    if (!md)
+      return std::unexpected(ConfigError{spec.parameters.string(), 0, 0, "controller.parameters",
+                                         fmt::format("DB{}: IP247 MD error {}: {}", d.db, static_cast<int>(md.error()),
+                                                     make_error_code(md.error()).message())});
+    if (md->axis < 1 || md->axis > ip247_axes)
+      return std::unexpected(
+          ConfigError{spec.parameters.string(), 0, 0, "controller.parameters",
+                      fmt::format("DB{}: the axis number (DR 3) is {}; the IP247 has axes 1..3", d.db, md->axis)});
+    for (const auto& [db, other] : mds)
+      if (other.axis == md->axis)
+        return std::unexpected(
+            ConfigError{spec.parameters.string(), 0, 0, "controller.parameters",
+                        fmt::format("DB{} and DB{} are both MD of axis {}: one MD set per axis", db, d.db, md->axis)});
+    mds.emplace_back(d.db, *md);
+    md_images.emplace_back(d.db, d.words);
+  }
+  if (mds.empty())
     return std::unexpected(ConfigError{spec.parameters.string(), 0, 0, "controller.parameters",
                                        "no 70-word IP247 machine-data DB in the listing (DW0 = KF +00070)"});
-  auto md = parse_ip247_md_db(md_it->words);
-  if (!md)
-    return std::unexpected(ConfigError{
-        spec.parameters.string(), 0, 0, "controller.parameters",
-        fmt::format("IP247 MD error {}: {}", static_cast<int>(md.error()), make_error_code(md.error()).message())});
-  if (*interface_db == md_it->db)
-    return std::unexpected(ConfigError{spec.file, spec.line, 0, "controller.interface_db",
-                                       fmt::format("DB{} is the machine-data DB: give the interface DB another "
-                                                   "number",
-                                                   *interface_db)});
+  std::ranges::sort(mds, {}, [](const auto& p) { return p.second.axis; });
+  if (spec.options.contains("axis") && mds.size() > 1)
+    return std::unexpected(ConfigError{spec.file, spec.line, 0, "controller.axis",
+                                       "'axis' names the machine axis of a one-axis module; with several MD sets the "
+                                       "machine axes are named by their module axis numbers 1..3"});
+  for (const auto& [db, md] : mds)
+    if (*interface_db == db)
+      return std::unexpected(ConfigError{spec.file, spec.line, 0, "controller.interface_db",
+                                         fmt::format("DB{} is the machine-data DB: give the interface DB another "
+                                                     "number",
+                                                     *interface_db)});
+
+  // The PLC's DBs: sources and targets of the data jobs.
+  S5Blocks plc;
+  if (const auto it = spec.options.find("plc_dbs"); it != spec.options.end()) {
+    std::filesystem::path file(it->second);
+    if (file.is_relative() && !spec.file.empty()) file = std::filesystem::path(spec.file).parent_path() / file;
+    auto t = read_text(file, spec, "plc_dbs");
+    if (!t) return std::unexpected(t.error());
+    auto images = serial::s5::parse_db_listing(*t, file.string());
+    if (!images) return std::unexpected(listing_error(images.error(), file, "controller.plc_dbs"));
+    for (auto& im : *images) {
+      if (im.db == *interface_db)
+        return std::unexpected(
+            ConfigError{file.string(), 0, 0, "controller.plc_dbs",
+                        fmt::format("DB{} is the interface DB: give the PLC's DB another number", im.db)});
+      if (!plc.emplace(im.db, std::move(im.words)).second)
+        return std::unexpected(
+            ConfigError{file.string(), 0, 0, "controller.plc_dbs", fmt::format("DB{} is given twice", im.db)});
+    }
+  }
 
   // The programs: VP DBs the PLC writes at start, by program number.
   std::vector<Ip247ProgramFile> programs;
@@ -163,7 +220,8 @@ std::expected<std::unique_ptr<hc::Controller>, ConfigError> Ip247Controller::cre
       found.push_back({file, *n, *p});
     }
     for (auto& f : found) {
-      if (f.number == *interface_db || f.number == md_it->db)
+      const bool md_number = std::ranges::any_of(mds, [&](const auto& m) { return m.first == f.number; });
+      if (f.number == *interface_db || md_number)
         return std::unexpected(
             ConfigError{file.string(), 1, 1, "program",
                         fmt::format("program {} would be DB{}, which is the {} DB: use another program number",
@@ -177,79 +235,103 @@ std::expected<std::unique_ptr<hc::Controller>, ConfigError> Ip247Controller::cre
   }
 
   const Duration cycle = spec.cycle.value_or(std::chrono::milliseconds(2));
-  auto c = std::make_unique<Ip247Controller>(*profile, *md, md_it->db, *interface_db, std::move(programs), cycle);
-  const auto e = c->axis_.load_machine_data(*md, *sysid);
-  if (e != stepdir::Ip247MdError::none)
-    return std::unexpected(
-        ConfigError{spec.parameters.string(), 0, 0, "controller.parameters",
-                    fmt::format("IP247 MD error {}: {}", static_cast<int>(e), make_error_code(e).message())});
-  c->md_ = *c->axis_.machine_data();
+  auto c =
+      std::make_unique<Ip247Controller>(*profile, *interface_db, std::move(programs), std::move(plc), cycle, *tile);
+  // The SYS-ID the PLC (or COM247) wrote before the MD (BA24).
+  {
+    S5Blocks id{{0, {static_cast<std::uint16_t>(*sysid), 0, static_cast<std::uint16_t>(*tile)}}};
+    (void)c->module_.data_job(Ip247DataJob{24, false, 0, 0, 0, 0, *tile + 3}, id);
+  }
+  for (const auto& [db, words] : md_images) {
+    const int n = words[3] & 0xFF;
+    const auto r = c->module_.write_md(n, db, words);
+    if (r.module_error != stepdir::Ip247Error::none || r.interface_error != Ip247InterfaceError::none) {
+      const int md_error = c->module_.md_image(n) != nullptr ? ((*c->module_.md_image(n))[4] & 0xFF) : 0;
+      return std::unexpected(
+          ConfigError{spec.parameters.string(), 0, 0, "controller.parameters",
+                      fmt::format("DB{}: IP247 MD error {}: {}", db, md_error,
+                                  make_error_code(static_cast<stepdir::Ip247MdError>(md_error)).message())});
+    }
+  }
   c->write_programs();
-  c->publish_status();
 
-  // The machine axis: the motor behind the module's pulse output, 1 increment = 1 pulse.
-  hc::ControllerAxis a;
-  a.name = spec.options.contains("axis") ? spec.options.find("axis")->second : std::to_string(md->axis);
-  const std::int64_t bu_per_unit = md->unit == Ip247Unit::inch ? 10'000 : 1'000;
-  a.units = md->unit == Ip247Unit::inch ? "inch" : md->unit == Ip247Unit::degree ? "deg" : "mm";
-  auto& cfg = a.config;
-  cfg.name = a.name;
-  const std::int64_t num = std::int64_t{md->pulses_per_rev} * bu_per_unit;
-  const std::int64_t g = std::gcd(num, std::int64_t{md->gear_bu_per_rev});
-  cfg.inc_per_unit = {num / g, md->gear_bu_per_rev / g};
-  const double ipu = static_cast<double>(num) / static_cast<double>(md->gear_bu_per_rev);
-  cfg.limits.velocity = static_cast<double>(md->fmax_hz) / ipu;
-  cfg.limits.acceleration = static_cast<double>(md->accel_mhz_per_ms) / ipu;  // mHz/ms = Hz/s
-  cfg.quick_stop_deceleration = cfg.limits.acceleration;
-  cfg.jog_velocity = std::min(cfg.limits.velocity, static_cast<double>(md->jog1) / 60.0);
-  if (md->rotary) {
-    cfg.rotary = true;
-    cfg.modulo = static_cast<double>(md->sw_end - md->sw_start) / static_cast<double>(bu_per_unit);
+  // One machine axis per MD set: the motor behind the axis' pulse output, 1 increment = 1 pulse.
+  for (const auto& [db, md_ref] : mds) {
+    const Ip247MachineData& md = md_ref;
+    hc::ControllerAxis a;
+    a.name = spec.options.contains("axis") ? spec.options.find("axis")->second : std::to_string(md.axis);
+    const std::int64_t bu_per_unit = md.unit == Ip247Unit::inch ? 10'000 : 1'000;
+    a.units = md.unit == Ip247Unit::inch ? "inch" : md.unit == Ip247Unit::degree ? "deg" : "mm";
+    auto& cfg = a.config;
+    cfg.name = a.name;
+    const std::int64_t num = std::int64_t{md.pulses_per_rev} * bu_per_unit;
+    const std::int64_t g = std::gcd(num, std::int64_t{md.gear_bu_per_rev});
+    cfg.inc_per_unit = {num / g, md.gear_bu_per_rev / g};
+    const double ipu = static_cast<double>(num) / static_cast<double>(md.gear_bu_per_rev);
+    cfg.limits.velocity = static_cast<double>(md.fmax_hz) / ipu;
+    cfg.limits.acceleration = static_cast<double>(md.accel_mhz_per_ms) / ipu;  // mHz/ms = Hz/s
+    cfg.quick_stop_deceleration = cfg.limits.acceleration;
+    cfg.jog_velocity = std::min(cfg.limits.velocity, static_cast<double>(md.jog1) / 60.0);
+    if (md.rotary) {
+      cfg.rotary = true;
+      cfg.modulo = static_cast<double>(md.sw_end - md.sw_start) / static_cast<double>(bu_per_unit);
+    }
+    // The module supervises its own limits (SW limits 28/29, limit switches 25/26) and plans the
+    // motion; the motion core only follows and guards the plant (50 ms of travel at vmax).
+    const double pulse = 1.0 / ipu;
+    cfg.following_error.static_window = std::max(0.05 * cfg.limits.velocity, 10.0 * pulse);
+    cfg.standstill_window = std::max(2.0 * pulse, 1e-9);
+    cfg.in_position_window = pulse;
+    cfg.reaction = motion::FaultReaction::stop;
+    a.warnings.push_back(
+        "the IP247 module plans the motion (its exponential ramp, the programmed speeds) and supervises software "
+        "limits, limit switches, backlash and offsets itself; the machine axis follows its pulses from its own zero");
+    if (const auto v = motion::validate(cfg); !v)
+      return std::unexpected(
+          ConfigError{spec.parameters.string(), 0, 0, "controller.parameters",
+                      fmt::format("DB{}: the machine data give an axis the motion core rejects: {}", db, v.error())});
+    const std::string& n = a.name;
+    auto& io = c->io();
+    for (const auto& [name, bit] : {std::pair{"limit_minus_" + n, in_bit(md.axis, in_limit_start)},
+                                    {"limit_plus_" + n, in_bit(md.axis, in_limit_end)},
+                                    {"reference_cam_" + n, in_bit(md.axis, in_reference)},
+                                    {"external_stop_" + n, in_bit(md.axis, in_external_stop)},
+                                    {"in_position_" + n, out_bit(md.axis, out_in_position)},
+                                    {"moving_" + n, out_bit(md.axis, out_moving)},
+                                    {"error_" + n, out_bit(md.axis, out_error)}}) {
+      if (auto r = io.name_bit(name, bit); !r)
+        return std::unexpected(ConfigError{spec.file, spec.line, 0, "controller.axis", r.error()});
+    }
+    c->add_axis(std::move(a));
+    c->axes_.push_back(md.axis);
   }
-  // The module supervises its own limits (SW limits 28/29, limit switches 25/26) and plans the
-  // motion; the motion core only follows and guards the plant (50 ms of travel at vmax).
-  const double pulse = 1.0 / ipu;
-  cfg.following_error.static_window = std::max(0.05 * cfg.limits.velocity, 10.0 * pulse);
-  cfg.standstill_window = std::max(2.0 * pulse, 1e-9);
-  cfg.in_position_window = pulse;
-  cfg.reaction = motion::FaultReaction::stop;
-  a.warnings.push_back(
-      "the IP247 module plans the motion (its exponential ramp, the programmed speeds) and supervises software limits, "
-      "limit switches, backlash and offsets itself; the machine axis follows its pulses from its own zero");
-  if (const auto v = motion::validate(cfg); !v)
-    return std::unexpected(ConfigError{spec.parameters.string(), 0, 0, "controller.parameters",
-                                       "the machine data give an axis the motion core rejects: " + v.error()});
-  const std::string& n = a.name;
-  auto& io = c->io();
-  for (const auto& [name, bit] : {std::pair{"limit_minus_" + n, in_limit_start},
-                                  {"limit_plus_" + n, in_limit_end},
-                                  {"reference_cam_" + n, in_reference},
-                                  {"external_stop_" + n, in_external_stop},
-                                  {"in_position_" + n, out_in_position},
-                                  {"moving_" + n, out_moving},
-                                  {"error_" + n, out_error}}) {
-    if (auto r = io.name_bit(name, bit); !r)
-      return std::unexpected(ConfigError{spec.file, spec.line, 0, "controller.axis", r.error()});
-  }
-  c->add_axis(std::move(a));
+  c->followers_.resize(c->axes_.size());
+  c->shown_error_.assign(c->axes_.size(), 0);
+  c->publish_status();
   return std::unique_ptr<hc::Controller>(std::move(c));
 }
 
-Ip247Controller::Ip247Controller(std::shared_ptr<const profiles::Profile> profile, const Ip247MachineData& md,
-                                 int md_db, int interface_db, std::vector<Ip247ProgramFile> programs, Duration cycle)
-    : hc::Controller(std::move(profile), profiles::ParameterSet{}, hc::IoLayout{{1, 1, 1, interface_bytes}}, cycle),
-      md_(md),
-      md_db_(md_db),
-      interface_{static_cast<std::uint16_t>(interface_db), 0, static_cast<std::uint16_t>(ip247_axis_db_words)},
+Ip247Controller::Ip247Controller(std::shared_ptr<const profiles::Profile> profile, int interface_db,
+                                 std::vector<Ip247ProgramFile> programs, S5Blocks plc_dbs, Duration cycle, int tile)
+    : hc::Controller(std::move(profile), profiles::ParameterSet{},
+                     hc::IoLayout{{ip247_axes, ip247_axes, 1, interface_bytes}}, cycle),
+      interface_{static_cast<std::uint16_t>(interface_db), 0, static_cast<std::uint16_t>(interface_words)},
       program_files_(std::move(programs)),
-      axis_(store_, md.axis),
-      kin_(ip247_kinematics(md)) {
-  words_.assign(ip247_axis_db_words, 0);
+      plc_(std::move(plc_dbs)),
+      module_(tile) {
+  words_.assign(interface_words, 0);
   publish_status();
 }
 
 void Ip247Controller::publish_status() noexcept {
-  write_ip247_status(words_, axis_, md_.ag_bcd);
+  std::vector<std::uint16_t> block(ip247_axis_db_words, 0);
+  for (int n = 1; n <= ip247_axes; ++n) {
+    const auto base = static_cast<std::size_t>(n - 1) * ip247_axis_db_words;
+    std::copy_n(words_.begin() + static_cast<std::ptrdiff_t>(base), ip247_axis_db_words, block.begin());
+    const Ip247Axis& a = module_.axis(n);
+    write_ip247_status(block, a, a.machine_data() && a.machine_data()->ag_bcd);
+    std::copy(block.begin(), block.end(), words_.begin() + static_cast<std::ptrdiff_t>(base));
+  }
   for (std::size_t w = 0; w < words_.size(); ++w)
     (void)Controller::write_data_word(interface_.number, static_cast<int>(w), words_[w]);
 }
@@ -263,17 +345,22 @@ std::expected<hc::BitAddress, std::string> Ip247Controller::resolve_bit(std::str
 
 std::expected<std::uint16_t, std::string> Ip247Controller::read_data_word(int db, int dw) const {
   if (db == interface_.number) return Controller::read_data_word(db, dw);
-  const std::vector<std::uint16_t>* image = nullptr;
-  std::vector<std::uint16_t> md_image;
-  if (db == md_db_) {
-    md_image = make_ip247_md_db(md_);
-    image = &md_image;
-  } else if (const auto it = vp_images_.find(db); it != vp_images_.end()) {
-    image = &it->second;
+  std::optional<std::vector<std::uint16_t>> image;
+  std::string what;
+  if (const auto it = plc_.find(db); it != plc_.end()) {
+    image = it->second;
+    what = "PLC DB";
+  } else {
+    for (int n = 1; n <= ip247_axes && !image; ++n)
+      if (module_.md_db(n) == db) image = *module_.md_image(n);
+    if (!image) image = module_.vp_image(db);
   }
-  if (image == nullptr) {
-    std::string list = fmt::format("DB{} (interface), DB{} (machine data)", interface_.number, md_db_);
-    for (const auto& [n, w] : vp_images_) list += fmt::format(", DB{} (program {})", n, n);
+  if (!image) {
+    std::string list = fmt::format("DB{} (interface)", interface_.number);
+    for (const auto& [n, w] : plc_) list += fmt::format(", DB{} (PLC)", n);
+    for (int n = 1; n <= ip247_axes; ++n)
+      if (module_.md_db(n) >= 0) list += fmt::format(", DB{} (machine data of axis {})", module_.md_db(n), n);
+    for (const auto& [n, len] : module_.programs().directory()) list += fmt::format(", DB{} (program {})", n, n);
     return std::unexpected(fmt::format("the ip247 module has no DB{} (it has {})", db, list));
   }
   if (dw < 0 || static_cast<std::size_t>(dw) >= image->size())
@@ -283,60 +370,85 @@ std::expected<std::uint16_t, std::string> Ip247Controller::read_data_word(int db
 }
 
 std::expected<void, std::string> Ip247Controller::write_data_word(int db, int dw, std::uint16_t value) {
+  if (const auto it = plc_.find(db); it != plc_.end()) {
+    if (dw < 0 || static_cast<std::size_t>(dw) >= it->second.size())
+      return std::unexpected(
+          fmt::format("the PLC's DB{} has data words 0..{}; DW {} is beyond it", db, it->second.size() - 1, dw));
+    it->second[static_cast<std::size_t>(dw)] = value;
+    return {};
+  }
   if (db != interface_.number)
     return std::unexpected(fmt::format(
-        "DB{} of the ip247 module is not written word by word: the PLC writes the interface DB{} (the MD and "
-        "VP DBs are images the module checks as a whole, given in 'parameters:' and 'programs:')",
+        "DB{} of the ip247 module is not written word by word: the PLC writes the interface DB{} and its own DBs "
+        "(plc_dbs:); the MD and VP DBs are images the module takes as a whole (data jobs BA20/22 from a PLC DB, or "
+        "'parameters:' and 'programs:')",
         db, interface_.number));
   return Controller::write_data_word(db, dw, value);
 }
 
 std::vector<std::string> Ip247Controller::trace_signals() const {
-  return {"actual_value_BU", "error_number", "m_output"};
+  std::vector<std::string> names;
+  const auto specs = axis_specs();
+  for (std::size_t i = 0; i < axes_.size(); ++i) {
+    const std::string suffix = axes_.size() == 1 ? "" : "_" + specs[i].name;
+    for (const char* s : {"actual_value_BU", "error_number", "m_output"}) names.push_back(s + suffix);
+  }
+  return names;
 }
 
 double Ip247Controller::trace_value(std::size_t i) const noexcept {
-  switch (i) {
+  if (i / 3 >= axes_.size()) return 0.0;
+  const Ip247Axis& a = module_.axis(axes_[i / 3]);
+  switch (i % 3) {
     case 0:
-      return static_cast<double>(axis_.actual());
+      return static_cast<double>(a.actual());
     case 1:
-      return axis_.error();
-    case 2:
-      return axis_.m_output();
+      return a.error();
     default:
-      return 0.0;
+      return a.m_output();
   }
 }
 
 void Ip247Controller::write_programs() {
   for (const auto& f : program_files_) {
-    Ip247SyntaxFault fault;
-    const auto e = store_.write(f.number, f.text, &fault);
     auto image = make_ip247_vp_db(Ip247VpImage{static_cast<std::uint8_t>(f.number), f.text, 0, 0});
-    std::vector<std::uint16_t> words = image ? std::move(*image) : std::vector<std::uint16_t>{};
-    if (e == stepdir::Ip247Error::program_faulty && !words.empty()) set_ip247_vp_error(words, fault);
-    if (!words.empty()) vp_images_[f.number] = std::move(words);
-    if (e == stepdir::Ip247Error::none) continue;
+    Ip247SyntaxFault fault;
+    const auto r = image ? module_.write_vp(f.number, *image, &fault)
+                         : Ip247DataResult{Ip247InterfaceError::source_too_large, stepdir::Ip247Error::none, 0, 0};
+    if (r.module_error == stepdir::Ip247Error::none && r.interface_error == Ip247InterfaceError::none) continue;
+    const int code = r.module_error != stepdir::Ip247Error::none
+                         ? static_cast<int>(r.module_error)
+                         : static_cast<int>(stepdir::Ip247Error::program_faulty);
     refused_.push_back(
-        {static_cast<int>(e),
-         e == stepdir::Ip247Error::program_faulty
-             ? fmt::format("program {} ({}): syntax error {} in block N{}: {}", f.number, f.file.string(),
-                           static_cast<int>(fault.code), fault.block_number, fault.message)
-             : fmt::format("program {} ({}) not stored", f.number, f.file.string())});
+        {code, r.module_error == stepdir::Ip247Error::program_faulty
+                   ? fmt::format("program {} ({}): syntax error {} in block N{}: {}", f.number, f.file.string(),
+                                 static_cast<int>(fault.code), fault.block_number, fault.message)
+                   : fmt::format("program {} ({}) not stored: {}", f.number, f.file.string(),
+                                 image ? make_error_code(r.module_error).message() : image.error())});
   }
 }
 
-void Ip247Controller::report_error(TimePoint now) noexcept {
-  const int e = axis_.error() >= 10 ? axis_.error() : 0;
-  if (e == shown_error_) return;
-  if (const auto* cat = catalogue("module")) {
-    if (shown_error_ != 0) (void)clear_error(*cat, shown_error_, 0);
+void Ip247Controller::report_errors(TimePoint now) noexcept {
+  const auto* cat = catalogue("module");
+  if (cat == nullptr) return;
+  for (std::size_t i = 0; i < axes_.size(); ++i) {
+    const Ip247Axis& a = module_.axis(axes_[i]);
+    const int e = a.error() >= 10 ? a.error() : 0;
+    if (e == shown_error_[i]) continue;
+    if (shown_error_[i] != 0) (void)clear_error(*cat, shown_error_[i], static_cast<int>(i));
     if (e != 0)
-      raise(*cat, e, now, 0,
-            fmt::format("axis {}, BA {}, actual value {} BU", axis_specs()[0].name, axis_.ba(), axis_.actual()),
+      raise(*cat, e, now, static_cast<int>(i),
+            fmt::format("axis {}, BA {}, actual value {} BU", axis_specs()[i].name, a.ba(), a.actual()),
             hc::AckRule::self_clearing, false);
+    shown_error_[i] = e;
   }
-  shown_error_ = e;
+  // The data channel's error (a data job refused: 48, 49, 13 ...), until its next job or BA17.
+  const int d = module_.data_channel_error() >= 10 ? module_.data_channel_error() : 0;
+  if (d != shown_data_error_) {
+    if (shown_data_error_ != 0) (void)clear_error(*cat, shown_data_error_, -1);
+    if (d != 0) raise(*cat, d, now, -1, "data channel", hc::AckRule::self_clearing, false);
+    shown_data_error_ = d;
+  }
 }
 
 void Ip247Controller::on_cycle(const CycleTime& cycle) noexcept {
@@ -344,56 +456,83 @@ void Ip247Controller::on_cycle(const CycleTime& cycle) noexcept {
   period_ns_ = cycle_period().count();
   // BB: the power section is the machine axis; the module enables it at power-up.
   const bool ready = power_up_axes();
-  const auto state = axis(0).status().state;
-  const bool bb = ready && state != motion::AxisState::error;
   if (!started_) {
     // The VP DBs the PLC wrote at start that the module refused (error 48 ...).
     if (const auto* cat = catalogue("module"))
       for (const auto& [code, context] : refused_) raise(*cat, code, cycle.now, 0, context, std::nullopt, false);
     started_ = true;
   }
-  // The PLC's job: BA, parameters and a command bit in the interface DB. Until the power section
-  // is up at power-on the module takes no job (DW4 stays set: the PLC's handshake waits).
+  // The PLC's jobs: BA, parameters and a command bit in each axis DB; a data job in the job block.
+  // Until the power section is up at power-on the module takes no job (the PLC's handshake waits).
   for (std::size_t w = 0; w < words_.size(); ++w)
     words_[w] = Controller::read_data_word(interface_.number, static_cast<int>(w)).value_or(0);
-  const std::uint16_t pending = words_[4];
-  int decode_error = 0;
-  if (ready) {
-    if (auto job = take_ip247_job(words_, md_.ag_bcd)) {
+  std::array<std::uint16_t, ip247_axes> pending{};
+  std::array<int, ip247_axes> decode_error{};
+  std::vector<std::uint16_t> block(ip247_axis_db_words, 0);
+  for (int n = 1; n <= ip247_axes; ++n) {
+    const auto k = static_cast<std::size_t>(n - 1);
+    const auto base = k * ip247_axis_db_words;
+    pending[k] = words_[base + 4];
+    if (!ready) continue;
+    std::copy_n(words_.begin() + static_cast<std::ptrdiff_t>(base), ip247_axis_db_words, block.begin());
+    const Ip247Axis& a = module_.axis(n);
+    if (auto job = take_ip247_job(block, a.machine_data() && a.machine_data()->ag_bcd)) {
       if (*job) {
-        axis_.command(**job);
+        module_.command(n, **job);
       } else {
-        decode_error = static_cast<int>(job->error());
+        decode_error[k] = static_cast<int>(job->error());
       }
     }
   }
-  Ip247Inputs in;
-  in.limit_start = io().get(in_limit_start);
-  in.limit_end = io().get(in_limit_end);
-  in.reference = io().get(in_reference);
-  in.external_stop = io().get(in_external_stop);
-  in.ready = bb;
-  axis_.step(now_ns, period_ns_, in, nullptr);
-  if (bb) follower_.step(axis(0), axis_, period_ns_);  // module pulse 0 = where the axis stood at power-up
-  write_ip247_status(words_, axis_, md_.ag_bcd);
-  if (!ready) words_[4] = pending;
-  if (decode_error != 0) words_[12] = static_cast<std::uint16_t>((words_[12] & 0xFF00) | decode_error);
+  std::vector<std::uint16_t> data_block(words_.begin() + static_cast<std::ptrdiff_t>(data_job_dw), words_.end());
+  if (ready) {
+    if (const auto job = take_ip247_data_job(data_block)) {
+      const auto r = module_.data_job(*job, plc_);
+      write_ip247_data_result(data_block, r);
+      std::copy(data_block.begin(), data_block.end(), words_.begin() + static_cast<std::ptrdiff_t>(data_job_dw));
+    }
+  }
+  for (int n = 1; n <= ip247_axes; ++n) {
+    Ip247Inputs in;
+    in.limit_start = io().get(in_bit(n, in_limit_start));
+    in.limit_end = io().get(in_bit(n, in_limit_end));
+    in.reference = io().get(in_bit(n, in_reference));
+    in.external_stop = io().get(in_bit(n, in_external_stop));
+    const auto i = static_cast<std::size_t>(std::ranges::find(axes_, n) - axes_.begin());
+    const bool bb = ready && i < axes_.size() && axis(i).status().state != motion::AxisState::error;
+    in.ready = bb;
+    Ip247Axis& a = module_.axis(n);
+    a.step(now_ns, period_ns_, in, nullptr);
+    if (bb) followers_[i].step(axis(i), a, period_ns_);  // module pulse 0 = where the axis stood at power-up
+    io().set(out_bit(n, out_in_position), a.position_reached());
+    io().set(out_bit(n, out_moving), a.running());
+    io().set(out_bit(n, out_error), a.error() >= 10);
+  }
+  for (int n = 1; n <= ip247_axes; ++n) {
+    const auto k = static_cast<std::size_t>(n - 1);
+    const auto base = k * ip247_axis_db_words;
+    std::copy_n(words_.begin() + static_cast<std::ptrdiff_t>(base), ip247_axis_db_words, block.begin());
+    const Ip247Axis& a = module_.axis(n);
+    write_ip247_status(block, a, a.machine_data() && a.machine_data()->ag_bcd);
+    if (!ready) block[4] = pending[k];
+    if (decode_error[k] != 0) block[12] = static_cast<std::uint16_t>((block[12] & 0xFF00) | decode_error[k]);
+    std::copy(block.begin(), block.end(), words_.begin() + static_cast<std::ptrdiff_t>(base));
+  }
   for (std::size_t w = 0; w < words_.size(); ++w)
     (void)Controller::write_data_word(interface_.number, static_cast<int>(w), words_[w]);
-  io().set(out_in_position, axis_.position_reached());
-  io().set(out_moving, axis_.running());
-  io().set(out_error, axis_.error() >= 10);
-  report_error(cycle.now);
+  report_errors(cycle.now);
 }
 
 std::expected<void, std::string> Ip247Controller::check_axes() {
-  const hil::Drive& drive = axis(0).drive();
-  if (drive.capabilities().drive_profile)
-    return std::unexpected(fmt::format(
-        "axis '{}': its drive {} generates its own trajectory (drive profile), but the IP247 module drives its axis "
-        "with its pulse train as a cyclic set-point: use a cyclic drive (stepdir `profile: motion`, CiA 402 CSP, "
-        "sim)",
-        axis_specs()[0].name, drive.name()));
+  for (std::size_t i = 0; i < axis_count(); ++i) {
+    const hil::Drive& drive = axis(i).drive();
+    if (drive.capabilities().drive_profile)
+      return std::unexpected(fmt::format(
+          "axis '{}': its drive {} generates its own trajectory (drive profile), but the IP247 module drives its "
+          "axis with its pulse train as a cyclic set-point: use a cyclic drive (stepdir `profile: motion`, CiA 402 "
+          "CSP, sim)",
+          axis_specs()[i].name, drive.name()));
+  }
   return {};
 }
 

@@ -4,8 +4,18 @@
 namespace hil::controllers::s5 {
 
 void Ip247Follower::step(motion::Axis& axis, const Ip247Axis& module, std::int64_t period_ns) noexcept {
-  if (module.planner() == nullptr) return;  // no machine data: no pulses
+  if (module.planner() == nullptr) {  // no machine data: no pulses
+    planner_ = nullptr;
+    return;
+  }
   const std::int64_t pulses = module.planner()->motor_position();
+  if (anchored_ && module.planner() != planner_) {
+    // A new MD set (BA20) gives the module a new pulse counter; the motor has not moved: its new
+    // count continues from the set-point the axis last had.
+    base_inc_ += last_pulses_ - base_pulses_;
+    base_pulses_ = last_pulses_ = pulses;
+  }
+  planner_ = module.planner();
   if (!anchored_) {
     base_inc_ = axis.status().command_inc;
     base_pulses_ = last_pulses_ = pulses;

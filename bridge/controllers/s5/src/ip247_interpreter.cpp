@@ -49,6 +49,7 @@ void Ip247Interpreter::mark_moved() noexcept {
 }
 
 void Ip247Interpreter::traced(const Ip247Block& b) {
+  ++blocks_;
   if (trace_on_) trace_.push_back({current().number, b.number, m_out_});
 }
 

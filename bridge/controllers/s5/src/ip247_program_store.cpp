@@ -23,7 +23,7 @@ Ip247Error Ip247ProgramStore::write(int number, const std::string& text, Ip247Sy
   if (programs_.size() >= ip247_max_programs) return Ip247Error::max_programs;
   if (used_ + text.size() > ip247_memory_chars) return Ip247Error::program_memory_full;
   programs_.emplace(number, Entry{text, std::move(*p)});
-  order_.push_back(number);
+  memory_.push_back({number, text.size()});
   used_ += text.size();
   return Ip247Error::none;
 }
@@ -32,10 +32,34 @@ Ip247Error Ip247ProgramStore::erase(int number) {
   auto it = programs_.find(number);
   if (it == programs_.end()) return Ip247Error::db_not_present;
   if (active(number)) return Ip247Error::program_active;
-  used_ -= it->second.text.size();
   programs_.erase(it);
-  order_.erase(std::find(order_.begin(), order_.end(), number));
-  return Ip247Error::none;
+  const auto seg =
+      std::find_if(memory_.begin(), memory_.end(), [number](const Segment& s) { return s.number == number; });
+  seg->number = -1;
+  const auto index = seg - memory_.begin();
+  compact();
+  const bool gap =
+      static_cast<std::size_t>(index) < memory_.size() && memory_[static_cast<std::size_t>(index)].number < 0;
+  return gap ? Ip247Error::deleted_from_directory_only : Ip247Error::none;
+}
+
+void Ip247ProgramStore::compact() {
+  std::size_t keep = 0;  // segments up to the last running program stay where they are
+  for (std::size_t i = 0; i < memory_.size(); ++i)
+    if (memory_[i].number >= 0 && active(memory_[i].number)) keep = i + 1;
+  std::vector<Segment> m(memory_.begin(), memory_.begin() + static_cast<std::ptrdiff_t>(keep));
+  for (std::size_t i = keep; i < memory_.size(); ++i)
+    if (memory_[i].number >= 0) m.push_back(memory_[i]);
+  memory_ = std::move(m);
+  used_ = 0;
+  for (const Segment& s : memory_) used_ += s.chars;
+}
+
+std::size_t Ip247ProgramStore::gap_chars() const noexcept {
+  std::size_t n = 0;
+  for (const Segment& s : memory_)
+    if (s.number < 0) n += s.chars;
+  return n;
 }
 
 const Ip247Program* Ip247ProgramStore::find(int number) const {
@@ -50,9 +74,10 @@ const std::string* Ip247ProgramStore::text(int number) const {
 
 std::vector<std::pair<int, int>> Ip247ProgramStore::directory() const {
   std::vector<std::pair<int, int>> d;
-  for (int n : order_) {
-    const auto words = ip247_vp_header_words + (programs_.at(n).text.size() + 1) / 2;
-    d.emplace_back(n, static_cast<int>(words));
+  for (const Segment& s : memory_) {
+    if (s.number < 0) continue;
+    const auto words = ip247_vp_header_words + (programs_.at(s.number).text.size() + 1) / 2;
+    d.emplace_back(s.number, static_cast<int>(words));
   }
   return d;
 }

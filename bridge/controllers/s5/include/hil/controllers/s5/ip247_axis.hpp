@@ -68,8 +68,15 @@ class Ip247Axis {
   /// error byte is the return value). Offsets are cleared; the reference point is kept only if
   /// the reference-relevant MD are unchanged.
   stepdir::Ip247MdError load_machine_data(const Ip247MachineData& md, int sysid_module);
-  /// BA21.
+  /// BA21. The pulse position and the deleted set are kept, so a following BA20 with unchanged
+  /// reference-relevant MD keeps the reference point (§2.5.1: MD are replaced by delete + write).
   stepdir::Ip247Error delete_machine_data();
+  /// A faulty MD set was transferred (BA20 refused by the check): attribute 40h "MD missing"
+  /// clears, as on the module, but motion commands still get error 14 until BA21 + a good BA20.
+  void set_faulty_machine_data(bool present) noexcept { faulty_md_ = present; }
+  /// Latches a module error the module raises for this axis outside an operating command (a data
+  /// job on the axis tile: 15, 46, 13 ...). Acknowledged by the next operating command.
+  void report(stepdir::Ip247Error e) noexcept { error_ = static_cast<int>(e); }
   /// An operating command (PG or AG).
   void command(const Ip247Job& job);
   /// One module cycle.
@@ -144,6 +151,9 @@ class Ip247Axis {
   Ip247ProgramStore& store_;
   int axis_;
   std::optional<Ip247MachineData> md_;
+  std::optional<Ip247MachineData> deleted_md_;  ///< the set BA21 removed (reference retention)
+  std::int64_t deleted_pulses_ = 0;             ///< the pulse position when it was removed
+  bool faulty_md_ = false;
   Ip247Kinematics kin_;
   std::shared_ptr<const stepdir::Ip247Ramp> ramp_;
   std::unique_ptr<stepdir::StepPlanner> planner_;

@@ -1,26 +1,31 @@
 // SPDX-License-Identifier: MIT
 #pragma once
 // The IP247 module on the controller runtime (issue 19): a hil::controllers::Controller that owns
-// one Ip247Axis (the module's modes, programs and pulse generator) and drives the machine axis the
-// scenario gives it, on any transport, through hil::Drive: every controller cycle the module's
-// pulse position (motor pulses, 1 increment = 1 pulse) is the axis' cyclic set-point
-// (motion::Axis::follow), so the programmed speed, the IP247 ramp and the reference approach reach
-// the drive exactly. A scenario names it with
-//   controller: {device: ip247, parameters: MD-DB.s5db, programs: [VP.txt, ...], interface_db: 10}
+// one Ip247Module (three axes sharing one program memory, the data channel) and drives one
+// machine axis per module axis that has machine data at start, on any transport, through
+// hil::Drive: every controller cycle the axis' pulse position (motor pulses, 1 increment = 1
+// pulse) is its machine axis' cyclic set-point (motion::Axis::follow), so the programmed speed,
+// the IP247 ramp and the reference approach reach the drive exactly. A scenario names it with
+//   controller: {device: ip247, parameters: MD-DBs.s5db, programs: [VP.txt, ...], interface_db: 10,
+//                plc_dbs: PLC-DBs.s5db}
+// The MD listing holds one 70-word MD DB per axis the module has at start (battery-backed); the
+// axis is DR 3 of each set (1..3), as on the module.
 //
-// The PLC side is the axis interface DB of ip247_interface.hpp (20 words), laid into the image's
-// data area (DB `interface_db`, default 10): a scenario's `plc:` steps write BA, parameters and a
-// command bit, the module takes the job at its next cycle (clears DW4) and writes actual value,
-// remaining distance, BA/M, attributes/error there. The program files are the VP DBs the PLC
-// writes at start (BA22), in program-number order; each is readable as DB n (n = program number):
-// a program refused by the syntax check gives module error 48 and its image carries the syntax
-// error in DW3 and the block in DW4. The MD DB is readable as its DB number.
+// The PLC side is the interface DB (`interface_db`, default 10) in the image's data area, laid out
+// as FB164/FB165 lay their blocks: DW 20(k-1) .. 20(k-1)+19 = the axis DB of axis k
+// (ip247_interface.hpp: BA, parameters, command bits in, actual value, remaining distance, BA/M,
+// attributes/error out), DW 60..74 = the data-job block of ip247_data_job.hpp (FB165: BA 20-24,
+// 64-70 between the PLC's DBs and the module; DW60 = 0 when done). The PLC's own DBs (the source
+// and target DBs of data jobs) come from `plc_dbs` (an S5 DB listing; each DB keeps its length)
+// and are read and written word by word. The module's DBs (MD images, VP images; a VP refused by
+// the syntax check carries its syntax error in DW3 and block in DW4) are readable as DB n where no
+// PLC DB has that number.
 //
-// Inputs (image byte 0 of the input area): bit 0 limit_minus_A (E ANF), bit 1 limit_plus_A (E END),
-// as wired (NC from the MD: 1 = not actuated), bit 2 reference_cam_A (BERO), bit 3 external_stop_A
-// (START-N/STOP). BB (ready) is the machine axis: enabled and not faulted. Outputs byte 0: bit 0
-// in_position_A (PE), bit 1 moving_A (job running), bit 2 error_A (module error >= 10).
-// Module errors >= 10 are device errors `ip247.module:N` on the axis (the module has braked
+// Inputs (image input byte k-1 for axis k): bit 0 limit_minus (E ANF), bit 1 limit_plus (E END),
+// as wired (NC from the MD: 1 = not actuated), bit 2 reference_cam (BERO), bit 3 external_stop
+// (START-N/STOP). BB (ready) is the machine axis: enabled and not faulted (an axis without machine
+// axis has BB low: 53). Outputs byte k-1: bit 0 in_position (PE), bit 1 moving, bit 2 error.
+// Module errors >= 10 are device errors `ip247.module:N` on their axis (the module has braked
 // itself; the runtime applies no reaction); they clear when the error byte clears (the next
 // operating command acknowledges, as on the module). Messages 1..9 stay in the error byte only.
 // Thread: the cycle thread; on_cycle never throws.
@@ -38,7 +43,7 @@
 #include "hil/controllers/s5/ip247_axis.hpp"
 #include "hil/controllers/s5/ip247_follower.hpp"
 #include "hil/controllers/s5/ip247_machine_data.hpp"
-#include "hil/controllers/s5/ip247_program_store.hpp"
+#include "hil/controllers/s5/ip247_module.hpp"
 
 namespace hil::controllers::s5 {
 
@@ -56,8 +61,8 @@ class Ip247Controller final : public hil::controllers::Controller {
   [[nodiscard]] static std::expected<std::unique_ptr<hil::controllers::Controller>, ConfigError> create(
       const ControllerSpec& spec);
 
-  Ip247Controller(std::shared_ptr<const profiles::Profile> profile, const Ip247MachineData& md, int md_db,
-                  int interface_db, std::vector<Ip247ProgramFile> programs, Duration cycle);
+  Ip247Controller(std::shared_ptr<const profiles::Profile> profile, int interface_db,
+                  std::vector<Ip247ProgramFile> programs, S5Blocks plc_dbs, Duration cycle, int tile = 0);
 
   [[nodiscard]] std::expected<hil::controllers::BitAddress, std::string> resolve_bit(
       std::string_view text) const override;
@@ -67,7 +72,11 @@ class Ip247Controller final : public hil::controllers::Controller {
   [[nodiscard]] std::vector<std::string> trace_signals() const override;
   [[nodiscard]] double trace_value(std::size_t i) const noexcept override;
 
-  [[nodiscard]] const Ip247Axis& module_axis() const noexcept { return axis_; }
+  /// The module axis of the first machine axis.
+  [[nodiscard]] const Ip247Axis& module_axis() const noexcept { return module_.axis(axes_.front()); }
+  [[nodiscard]] const Ip247Module& module() const noexcept { return module_; }
+  /// The PLC's data blocks (plc_dbs).
+  [[nodiscard]] const S5Blocks& plc_blocks() const noexcept { return plc_; }
 
  protected:
   void on_cycle(const CycleTime& cycle) noexcept override;
@@ -79,23 +88,21 @@ class Ip247Controller final : public hil::controllers::Controller {
  private:
   /// BA22 of every program file at start: stores it or keeps the refusal for the first cycle.
   void write_programs();
-  void report_error(TimePoint now) noexcept;
-  /// Status words (DW5..DW13, DW4 cleared) of the module into the interface DB.
+  void report_errors(TimePoint now) noexcept;
+  /// Status words of every axis (its DW4 cleared) into the interface DB.
   void publish_status() noexcept;
 
-  Ip247MachineData md_;
-  int md_db_ = 1;
   S5DataBlock interface_{};
   std::vector<Ip247ProgramFile> program_files_;
-  std::map<int, std::vector<std::uint16_t>> vp_images_;  ///< VP DB images by program number
-  std::vector<std::pair<int, std::string>> refused_;     ///< module error and text of refused VPs
-  Ip247ProgramStore store_;
-  Ip247Axis axis_;
-  Ip247Kinematics kin_{};
+  std::vector<std::pair<int, std::string>> refused_;  ///< module error and text of refused VPs
+  S5Blocks plc_;                                      ///< the PLC's DBs
+  Ip247Module module_;
+  std::vector<int> axes_;  ///< module axis number of each machine axis, in declaration order
+  std::vector<Ip247Follower> followers_;
+  std::vector<int> shown_error_;
+  int shown_data_error_ = 0;
   std::vector<std::uint16_t> words_;  ///< scratch: the interface DB of this cycle
   bool started_ = false;              ///< the refusals of the programs are reported
-  Ip247Follower follower_;
-  int shown_error_ = 0;
   std::int64_t period_ns_ = 0;
 };
 

@@ -24,7 +24,8 @@ class Ip247Follower {
 
  private:
   bool anchored_ = false;
-  std::int64_t base_inc_ = 0;  ///< machine-axis increment of module pulse base_pulses_
+  const stepdir::StepPlanner* planner_ = nullptr;  ///< the counter anchored to (a new MD set re-anchors)
+  std::int64_t base_inc_ = 0;                      ///< machine-axis increment of module pulse base_pulses_
   std::int64_t base_pulses_ = 0;
   std::int64_t last_pulses_ = 0;
   int resting_ = 0;

@@ -87,6 +87,8 @@ class Ip247Interpreter {
   /// Trace of interpreted blocks (off by default; `enable_trace(true)` records).
   void enable_trace(bool on) { trace_on_ = on; }
   [[nodiscard]] const std::vector<Ip247TraceEntry>& trace() const noexcept { return trace_; }
+  /// Blocks interpreted since construction (for the cost per block of bench_controllers_s5).
+  [[nodiscard]] std::uint64_t blocks_interpreted() const noexcept { return blocks_; }
 
  private:
   struct Frame {
@@ -121,6 +123,7 @@ class Ip247Interpreter {
   std::int64_t from_ = 0;
   int m_out_ = 2;
   bool trace_on_ = false;
+  std::uint64_t blocks_ = 0;
   std::vector<Ip247TraceEntry> trace_;
 };
 
