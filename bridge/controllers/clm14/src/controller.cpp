@@ -251,6 +251,7 @@ void Controller::enter_mode(Mode m, TimePoint now) {
     }
     fak5_ = micro_one;
     mlo_.on = false;  // MLO: leaving Automatic disables it
+    test_step_ = 0;   // test mode: the material clock stops on Automatic -> Manual (§7.12)
   }
   if (old == Mode::manual && m == Mode::parameter) txt53_.clear();
   if (m == Mode::parameter) {
@@ -286,7 +287,7 @@ void Controller::enter_mode(Mode m, TimePoint now) {
   }
   if (m == Mode::manual && settings_ok_ && error_ == 0 && settings_.manual_vector_on_mode_change &&
       !settings_.manual_vector_input)
-    start_manual_vector();
+    start_manual_vector(settings_.manual_vector_line);
   if (m == Mode::automatic && settings_ok_) {
     for (int ax = 1; ax <= settings_.axis_count; ++ax) {
       const auto& as = settings_.axes[static_cast<std::size_t>(ax - 1)];
@@ -339,7 +340,7 @@ void Controller::update_safety(TimePoint now) {
       image_.bit(*settings_.manual_vector_input) && !previous_inputs_.bit(*settings_.manual_vector_input)) {
     bool busy = false;
     for (const auto& a : axes_) busy = busy || a.jog || a.homing;
-    if (!busy) start_manual_vector();
+    if (!busy) start_manual_vector(settings_.manual_vector_line);
   }
   // Interrupt vector (B015, task 1, Automatic): continue at the B015 line, no return.
   if (settings_.interrupt_vector_input && mode_ == Mode::automatic && error_ == 0 && run_ == RunState::running) {
@@ -392,11 +393,11 @@ void Controller::update_safety(TimePoint now) {
   }
 }
 
-void Controller::start_manual_vector() {
+void Controller::start_manual_vector(int line) {
   Task& t1 = tasks_[0];
   t1.manual_vector = true;
   t1.active = true;
-  t1.pc = settings_.manual_vector_line;
+  t1.pc = line;
   t1.stack.clear();
   t1.phase = 0;
 }
