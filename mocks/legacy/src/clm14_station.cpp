@@ -408,7 +408,7 @@ std::string Clm14Station::on_command(const Telegram& t) {
   } else if (c == "CL0") {
     if (mode() != ClmMode::manual) return error(code(SerialError::invalid_mode));
   } else if (c == "CLL1" || c == "CLL2") {
-    // flying cutoff length counters: accepted; the flying cutoff is not modelled (docs/clm14.md)
+    clm_.clear_length_counter(c[3] - '0');  // flying cutoff: material / product length counter (status 54)
   } else if (c.size() >= 4 && c[0] == 'M' && c[1] >= '1' && c[1] <= '4' &&
              (c.substr(2) == "ON" || c.substr(2) == "OFF")) {
     clm_.set_axis_software_enable(c[1] - '0', c.substr(2) == "ON");

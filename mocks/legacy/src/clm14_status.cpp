@@ -3,6 +3,7 @@
 // clm14.md §2.8), taken from the running controller model.
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "hil/mocks/legacy/clm14_station.hpp"
@@ -105,6 +106,14 @@ std::string Clm14Station::status_content(int n, std::string_view arg, bool& ok, 
       return fail(SerialError::mwheel_param_error);  // no master encoder
     case 48:
       return rpm(1) + " " + rpm(2);
+    case 54: {
+      // flying cutoff length counters: material, product (whole IU, sign + 8 digits)
+      const auto field = [](double iu) {
+        const double v = std::clamp(std::trunc(iu), -99999999.0, 99999999.0);
+        return fmt::format("{:+09d}", static_cast<long long>(v));
+      };
+      return field(c.length_counter(1)) + " " + field(c.length_counter(2));
+    }
     case 53: {
       const int e = c.error();
       if (e == 0 && !c.status_text().empty()) return c.status_text();

@@ -33,8 +33,10 @@ double Controller::last_cut_point() const noexcept {
 void Controller::end_cutoff() {
   if (follow_[0].active && !follow_[0].fol) end_coupling(1, true);
   const auto cuts = cut_.cuts;
+  const auto last = cut_.last_cut;  // shown (cut.last) until the next cut
   cut_ = Cutoff{};
   cut_.cuts = cuts;
+  cut_.last_cut = last;
 }
 
 namespace {

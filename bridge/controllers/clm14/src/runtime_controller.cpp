@@ -3,6 +3,8 @@
 
 #include <fmt/format.h>
 
+#include <charconv>
+
 #include <fstream>
 #include <sstream>
 
@@ -83,14 +85,31 @@ std::expected<std::unique_ptr<hc::Controller>, ConfigError> RuntimeController::c
   if (!settings)
     return std::unexpected(ConfigError{spec.parameters.string(), 0, 0, "controller.parameters",
                                        fmt::format("CLM error 02: {}", settings.error().message)});
-  // Controller keys: master_encoder = the machine axis whose drive counts master encoder 1.
+  // Controller keys: master_encoder = the machine axis whose drive counts master encoder 1;
+  // test_speed_step = the flying cutoff test mode's speed step (0..31) the operator keys in on
+  // each entry into Automatic (the CTA's keys; docs/clm14.md).
   std::string master_name;
+  std::optional<int> test_step;
   for (const auto& [key, value] : spec.options) {
-    if (key != "master_encoder")
+    if (key == "master_encoder") {
+      master_name = value;
+    } else if (key == "test_speed_step") {
+      int v = -1;
+      const auto [end, ec] = std::from_chars(value.data(), value.data() + value.size(), v);
+      if (ec != std::errc{} || end != value.data() + value.size() || v < 0 || v >= clm14::Controller::test_speed_steps)
+        return std::unexpected(ConfigError{spec.file, spec.line, 0, "controller.test_speed_step",
+                                           fmt::format("test_speed_step '{}': expected a step 0..31", value)});
+      if (!settings->axes[0].test_mode || settings->axes[0].mode != 5)
+        return std::unexpected(
+            ConfigError{spec.file, spec.line, 0, "controller.test_speed_step",
+                        fmt::format("test_speed_step needs the flying cutoff's test mode (A100 = x 5 x 1 x) in {}",
+                                    spec.parameters.string())});
+      test_step = v;
+    } else {
       return std::unexpected(
           ConfigError{spec.file, spec.line, 0, fmt::format("controller.{}", key),
-                      fmt::format("unknown clm14 controller key '{}' (known: master_encoder)", key)});
-    master_name = value;
+                      fmt::format("unknown clm14 controller key '{}' (known: master_encoder, test_speed_step)", key)});
+    }
   }
   if (!master_name.empty()) {
     if (!settings->me1.used())
@@ -108,6 +127,7 @@ std::expected<std::unique_ptr<hc::Controller>, ConfigError> RuntimeController::c
   const Duration cycle = spec.cycle.value_or(
       std::chrono::duration_cast<Duration>(std::chrono::duration<double, std::milli>(settings->cycle_ms)));
   auto c = std::make_unique<RuntimeController>(*profile, std::move(params), cycle);
+  c->test_step_ = test_step;
   for (int ax = 1; ax <= 4; ++ax) {
     const auto& as = settings->axes[static_cast<std::size_t>(ax - 1)];
     if (!as.enabled) continue;
@@ -176,6 +196,9 @@ void RuntimeController::on_cycle(const CycleTime& cycle) noexcept {
     for (std::uint8_t b = 0; b < io_bytes; ++b)
       im.set_byte({Area::input, s, b}, io().get(hc::ByteAddress{hc::IoArea::input, s * hc::clm_group_stride + b}));
   model_.cycle(cycle.now);
+  if (test_step_ && model_.mode() == Mode::automatic && last_mode_ != Mode::automatic)
+    model_.set_test_speed_step(*test_step_);  // the operator keys the test speed in
+  last_mode_ = model_.mode();
   for (std::uint8_t s = 0; s < 3; ++s)
     for (std::uint8_t b = 0; b < io_bytes; ++b)
       io().set(hc::ByteAddress{hc::IoArea::output, s * hc::clm_group_stride + b}, im.byte({Area::output, s, b}));
