@@ -78,6 +78,9 @@ Clm14Station::Clm14Station(int station, std::shared_ptr<const serial::clm14::Dev
   clm_.on_settings([this](const cc::Settings& s) {
     if (!external_axes_) sim_.rebuild(s);
     attach_axes();
+    auto* before = wheel_.port();
+    wheel_.rebuild(s);
+    if (wheel_.port() != before) clm_.attach_master_encoder(wheel_.port());
   });
   // The wiring of a unit on the bench: E-Stop and Immediate Stop closed, axis enables on.
   auto& im = clm_.image();
@@ -102,6 +105,7 @@ void Clm14Station::use_axes(std::array<cc::AxisPort*, 4> ports, std::function<vo
 void Clm14Station::cycle(TimePoint now) {
   clm_.cycle(now);
   const CycleTime c{now, clm_.cycle_time()};
+  wheel_.update(c);
   if (external_axes_) {
     if (external_update_) external_update_(c);
   } else {

@@ -450,6 +450,14 @@ void Controller::command_clear() {
   stopped_by_command_ = false;
 }
 
+void Controller::set_analog_input(int input, int millivolts) noexcept {
+  if (input >= 1 && input <= 4) analog_mv_[static_cast<std::size_t>(input - 1)] = std::clamp(millivolts, -10000, 10000);
+}
+
+int Controller::analog_input(int input) const noexcept {
+  return input >= 1 && input <= 4 ? analog_mv_[static_cast<std::size_t>(input - 1)] : 0;
+}
+
 void Controller::set_axis_software_enable(int axis, bool on) {
   if (axis >= 1 && axis <= 4) axes_[static_cast<std::size_t>(axis - 1)].software_enabled = on;
 }

@@ -191,6 +191,10 @@ class Controller {
   void set_test_speed_step(int step) noexcept { test_step_ = std::clamp(step, 0, test_speed_steps - 1); }
   [[nodiscard]] int test_speed_step() const noexcept { return test_step_; }
   static constexpr int test_speed_steps = 32;
+  /// Analog inputs AE1..AE4 (X5/X7, ±10 V; status 49 / 45), in mV, clamped to ±10000. The
+  /// owner sets them like the hardware (emulator console, scenario stimuli); 0 until set.
+  void set_analog_input(int input, int millivolts) noexcept;
+  [[nodiscard]] int analog_input(int input) const noexcept;
   /// Whether the flying cutoff's cut is inhibited now (A133).
   [[nodiscard]] bool cut_inhibited() const noexcept { return cut_.inhibited; }
 
@@ -483,6 +487,7 @@ class Controller {
   Mlo mlo_{};
   Srp srp_{};
   int test_step_ = 0;                       ///< test mode speed step (CTA keys)
+  std::array<int, 4> analog_mv_{};          ///< AE1..AE4, mV
   std::optional<std::int64_t> manual_cut_;  ///< material point (counts) under the tool at the last manual cut
   double material_length_ = 0.0;            ///< status 54, IU
   double product_length_ = 0.0;
