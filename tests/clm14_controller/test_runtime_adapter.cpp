@@ -214,6 +214,17 @@ TEST(ClmRuntime, UnknownControllerKeyAndUnusedEncoderAreConfigErrors) {
   c = registry.create(spec);
   ASSERT_FALSE(c);
   EXPECT_NE(c.error().describe().find("C002 = 0"), std::string::npos) << c.error().describe();
+  // test_speed_step: a step 0..31, and only with the flying cutoff's test mode
+  spec.options.clear();
+  spec.options.emplace("test_speed_step", "32");
+  c = registry.create(spec);
+  ASSERT_FALSE(c);
+  EXPECT_NE(c.error().describe().find("0..31"), std::string::npos) << c.error().describe();
+  spec.options.clear();
+  spec.options.emplace("test_speed_step", "10");
+  c = registry.create(spec);
+  ASSERT_FALSE(c);
+  EXPECT_NE(c.error().describe().find("test mode"), std::string::npos) << c.error().describe();
 }
 
 }  // namespace
