@@ -233,6 +233,17 @@ TEST(ClmRuntime, UnknownControllerKeyAndUnusedEncoderAreConfigErrors) {
   spec.options.emplace("marker1", "I1.05.0");
   spec.options.emplace("marker2", "-1024");
   EXPECT_TRUE(registry.create(spec).has_value());
+  // test_speed_step: a step 0..31, and only with the flying cutoff's test mode
+  spec.options.clear();
+  spec.options.emplace("test_speed_step", "32");
+  c = registry.create(spec);
+  ASSERT_FALSE(c);
+  EXPECT_NE(c.error().describe().find("0..31"), std::string::npos) << c.error().describe();
+  spec.options.clear();
+  spec.options.emplace("test_speed_step", "10");
+  c = registry.create(spec);
+  ASSERT_FALSE(c);
+  EXPECT_NE(c.error().describe().find("test mode"), std::string::npos) << c.error().describe();
 }
 
 }  // namespace

@@ -6,6 +6,7 @@
 #include <expected>
 
 #include <array>
+#include <cmath>
 #include <cstdio>
 #include <fstream>
 #include <functional>
@@ -172,7 +173,10 @@ void register_emulators(Context& ctx) {
       ->check(CLI::ExistingFile);
   clm->footer(
       "Console commands (stdin): 'mode parameter|manual|auto' changes the mode inputs of every station, "
-      "'input I1.00.0 1' sets an input bit, 'start' / 'stop' / 'clear' act like the Start input, Immediate Stop "
+      "'input I1.00.0 1' sets an input bit, 'material 40' runs the material under master encoder 1 at 40 IU/s (the "
+      "simulated measuring wheel, status 47), 'analog 1 5000' sets analog input AE1 to 5000 mV (status 49/45), "
+      "'test-speed 10' keys in the flying cutoff test mode's speed step, "
+      "'start' / 'stop' / 'clear' act like the Start input, Immediate Stop "
       "and External Clear, 'status' prints mode, run state, fault and positions per station, 'quit' stops (state "
       "is saved).\n"
       "Examples: hilbridge emulate clm14 --pty --format 7E2 --mode parameter --stations 32\n"
@@ -248,6 +252,28 @@ void register_emulators(Context& ctx) {
         for (std::size_t i = 0; i < l.size(); ++i) l.station(i).controller().image().set_bit(*b, v == 1);
         return "ok " + cmd;
       }
+      if (cmd.starts_with("material ") || cmd.starts_with("analog ") || cmd.starts_with("test-speed ")) {
+        // the unit's hardware: the material under master encoder 1 (IU/s), an analog input
+        // AE1..AE4 (mV), the flying cutoff test mode's speed step (the CTA's keys)
+        std::istringstream in(cmd);
+        std::string what;
+        double a = 0.0, b = 0.0;
+        in >> what >> a;
+        const bool two = what == "analog";
+        if (two) in >> b;
+        if (in.fail() || !(in >> std::ws).eof())
+          return "error: material IU_PER_S | analog 1..4 MILLIVOLTS | test-speed 0..31";
+        if (two && (a < 1 || a > 4 || std::abs(b) > 10000)) return "error: analog 1..4 -10000..10000 (mV)";
+        if (what == "test-speed" && (a < 0 || a > 31 || a != std::floor(a))) return "error: test-speed 0..31";
+        for (std::size_t i = 0; i < l.size(); ++i) {
+          auto& st = l.station(i);
+          if (what == "material" && !st.set_material_velocity(a))
+            return "error: master encoder 1 is not used (C002 = 0)";
+          if (two) st.controller().set_analog_input(static_cast<int>(a), static_cast<int>(std::lround(b)));
+          if (what == "test-speed") st.controller().set_test_speed_step(static_cast<int>(a));
+        }
+        return "ok " + cmd;
+      }
       if (cmd == "start" || cmd == "stop" || cmd == "clear") {
         for (std::size_t i = 0; i < l.size(); ++i) {
           auto& c = l.station(i).controller();
@@ -272,7 +298,8 @@ void register_emulators(Context& ctx) {
         }
         return s;
       }
-      return "error: unknown command (mode parameter|manual|auto, input ADDR 0|1, start, stop, clear, status, quit)";
+      return "error: unknown command (mode parameter|manual|auto, input ADDR 0|1, material V, analog N MV, "
+             "test-speed N, start, stop, clear, status, quit)";
     });
   });
 

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 #include "hil/mocks/legacy/clm14_sim_axes.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 namespace hil::mocks::legacy {
@@ -53,6 +54,60 @@ cc::AxisPort* Clm14SimAxes::port(int axis) const {
 void Clm14SimAxes::update(const CycleTime& cycle) {
   for (auto& s : slots_)
     if (s.axis) s.axis->update(cycle);
+}
+
+void Clm14SimWheel::rebuild(const cc::Settings& s) {
+  const auto& me = s.me1;
+  if (!me.used()) {
+    axis_.reset();
+    encoder_.reset();
+    return;
+  }
+  if (axis_ && built_.pulses == me.pulses && built_.feed_constant == me.feed_constant) return;
+  const double keep_iu = axis_ ? axis_->status().position : 0.0;
+  auto cfg = cc::master_encoder_config(me, s.axes[0], "me1");
+  if (!motion::validate(cfg)) {
+    axis_.reset();
+    encoder_.reset();
+    return;
+  }
+  SimDriveConfig dc;
+  dc.name = "sim:me1";
+  dc.plant.kv_per_s = 200.0;
+  dc.plant.velocity_feedforward = 1.0;
+  dc.plant.max_velocity_inc_per_s = 1e9;
+  dc.plant.initial_position_inc =
+      std::round(keep_iu * static_cast<double>(cfg.inc_per_unit.num) / static_cast<double>(cfg.inc_per_unit.den));
+  axis_ = std::make_unique<motion::Axis>(cfg, std::make_unique<SimDrive>(dc));
+  encoder_ = std::make_unique<cc::MotionMasterEncoder>(*axis_);
+  built_ = me;
+  enabled_ = false;
+  (void)axis_->enable();
+  if (velocity_ != 0.0) (void)set_velocity(velocity_);
+}
+
+bool Clm14SimWheel::set_velocity(double iu_per_s) {
+  if (!axis_) return false;
+  velocity_ = iu_per_s;
+  const auto& l = axis_->config().limits;
+  motion::Limits m;
+  m.velocity = std::min(std::abs(iu_per_s), l.velocity);
+  m.acceleration = l.acceleration;
+  if (iu_per_s == 0.0)
+    (void)axis_->stop();
+  else
+    (void)axis_->move_velocity(std::clamp(iu_per_s, -l.velocity, l.velocity), m);
+  return true;
+}
+
+void Clm14SimWheel::update(const CycleTime& cycle) {
+  if (!axis_) return;
+  axis_->update(cycle);
+  // the drive enables over a few cycles: a velocity asked for before runs once it is enabled
+  const bool enabled =
+      axis_->status().state == motion::AxisState::standstill || axis_->status().state == motion::AxisState::moving;
+  if (enabled && !enabled_ && velocity_ != 0.0) (void)set_velocity(velocity_);
+  enabled_ = enabled;
 }
 
 }  // namespace hil::mocks::legacy

@@ -78,6 +78,9 @@ Clm14Station::Clm14Station(int station, std::shared_ptr<const serial::clm14::Dev
   clm_.on_settings([this](const cc::Settings& s) {
     if (!external_axes_) sim_.rebuild(s);
     attach_axes();
+    auto* before = wheel_.port();
+    wheel_.rebuild(s);
+    if (wheel_.port() != before) clm_.attach_master_encoder(wheel_.port());
   });
   // The wiring of a unit on the bench: E-Stop and Immediate Stop closed, axis enables on.
   auto& im = clm_.image();
@@ -102,6 +105,7 @@ void Clm14Station::use_axes(std::array<cc::AxisPort*, 4> ports, std::function<vo
 void Clm14Station::cycle(TimePoint now) {
   clm_.cycle(now);
   const CycleTime c{now, clm_.cycle_time()};
+  wheel_.update(c);
   if (external_axes_) {
     if (external_update_) external_update_(c);
   } else {
@@ -408,7 +412,7 @@ std::string Clm14Station::on_command(const Telegram& t) {
   } else if (c == "CL0") {
     if (mode() != ClmMode::manual) return error(code(SerialError::invalid_mode));
   } else if (c == "CLL1" || c == "CLL2") {
-    // flying cutoff length counters: accepted; the flying cutoff is not modelled (docs/clm14.md)
+    clm_.clear_length_counter(c[3] - '0');  // flying cutoff: material / product length counter (status 54)
   } else if (c.size() >= 4 && c[0] == 'M' && c[1] >= '1' && c[1] <= '4' &&
              (c.substr(2) == "ON" || c.substr(2) == "OFF")) {
     clm_.set_axis_software_enable(c[1] - '0', c.substr(2) == "ON");

@@ -3,6 +3,7 @@
 // clm14.md §2.8), taken from the running controller model.
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "hil/mocks/legacy/clm14_station.hpp"
@@ -99,12 +100,27 @@ std::string Clm14Station::status_content(int n, std::string_view arg, bool& ok, 
     case 44:
       return position_field(c.position(3), c.homed(3), 5) + " " + position_field(c.position(4), c.homed(4), 6);
     case 45:
-    case 49:
-      return "+00000 +00000";  // analog inputs are not wired in the emulator
-    case 47:
-      return fail(SerialError::mwheel_param_error);  // no master encoder
+    case 49: {
+      // analog inputs 3/4 (45) and 1/2 (49) in mV, sign and 5 digits [decided]
+      const int first = n == 49 ? 1 : 3;
+      return fmt::format("{:+06d} {:+06d}", c.analog_input(first), c.analog_input(first + 1));
+    }
+    case 47: {
+      // master encoder 1: "0 +rrrr.rr", its revolutions per minute (velocity / C002 × 60) over the
+      // model's velocity window; serial error 10 while it has no resolution (C000/C002 unset)
+      if (!s.me1.used()) return fail(SerialError::mwheel_param_error);
+      return fmt::format("0 {}", signed_field(c.master_velocity() / s.me1.feed_constant * 60.0, 4, 2));
+    }
     case 48:
       return rpm(1) + " " + rpm(2);
+    case 54: {
+      // flying cutoff length counters: material, product (whole IU, sign + 8 digits)
+      const auto field = [](double iu) {
+        const double v = std::clamp(std::trunc(iu), -99999999.0, 99999999.0);
+        return fmt::format("{:+09d}", static_cast<long long>(v));
+      };
+      return field(c.length_counter(1)) + " " + field(c.length_counter(2));
+    }
     case 53: {
       const int e = c.error();
       if (e == 0 && !c.status_text().empty()) return c.status_text();

@@ -257,6 +257,7 @@ void Controller::enter_mode(Mode m, TimePoint now) {
     }
     fak5_ = micro_one;
     mlo_.on = false;  // MLO: leaving Automatic disables it
+    test_step_ = 0;   // test mode: the material clock stops on Automatic -> Manual (§7.12)
   }
   if (old == Mode::manual && m == Mode::parameter) txt53_.clear();
   if (m == Mode::parameter) {
@@ -292,7 +293,7 @@ void Controller::enter_mode(Mode m, TimePoint now) {
   }
   if (m == Mode::manual && settings_ok_ && error_ == 0 && settings_.manual_vector_on_mode_change &&
       !settings_.manual_vector_input)
-    start_manual_vector();
+    start_manual_vector(settings_.manual_vector_line);
   if (m == Mode::automatic && settings_ok_) {
     for (int ax = 1; ax <= settings_.axis_count; ++ax) {
       const auto& as = settings_.axes[static_cast<std::size_t>(ax - 1)];
@@ -346,7 +347,7 @@ void Controller::update_safety(TimePoint now) {
       image_.bit(*settings_.manual_vector_input) && !previous_inputs_.bit(*settings_.manual_vector_input)) {
     bool busy = false;
     for (const auto& a : axes_) busy = busy || a.jog || a.homing;
-    if (!busy) start_manual_vector();
+    if (!busy) start_manual_vector(settings_.manual_vector_line);
   }
   // Interrupt vector (B015, task 1, Automatic): continue at the B015 line, no return.
   if (settings_.interrupt_vector_input && mode_ == Mode::automatic && error_ == 0 && run_ == RunState::running) {
@@ -399,11 +400,11 @@ void Controller::update_safety(TimePoint now) {
   }
 }
 
-void Controller::start_manual_vector() {
+void Controller::start_manual_vector(int line) {
   Task& t1 = tasks_[0];
   t1.manual_vector = true;
   t1.active = true;
-  t1.pc = settings_.manual_vector_line;
+  t1.pc = line;
   t1.stack.clear();
   t1.phase = 0;
 }
@@ -455,6 +456,14 @@ void Controller::command_clear() {
       tasks_[t].phase = 0;
     }
   stopped_by_command_ = false;
+}
+
+void Controller::set_analog_input(int input, int millivolts) noexcept {
+  if (input >= 1 && input <= 4) analog_mv_[static_cast<std::size_t>(input - 1)] = std::clamp(millivolts, -10000, 10000);
+}
+
+int Controller::analog_input(int input) const noexcept {
+  return input >= 1 && input <= 4 ? analog_mv_[static_cast<std::size_t>(input - 1)] : 0;
 }
 
 void Controller::set_axis_software_enable(int axis, bool on) {

@@ -72,7 +72,8 @@ void Controller::attach_master_encoder(MasterEncoderPort* port) {
 }
 
 bool Controller::master_available() const noexcept {
-  return me1_.port != nullptr && settings_.me1.used();
+  // test mode: the internal material clock stands in for the encoder (§7.12)
+  return (me1_.port != nullptr || (flying_cutoff() && settings_.axes[0].test_mode)) && settings_.me1.used();
 }
 
 double Controller::me_iu_per_count() const noexcept {
@@ -90,15 +91,31 @@ double Controller::master_velocity() const noexcept {
 }
 
 void Controller::update_master_in() {
-  if (me1_.port == nullptr) return;
-  const std::int64_t raw = me1_.input.update(me1_.port->count());
-  me1_.count = settings_.me1.inverted ? -raw : raw;
+  std::int64_t encoder = 0;
+  if (me1_.port != nullptr) {
+    const std::int64_t raw = me1_.input.update(me1_.port->count());
+    encoder = settings_.me1.inverted ? -raw : raw;
+  }
+  // test mode / No Material (C008): the count integrates the internal material speed instead
+  update_internal_material(encoder, me1_.port != nullptr);
+  if (me1_.port == nullptr && !me1_.internal) return;
   const std::size_t n = std::min(me1_.seen, velocity_window);
   const std::int64_t oldest = n == 0 ? me1_.count : me1_.history[(me1_.seen - n) % velocity_window];
-  me1_.velocity =
-      n == 0 ? 0.0 : static_cast<double>(me1_.count - oldest) / (static_cast<double>(n) * settings_.cycle_ms / 1000.0);
+  if (!me1_.internal)
+    me1_.velocity =
+        n == 0 ? 0.0
+               : static_cast<double>(me1_.count - oldest) / (static_cast<double>(n) * settings_.cycle_ms / 1000.0);
   me1_.history[me1_.seen % velocity_window] = me1_.count;
+  if (me1_.seen == 0) me1_.last = me1_.count;
   ++me1_.seen;
+  // status 54 (flying cutoff): material = all travel in Manual and Automatic; product = travel
+  // in Automatic while the cut is not inhibited
+  const double travel = static_cast<double>(me1_.count - me1_.last) * me_iu_per_count();
+  me1_.last = me1_.count;
+  if (flying_cutoff() && mode_ != Mode::parameter) {
+    material_length_ += travel;
+    if (mode_ == Mode::automatic && !cut_.inhibited) product_length_ += travel;
+  }
 }
 
 // ---- coupling helpers ---------------------------------------------------------------------------------

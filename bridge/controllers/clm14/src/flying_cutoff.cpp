@@ -33,8 +33,10 @@ double Controller::last_cut_point() const noexcept {
 void Controller::end_cutoff() {
   if (follow_[0].active && !follow_[0].fol) end_coupling(1, true);
   const auto cuts = cut_.cuts;
+  const auto last = cut_.last_cut;  // shown (cut.last) until the next cut
   cut_ = Cutoff{};
   cut_.cuts = cuts;
+  cut_.last_cut = last;
 }
 
 namespace {
@@ -73,14 +75,17 @@ bool Controller::arm_cutoff_engage() {
 }
 
 void Controller::step_cutoff() {
-  if (!flying_cutoff() || !master_available()) return;
+  if (!flying_cutoff()) return;
+  step_cutoff_inputs();
+  if (!master_available() || error_ != 0) return;
   auto& a = axes_[0];
   auto& f = follow_[0];
   // The first Raster 1 edge since de-sync (EOS); a mark while in sync is not a new part's.
   const bool in = image_.bit(sys::raster1);
   if (in && !cut_.raster_last && cut_.phase != Cutoff::Phase::synchronous && !cut_.raster) cut_.raster = me1_.count;
   cut_.raster_last = in;
-  if (cut_.phase == Cutoff::Phase::armed && f.active && f.coupling.gear().phase() == motion::GearPhase::armed) {
+  if (cut_.phase == Cutoff::Phase::armed && f.active && f.coupling.gear().phase() == motion::GearPhase::armed &&
+      !cut_.inhibited && !cut_.at_once) {
     bool rearm = false;
     if (cut_.registration && !cut_.raster_used && cut_.raster) {
       cut_.raster_used = true;
@@ -98,11 +103,13 @@ void Controller::step_cutoff() {
   }
   const auto& as = settings_.axes[0];
   if (cut_.phase == Cutoff::Phase::inhibited && (!as.reverse_inhibit_input || image_.bit(*as.reverse_inhibit_input)) &&
-      !a.fb.busy) {
-    cut_.phase = Cutoff::Phase::returning;
-    (void)command_move(1, 0.0, feed_velocity(1, 1000), 1);
+      !a.fb.busy)
+    command_return(false);  // reverse optimisation is off while reverse inhibit acts (§7.12)
+  step_optimised_return();
+  if (cut_.phase == Cutoff::Phase::returning && !cut_.braking && !a.feeding) {
+    cut_.phase = Cutoff::Phase::idle;
+    cut_.return_acceleration = 0.0;
   }
-  if (cut_.phase == Cutoff::Phase::returning && !a.feeding) cut_.phase = Cutoff::Phase::idle;
 }
 
 Controller::Flow Controller::exec_cutoff(int t, Task& k, const Instruction& in) {
@@ -119,6 +126,15 @@ Controller::Flow Controller::exec_cutoff(int t, Task& k, const Instruction& in) 
   auto& f = follow_[0];
   const double ipc = me_iu_per_count();
   if (in.op == Op::eos) {
+    if (cut_.pending_error != 0) {
+      // the end of the rapid-stop (A136) / max-stroke (A137) program: 0 V and its error
+      const int code = cut_.pending_error;
+      cutoff_stop(code, fmt::format("flying cutoff: {} (the program at line {:04d} ended with EOS)",
+                                    code == static_cast<int>(ClmError::rapid_stop) ? "rapid stop (A136)"
+                                                                                   : "maximum stroke (A137)",
+                                    k.pc));
+      return Flow::halt;
+    }
     if (cut_.phase != Cutoff::Phase::synchronous) return Flow::next;  // nothing in sync [decided]
     end_coupling(1, false);                                           // the return move re-plans from the coupled state
     const auto& in_inhibit = settings_.axes[0].reverse_inhibit_input;
@@ -127,8 +143,8 @@ Controller::Flow Controller::exec_cutoff(int t, Task& k, const Instruction& in) 
       cut_.phase = Cutoff::Phase::inhibited;
       return Flow::next;
     }
-    cut_.phase = Cutoff::Phase::returning;
-    return command_move(1, 0.0, feed_velocity(1, 1000), t) ? Flow::next : Flow::halt;
+    command_return(true);
+    return error_ == 0 ? Flow::next : Flow::halt;
   }
   auto ax = integer(in.n[0], t, 1, 1);
   if (!ax) return Flow::halt;
@@ -155,6 +171,8 @@ Controller::Flow Controller::exec_cutoff(int t, Task& k, const Instruction& in) 
   auto l1 = length(in.n[1], t);
   if (!l1) return Flow::halt;
   double nominal = to_double(*l1);
+  const bool crop = cut_.crop && settings_.axes[0].crop_length > 0.0;
+  cut_.crop = false;
   double registration = 0.0;
   if (in.op == Op::lml) {
     nominal += settings_.axes[0].tool_width;
@@ -171,17 +189,34 @@ Controller::Flow Controller::exec_cutoff(int t, Task& k, const Instruction& in) 
       registration = g.offset;
     }
   }
+  if (crop) nominal = settings_.axes[0].crop_length;  // A142: this part is the crop length [decided]
   if (nominal <= 0.0 || registration < 0.0)
     return bad(fmt::format("{}: the length must be > 0 and the offset distance >= 0", mnemonic(in.op)));
   const auto ratio = follow_ratio(1, micro_one);
   if (!ratio || ratio->num == 0) return bad("flying cutoff: no gear ratio between master encoder 1 and axis 1");
   const double x0 = carriage_command(a.fb, inc_per_iu(1), a.base + a.sac) / ipc;
   if (!cut_.have_last) {
-    // The first part is measured from where the material stands under the tool now.
-    cut_.last_cut = me1_.count - std::llround(x0);
+    // The first part is measured from where the material stands under the tool now, or with
+    // indexing (A134 i = 1) from the last manual cut: the material fed since then is subtracted
+    // from the first length, and more than the length is error 3A.
+    const std::int64_t under = me1_.count - std::llround(x0);
+    if (settings_.axes[0].indexing && manual_cut_) {
+      const double fed = static_cast<double>(under - *manual_cut_) * ipc;
+      if (fed > nominal) {
+        fail(t, static_cast<int>(ClmError::index_length),
+             fmt::format("indexing: {:.3f} IU of material fed since the manual cut exceed the length {:.3f} IU", fed,
+                         nominal));
+        return Flow::halt;
+      }
+      cut_.last_cut = *manual_cut_;
+    } else {
+      cut_.last_cut = under;
+    }
+    manual_cut_.reset();
     cut_.have_last = true;
   }
-  cut_.cut_at = cut_.last_cut + std::llround(nominal / ipc);
+  cut_.part = std::llround(nominal / ipc);
+  cut_.cut_at = cut_.last_cut + cut_.part;
   cut_.registration = in.op != Op::lml;
   cut_.registration_offset = std::llround(registration / ipc);
   cut_.raster_used = false;
@@ -193,7 +228,16 @@ Controller::Flow Controller::exec_cutoff(int t, Task& k, const Instruction& in) 
   f.coupling = motion::Coupling("CLM flying cutoff", slave_limits(1));
   f.coupling.use(motion::Coupling::Law::gear);
   f.coupling.start(me1_.count, a.fb.command_inc);
-  if (!arm_cutoff_engage()) return bad("flying cutoff: the engage ramp was refused");
+  cut_.at_once = false;
+  if (cut_.inhibited) {
+    // A133: no sync until Immediate cut; the gear stays at ratio 0
+  } else if (cut_.immediate) {
+    cut_.immediate = false;  // A134 pressed while the carriage stood home: sync now
+    cut_.at_once = true;
+    if (f.coupling.gear().engage(*ratio, cut_.ramp)) return bad("flying cutoff: the engage ramp was refused");
+  } else if (!arm_cutoff_engage()) {
+    return bad("flying cutoff: the engage ramp was refused");
+  }
   a.has_target = a.feeding = a.held = a.pending = a.con = false;
   f.active = true;
   f.fol = false;

@@ -74,6 +74,8 @@ MoveLimits Controller::limits_for(int axis, double velocity, bool overridden) co
     l.acceleration = std::max({as.acceleration * r * r * a.aeo_scale / 1000.0, as.acceleration * a.aeo_min / 1000.0,
                                as.acceleration / 1000.0});
   }
+  if (axis == 1 && cut_.phase == Cutoff::Phase::returning && cut_.return_acceleration > 0.0)
+    l.acceleration = cut_.return_acceleration;  // A139: the optimised return of the carriage
   if (as.jerk_time_s > 0.0) {
     // Ax10 rounded up so that T / cycle = 2^n (§8.2); the acceleration builds up linearly over T.
     const double cycles = std::max(1.0, std::ceil(as.jerk_time_s * 1000.0 / settings_.cycle_ms - 1e-9));

@@ -87,8 +87,11 @@ std::expected<std::unique_ptr<hc::Controller>, ConfigError> RuntimeController::c
                                        fmt::format("CLM error 02: {}", settings.error().message)});
   // Controller keys: master_encoder = the machine axis whose drive counts master encoder 1;
   // homing = clm | drive; marker1..marker4 = an encoder count offset or a CLM input address.
+  // test_speed_step = the flying cutoff test mode's speed step (0..31) the operator keys in on
+  // each entry into Automatic (the CTA's keys; docs/clm14.md).
   std::string master_name;
   std::string master2_name;
+  std::optional<int> test_step;
   Options options;
   for (const auto& [key, value] : spec.options) {
     const auto bad = [&](std::string what) {
@@ -104,6 +107,15 @@ std::expected<std::unique_ptr<hc::Controller>, ConfigError> RuntimeController::c
         return bad(fmt::format("master_encoder2 '{}' is the name of CLM axis {}: give the encoder axis its own name",
                                value, value));
       master2_name = value;
+    } else if (key == "test_speed_step") {
+      int v = -1;
+      const auto [end, ec] = std::from_chars(value.data(), value.data() + value.size(), v);
+      if (ec != std::errc{} || end != value.data() + value.size() || v < 0 || v >= clm14::Controller::test_speed_steps)
+        return bad(fmt::format("test_speed_step '{}': expected a step 0..31", value));
+      if (!settings->axes[0].test_mode || settings->axes[0].mode != 5)
+        return bad(fmt::format("test_speed_step needs the flying cutoff's test mode (A100 = x 5 x 1 x) in {}",
+                               spec.parameters.string()));
+      test_step = v;
     } else if (key == "homing") {
       if (value != "clm" && value != "drive")
         return bad(
@@ -127,7 +139,9 @@ std::expected<std::unique_ptr<hc::Controller>, ConfigError> RuntimeController::c
       }
     } else {
       return bad(fmt::format(
-          "unknown clm14 controller key '{}' (known: master_encoder, master_encoder2, homing, marker1..marker4)", key));
+          "unknown clm14 controller key '{}' (known: master_encoder, master_encoder2, test_speed_step, homing, "
+          "marker1..marker4)",
+          key));
     }
   }
   if (!master_name.empty()) {
@@ -146,6 +160,7 @@ std::expected<std::unique_ptr<hc::Controller>, ConfigError> RuntimeController::c
   const Duration cycle = spec.cycle.value_or(
       std::chrono::duration_cast<Duration>(std::chrono::duration<double, std::milli>(settings->cycle_ms)));
   auto c = std::make_unique<RuntimeController>(*profile, std::move(params), cycle, options);
+  c->test_step_ = test_step;
   for (int ax = 1; ax <= 4; ++ax) {
     const auto& as = settings->axes[static_cast<std::size_t>(ax - 1)];
     if (!as.enabled) continue;
@@ -231,6 +246,9 @@ void RuntimeController::on_cycle(const CycleTime& cycle) noexcept {
     for (std::uint8_t b = 0; b < io_bytes; ++b)
       im.set_byte({Area::input, s, b}, io().get(hc::ByteAddress{hc::IoArea::input, s * hc::clm_group_stride + b}));
   model_.cycle(cycle.now);
+  if (test_step_ && model_.mode() == Mode::automatic && last_mode_ != Mode::automatic)
+    model_.set_test_speed_step(*test_step_);  // the operator keys the test speed in
+  last_mode_ = model_.mode();
   for (std::uint8_t s = 0; s < 3; ++s)
     for (std::uint8_t b = 0; b < io_bytes; ++b)
       io().set(hc::ByteAddress{hc::IoArea::output, s * hc::clm_group_stride + b}, im.byte({Area::output, s, b}));

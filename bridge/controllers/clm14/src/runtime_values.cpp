@@ -28,6 +28,9 @@ enum class ValueKind : std::size_t {
   axis_latched = 9,   ///< argument: axis
   mode = 10,
   run = 11,
+  cuts = 12,            ///< flying cutoff: synchronisations (cuts) so far
+  last_cut = 13,        ///< flying cutoff: the material point of the last cut, IU
+  length_counter = 14,  ///< argument: 1 material, 2 product (status 54)
 };
 
 constexpr std::size_t handle(ValueKind k, std::size_t argument) noexcept {
@@ -36,7 +39,8 @@ constexpr std::size_t handle(ValueKind k, std::size_t argument) noexcept {
 
 constexpr std::string_view value_names =
     "V000..V999, I1.02 / Q1.02 / M2.00 (a byte), counter.NNNN (the COU/BAC on line NNNN), task1.line / "
-    "task1.depth / task1.active (tasks 1..5), error, axis1.position / axis1.latched (axes 1..4), mode, run";
+    "task1.depth / task1.active (tasks 1..5), error, axis1.position / axis1.latched (axes 1..4), mode, run, "
+    "cuts / cut.last (flying cutoff), length.material / length.product (status 54)";
 
 std::optional<int> number(std::string_view s) {
   int v = 0;
@@ -90,6 +94,10 @@ std::expected<std::size_t, std::string> RuntimeController::resolve_value(std::st
   if (name == "error") return handle(ValueKind::error, 0);
   if (name == "mode") return handle(ValueKind::mode, 0);
   if (name == "run") return handle(ValueKind::run, 0);
+  if (name == "cuts") return handle(ValueKind::cuts, 0);
+  if (name == "cut.last") return handle(ValueKind::last_cut, 0);
+  if (name == "length.material") return handle(ValueKind::length_counter, 1);
+  if (name == "length.product") return handle(ValueKind::length_counter, 2);
   return bad("");
 }
 
@@ -123,6 +131,12 @@ double RuntimeController::value(std::size_t h) const noexcept {
       return static_cast<double>(model_.mode());
     case ValueKind::run:
       return static_cast<double>(model_.run_state());
+    case ValueKind::cuts:
+      return static_cast<double>(model_.cuts());
+    case ValueKind::last_cut:
+      return model_.last_cut_point();
+    case ValueKind::length_counter:
+      return model_.length_counter(i);
   }
   return std::numeric_limits<double>::quiet_NaN();
 }

@@ -149,8 +149,47 @@ std::expected<Settings, ProgramError> make_settings(const ParameterLookup& looku
     const auto x11 = r.fields(p(11), 0);
     a.feedforward = x11.size() > 1 ? r.integer(p(11), x11[1]) : 0;
     if (ax == 1) {
-      if (!lookup(p(35)).empty()) a.reverse_inhibit_input = r.io(p(35), r.fields(p(35), 1)[0]);
-      if (!lookup(p(41)).empty()) a.tool_width = r.number(p(41), r.fields(p(41), 1)[0]);
+      // Flying cutoff (Ax33-Ax42, axis 1 only); an absent parameter keeps the function off.
+      const auto given = [&](int n) { return !lookup(p(n)).empty(); };
+      if (given(33)) {
+        const auto f = r.fields(p(33), 2);
+        a.cut_inhibit_input = r.io(p(33), f[0]);
+        a.cut_inhibit_output = r.io(p(33), f[1]);
+      }
+      if (given(34)) {
+        const auto f = r.fields(p(34), 3);
+        a.immediate_cut_input = r.io(p(34), f[0]);
+        a.manual_cut_line = r.integer(p(34), f[1]);
+        a.indexing = f[2] == "1";
+      }
+      if (given(35)) a.reverse_inhibit_input = r.io(p(35), r.fields(p(35), 1)[0]);
+      if (given(36)) {
+        const auto f = r.fields(p(36), 2);
+        a.rapid_stop_input = r.io(p(36), f[0]);
+        a.rapid_stop_line = r.integer(p(36), f[1]);
+      }
+      if (given(37)) {
+        const auto f = r.fields(p(37), 2);
+        a.max_stroke = r.number(p(37), f[0]);
+        a.max_stroke_line = r.integer(p(37), f[1]);
+      }
+      if (given(39)) {
+        const auto f = r.fields(p(39), 2);
+        a.reverse_opt_input = r.io(p(39), f[0]);
+        a.reverse_opt_output = r.io(p(39), f[1]);
+      }
+      if (given(40)) {
+        const auto f = r.fields(p(40), 3);
+        a.reverse_wait_s = r.number(p(40), f[0]);
+        a.reverse_min_accel_permille = r.integer(p(40), f[1]);
+        a.reverse_velocity_window_permille = r.integer(p(40), f[2]);
+      }
+      if (given(41)) a.tool_width = r.number(p(41), r.fields(p(41), 1)[0]);
+      if (given(42)) {
+        const auto f = r.fields(p(42), 2);
+        a.crop_length = r.number(p(42), f[0]);
+        a.crop_input = r.io(p(42), f[1]);
+      }
     }
     if (r.failed.empty() && (a.feed_constant <= 0.0 || a.vmax <= 0.0 || a.acceleration <= 0.0))
       r.failed = fmt::format("{}: feed constant, Vmax (Ax06) and acceleration (Ax08) must be > 0", p(1));
@@ -162,6 +201,11 @@ std::expected<Settings, ProgramError> make_settings(const ParameterLookup& looku
     const auto c001 = r.fields("C001", 6);
     s.me1.inverted = c001[4] == "1";
     s.me1.averaging = std::clamp(r.integer("C001", c001[5]), 0, 7);
+  }
+  if (!lookup("C008").empty()) {
+    const auto c008 = r.fields("C008", 2);
+    s.me1.no_material_input = r.io("C008", c008[0]);
+    s.me1.no_material_variable = r.integer("C008", c008[1]);
   }
   s.me1.feed_constant = lookup("C002").empty() ? 0.0 : r.number("C002", r.fields("C002", 1)[0]);
   if (r.failed.empty() && s.me1.feed_constant < 0.0) r.failed = "C002: the feed constant must be >= 0";

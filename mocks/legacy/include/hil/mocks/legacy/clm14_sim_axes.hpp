@@ -31,4 +31,27 @@ class Clm14SimAxes {
   std::array<Slot, 4> slots_;
 };
 
+/// Master encoder 1 of an emulated CLM1.4 (the measuring wheel on the material): a hil::motion::Axis
+/// in IU over a simulated drive whose increments are the C000 × 4 counts per C002 IU
+/// (master_encoder_config), rebuilt when C000-C002 change (keeping the material position); none
+/// while C002 = 0. The material runs at the velocity set by set_velocity (IU/s; the emulator's
+/// console `material V`). Thread: the emulator's thread only.
+class Clm14SimWheel {
+ public:
+  void rebuild(const controllers::clm14::Settings& s);
+  /// The encoder port, or null when master encoder 1 is not used (C002 = 0).
+  [[nodiscard]] controllers::clm14::MasterEncoderPort* port() const { return encoder_.get(); }
+  /// Run the material at `iu_per_s` (0 = stop); false when there is no wheel.
+  bool set_velocity(double iu_per_s);
+  [[nodiscard]] double velocity() const noexcept { return velocity_; }
+  void update(const CycleTime& cycle);
+
+ private:
+  std::unique_ptr<motion::Axis> axis_;
+  std::unique_ptr<controllers::clm14::MotionMasterEncoder> encoder_;
+  controllers::clm14::MasterEncoderSettings built_{};
+  double velocity_ = 0.0;
+  bool enabled_ = false;
+};
+
 }  // namespace hil::mocks::legacy

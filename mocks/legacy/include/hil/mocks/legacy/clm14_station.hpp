@@ -71,6 +71,9 @@ class Clm14Station {
   /// Retrofit mode: the controller's axes are `ports` (axis 1..4, null = none), advanced once per
   /// NC cycle by `update` after the controller's step. Replaces the simulated drives.
   void use_axes(std::array<controllers::clm14::AxisPort*, 4> ports, std::function<void(const CycleTime&)> update);
+  /// The simulated measuring wheel (master encoder 1, when C002 > 0): the material runs at
+  /// `iu_per_s` (0 = stops). False when master encoder 1 is not used. Also in retrofit mode.
+  bool set_material_velocity(double iu_per_s) { return wheel_.set_velocity(iu_per_s); }
   [[nodiscard]] controllers::clm14::Controller& controller() noexcept { return clm_; }
   [[nodiscard]] const controllers::clm14::Controller& controller() const noexcept { return clm_; }
   /// True when state changed since the last take_dirty() (for debounced persistence).
@@ -115,6 +118,7 @@ class Clm14Station {
   std::map<std::string, std::string, std::less<>> parameters_;
   controllers::clm14::Controller clm_;
   Clm14SimAxes sim_;
+  Clm14SimWheel wheel_;
   bool external_axes_ = false;
   std::array<controllers::clm14::AxisPort*, 4> external_ports_{};
   std::function<void(const CycleTime&)> external_update_;

@@ -10,6 +10,7 @@
 // configuration calls return std::expected. Time comes only from the caller (`now`), so a run is
 // deterministic on virtual time.
 
+#include <algorithm>
 #include <array>
 #include <chrono>
 #include <cstdint>
@@ -193,6 +194,22 @@ class Controller {
   [[nodiscard]] double last_cut_point() const noexcept;
   /// Whether axis `axis` follows a master now (FOL or the flying cutoff's synchronous run).
   [[nodiscard]] bool coupled(int axis) const noexcept;
+  /// Flying cutoff length counters (status 54, §7.12): 1 = material (all master encoder 1 travel
+  /// in Manual and Automatic), 2 = product (travel in Automatic while the cut is not inhibited), IU.
+  [[nodiscard]] double length_counter(int which) const noexcept;
+  /// !CLL1 / !CLL2: clear the material / product length counter.
+  void clear_length_counter(int which) noexcept;
+  /// Flying cutoff test mode (A100 field 4): the CTA's speed keys, step 0..31 = 0..A106 in 31
+  /// equal steps (clamped). Set to 0 on Automatic -> Manual.
+  void set_test_speed_step(int step) noexcept { test_step_ = std::clamp(step, 0, test_speed_steps - 1); }
+  [[nodiscard]] int test_speed_step() const noexcept { return test_step_; }
+  static constexpr int test_speed_steps = 32;
+  /// Analog inputs AE1..AE4 (X5/X7, ±10 V; status 49 / 45), in mV, clamped to ±10000. The
+  /// owner sets them like the hardware (emulator console, scenario stimuli); 0 until set.
+  void set_analog_input(int input, int millivolts) noexcept;
+  [[nodiscard]] int analog_input(int input) const noexcept;
+  /// Whether the flying cutoff's cut is inhibited now (A133).
+  [[nodiscard]] bool cut_inhibited() const noexcept { return cut_.inhibited; }
 
   /// Battery-buffered state: program, logic, variables, counters, retentive markers, run state
   /// and the restart snapshot. from_json() restores it as after a power loss (restart possible
@@ -300,7 +317,12 @@ class Controller {
     std::int64_t count = 0;  ///< unwrapped quadrature counts, C001 direction applied
     std::array<std::int64_t, velocity_window> history{};
     std::size_t seen = 0;
-    double velocity = 0.0;  ///< counts/s over the velocity window
+    double velocity = 0.0;       ///< counts/s over the velocity window
+    std::int64_t offset = 0;     ///< count = encoder + offset (continues where the internal material left it)
+    bool internal = false;       ///< test mode / No Material: the count integrates a speed
+    double internal_rest = 0.0;  ///< fraction of a count not yet added
+    std::int64_t last = 0;       ///< count of the previous cycle (length counters)
+    std::int64_t encoder = 0;    ///< the encoder's count of the previous cycle
   };
   /// FOL / flying-cutoff coupling of one axis (hil::motion::Coupling, gear law).
   struct Follow {
@@ -326,6 +348,15 @@ class Controller {
     std::optional<std::int64_t> raster;  ///< first raster since de-sync (counts)
     bool raster_last = false;
     std::uint64_t cuts = 0;
+    std::int64_t part = 0;               ///< the armed part's length (counts): the next one's estimate (A139)
+    bool inhibited = false;              ///< A133: no sync until Immediate cut
+    bool immediate = false;              ///< A134 in Automatic: the next arming syncs at once
+    bool at_once = false;                ///< the armed engage started at once (immediate cut): no re-arm
+    bool crop = false;                   ///< A142: the next part is the crop length
+    int pending_error = 0;               ///< 3B / 3C: raised at the EOS of the rapid-stop / max-stroke program
+    bool braking = false;                ///< A139: the carriage brakes at A108 before its optimised return
+    double return_acceleration = 0.0;    ///< A139: the optimised return's acceleration (IU/s², 0 = A108)
+    double return_material_speed = 0.0;  ///< material speed (IU/s) the optimised return was planned for
   };
   struct Mlo {
     bool on = false;
@@ -370,7 +401,7 @@ class Controller {
   void stop_program(bool keep_position);
   void start_program(TimePoint now);
   void resume_program();
-  void start_manual_vector();
+  void start_manual_vector(int line);  ///< task 1 runs the program at `line` (B014 / A134 manual cut) up to its RTS
   void save_restart();
   void restore_restart(bool outputs);
   void reset_volatile_axis_state();
@@ -448,6 +479,16 @@ class Controller {
   // flying_cutoff.cpp: LML/LMK/LMR/EOS, the carriage cycle
   Flow exec_cutoff(int t, Task& task, const Instruction& in);
   void step_cutoff();
+  // cutoff_functions.cpp: A133-A142, C008, test mode, the length counters
+  void step_cutoff_inputs();
+  void update_internal_material(std::int64_t encoder_count, bool have_encoder);
+  void cutoff_program(int line, int code);
+  void cutoff_stop(int code, std::string message);
+  void command_return(bool optimise);
+  void step_optimised_return();
+  [[nodiscard]] double optimised_return_acceleration() const;
+  [[nodiscard]] bool carriage_home() const;
+  [[nodiscard]] double carriage_counts() const;
   void end_cutoff();
   [[nodiscard]] std::int64_t cutoff_ramp() const;
   bool arm_cutoff_engage();
@@ -495,6 +536,11 @@ class Controller {
   std::array<double, 7> fun_ref_{};  ///< FUN channel references (measure at the last restart)
   Mlo mlo_{};
   Srp srp_{};
+  int test_step_ = 0;                       ///< test mode speed step (CTA keys)
+  std::array<int, 4> analog_mv_{};          ///< AE1..AE4, mV
+  std::optional<std::int64_t> manual_cut_;  ///< material point (counts) under the tool at the last manual cut
+  double material_length_ = 0.0;            ///< status 54, IU
+  double product_length_ = 0.0;
   int last_srm_axis_ = 0;
   bool inhibit_ = false;  ///< Inhibit Operation (Q0.01.5): a move was blocked this cycle
   MasterIn me2_{};        ///< master encoder 2 (C004-C006)

@@ -33,6 +33,9 @@ enum class ClmError : std::uint8_t {
   logic_program_lost = 0x39,
   missing_eos = 0x35,
   not_home_position = 0x36,
+  index_length = 0x3A,      ///< flying cutoff: more material than the length since the manual cut
+  rapid_stop = 0x3B,        ///< flying cutoff: rapid-stop input (A136)
+  max_stroke_limit = 0x3C,  ///< flying cutoff: maximum stroke (A137)
   io_number = 0x3D,
   // axis 1 codes; axis n adds axis_offset(n)
   drive_not_ready = 0x40,

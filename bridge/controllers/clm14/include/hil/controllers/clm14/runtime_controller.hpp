@@ -16,6 +16,7 @@
 
 #include <map>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -42,7 +43,9 @@ class RuntimeController final : public hil::controllers::Controller {
   /// "task1.line" / "task1.depth" / "task1.active" (tasks 1..5: current instruction, subroutine
   /// levels, running), "error" (the current error number, 0 = none: write 0x43 for error 43),
   /// "axis1.position" / "axis1.latched" (CLM coordinates in IU: status 00 and the SRM latch of
-  /// status 41), "mode" (0 Parameter, 1 Manual, 2 Automatic), "run" (0 idle, 1 running, 2 stopped).
+  /// status 41), "mode" (0 Parameter, 1 Manual, 2 Automatic), "run" (0 idle, 1 running, 2 stopped),
+  /// "cuts" / "cut.last" (flying cutoff: cuts so far, the last cut's material point in IU),
+  /// "length.material" / "length.product" (the status 54 length counters, IU).
   [[nodiscard]] std::expected<std::size_t, std::string> resolve_value(std::string_view name) const override;
   [[nodiscard]] double value(std::size_t handle) const noexcept override;
   [[nodiscard]] clm14::Controller& model() noexcept { return model_; }
@@ -64,6 +67,8 @@ class RuntimeController final : public hil::controllers::Controller {
   std::unique_ptr<MotionMasterEncoder> master_;
   bool has_master2_ = false;  ///< then master encoder 2's axis (controller key master_encoder2)
   std::unique_ptr<MotionMasterEncoder> master2_;
+  std::optional<int> test_step_;  ///< controller key test_speed_step
+  Mode last_mode_ = Mode::manual;
   int shown_error_ = 0;
   int shown_axis_ = -1;  ///< the runtime axis index shown_error_ was raised on (-1: the controller)
 };

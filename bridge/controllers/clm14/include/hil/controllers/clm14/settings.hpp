@@ -25,7 +25,7 @@ struct AxisSettings {
   MotionType motion = MotionType::linear;  ///< Ax00 field 1
   int mode = 0;                            ///< Ax00 field 2 (0 normal .. 5 flying cutoff)
   int master = 0;                          ///< Ax00 field 3: 0 none, 1..3 axis, 5 master encoder 1 (profile decision)
-  bool test_mode = false;                  ///< Ax00 field 4 (flying cutoff simulation; not modelled)
+  bool test_mode = false;                  ///< Ax00 field 4: flying cutoff test mode (internal material clock)
   double feed_constant = 10.0;             ///< Ax01, IU per encoder revolution
   double min_limit = -111111.111;          ///< Ax03, IU
   double max_limit = 100000.0;             ///< Ax04, IU
@@ -59,18 +59,36 @@ struct AxisSettings {
   std::optional<BitAddress> decelerating_output;      ///< Ax32 right
   int feedforward = 0;                                ///< Ax11 f: 0 off, 1 on, 2..9 averaging of 2..256 values
   // Flying cutoff (axis 1, mode 5)
+  std::optional<BitAddress> cut_inhibit_input;      ///< Ax33 field 1: a pulse suppresses sync until Immediate cut
+  std::optional<BitAddress> cut_inhibit_output;     ///< Ax33 field 2: on while the cut is inhibited
+  std::optional<BitAddress> immediate_cut_input;    ///< Ax34 field 1: Immediate cut (Auto) / manual cut vector (Manual)
+  int manual_cut_line = 0;                          ///< Ax34 field 2: the manual-cut program (ends with RTS)
+  bool indexing = false;                            ///< Ax34 field 3: material since the manual cut counts
   std::optional<BitAddress> reverse_inhibit_input;  ///< Ax35: after EOS the carriage waits for it
+  std::optional<BitAddress> rapid_stop_input;       ///< Ax36 field 1
+  int rapid_stop_line = 0;                          ///< Ax36 field 2: program ending with EOS (0 = none)
+  double max_stroke = 0.0;                          ///< Ax37 field 1, IU (0 = off)
+  int max_stroke_line = 0;                          ///< Ax37 field 2: program ending with EOS (0 = none)
+  std::optional<BitAddress> reverse_opt_input;      ///< Ax39 field 1: reverse optimisation on while set
+  std::optional<BitAddress> reverse_opt_output;     ///< Ax39 field 2: on while an optimised return runs
+  double reverse_wait_s = 0.0;                      ///< Ax40 field 1: wait at the origin, s
+  int reverse_min_accel_permille = 0;               ///< Ax40 field 2: minimum reverse acceleration, ‰ of Ax08
+  int reverse_velocity_window_permille = 0;         ///< Ax40 field 3: material speed rise, ‰ of Ax06
   double tool_width = 0.0;                          ///< Ax41, IU: added to the LML length
+  double crop_length = 0.0;                         ///< Ax42 field 1, IU
+  std::optional<BitAddress> crop_input;             ///< Ax42 field 2: rising edge at home = crop cut
 
   [[nodiscard]] bool absolute_encoder() const noexcept { return encoder_type == 1 || encoder_type == 2; }
 };
 
 /// Master encoder 1 (C000-C002, §8.4). C002 = 0: not used.
 struct MasterEncoderSettings {
-  int pulses = 1250;            ///< C000 pulses/rev (× 4 quadrature counts)
-  bool inverted = false;        ///< C001 d
-  int averaging = 0;            ///< C001 a: 0 off, 1..7 = 2..128 values
-  double feed_constant = 20.0;  ///< C002, IU per revolution
+  int pulses = 1250;                            ///< C000 pulses/rev (× 4 quadrature counts)
+  bool inverted = false;                        ///< C001 d
+  int averaging = 0;                            ///< C001 a: 0 off, 1..7 = 2..128 values
+  double feed_constant = 20.0;                  ///< C002, IU per revolution
+  std::optional<BitAddress> no_material_input;  ///< C008 field 1: "No Material"
+  int no_material_variable = 0;                 ///< C008 field 2: V600..V999 holding the material speed, IU/s
   [[nodiscard]] bool used() const noexcept { return feed_constant > 0.0 && pulses > 0; }
 };
 
