@@ -26,7 +26,7 @@ std::map<int, std::string> absolute_md(const std::string& md21 = "2") {
   md[21] = md21;
   md[34] = "1000";
   md[41] = (md21 == "2" || md21 == "3") ? "4" : "0";  // Gray code needs the double reading off (U)
-  for (int n : {16, 28, 31, 42}) md.erase(n);          // incremental-only MD
+  for (int n : {16, 28, 31, 42}) md.erase(n);         // incremental-only MD
   return md;
 }
 

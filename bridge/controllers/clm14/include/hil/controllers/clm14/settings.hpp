@@ -95,7 +95,12 @@ struct MasterEncoderSettings {
 struct Settings {
   MasterEncoderSettings me1{};
   /// Master encoder 2 (C004-C006: the measuring wheel of axis 2, FUN's channel 6). C006 = 0: not used.
-  MasterEncoderSettings me2{0, false, 0, 0.0};
+  MasterEncoderSettings me2{.pulses = 0,
+                            .inverted = false,
+                            .averaging = 0,
+                            .feed_constant = 0.0,
+                            .no_material_input = std::nullopt,
+                            .no_material_variable = 0};
   std::array<AxisSettings, 4> axes{};
   int axis_count = 1;               ///< highest enabled axis
   double cycle_ms = 2.0;            ///< B010 (0.0 = auto: 2 ms for 1-2 axes, 3 for 3, 4 for 4)
