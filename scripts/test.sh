@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
 # SPDX-License-Identifier: MIT
 # README command 2 (and .ci/run): install what is missing, check formatting, build the tree ONCE with
-# AddressSanitizer + UBSan's arithmetic, bounds and enum checks at -Og, warnings as errors (preset `ci`,
-# build-ci/), run the whole host suite on it, then the `kernel`-labelled tests of the same build inside
+# AddressSanitizer + UBSan's arithmetic, bounds and enum checks at -Og, warnings as errors, libraries
+# and CLI modules as unity batches (preset `ci`, build-ci/), run the whole host suite on it, then the `kernel`-labelled tests of the same build inside
 # a VM with Debian's real kernel (vcan, gpio-sim). Exits non-zero if anything fails; every stage runs
 # even when an earlier one failed, and the time of each is printed at the end.
 #
