@@ -99,15 +99,8 @@ void Controller::update_master_in() {
   // test mode / No Material (C008): the count integrates the internal material speed instead
   update_internal_material(encoder, me1_.port != nullptr);
   if (me1_.port == nullptr && !me1_.internal) return;
-  const std::size_t n = std::min(me1_.seen, velocity_window);
-  const std::int64_t oldest = n == 0 ? me1_.count : me1_.history[(me1_.seen - n) % velocity_window];
-  if (!me1_.internal)
-    me1_.velocity =
-        n == 0 ? 0.0
-               : static_cast<double>(me1_.count - oldest) / (static_cast<double>(n) * settings_.cycle_ms / 1000.0);
-  me1_.history[me1_.seen % velocity_window] = me1_.count;
   if (me1_.seen == 0) me1_.last = me1_.count;
-  ++me1_.seen;
+  me1_.record(settings_.cycle_ms, !me1_.internal);  // the internal material sets its own velocity
   // status 54 (flying cutoff): material = all travel in Manual and Automatic; product = travel
   // in Automatic while the cut is not inhibited
   const double travel = static_cast<double>(me1_.count - me1_.last) * me_iu_per_count();

@@ -34,13 +34,7 @@ void Controller::update_master2_in() {
   if (me2_.port == nullptr) return;
   const std::int64_t raw = me2_.input.update(me2_.port->count());
   me2_.count = settings_.me2.inverted ? -raw : raw;
-  // The velocity over the same window as master encoder 1 and the axes (8 NC cycles).
-  const std::size_t n = std::min(me2_.seen, velocity_window);
-  const std::int64_t oldest = n == 0 ? me2_.count : me2_.history[(me2_.seen - n) % velocity_window];
-  me2_.velocity =
-      n == 0 ? 0.0 : static_cast<double>(me2_.count - oldest) / (static_cast<double>(n) * settings_.cycle_ms / 1000.0);
-  me2_.history[me2_.seen % velocity_window] = me2_.count;
-  ++me2_.seen;
+  me2_.record(settings_.cycle_ms, true);  // the same window as master encoder 1 and the axes
 }
 
 double Controller::encoder_override(int axis) const {

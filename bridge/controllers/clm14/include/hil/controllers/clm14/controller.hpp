@@ -323,6 +323,18 @@ class Controller {
     double internal_rest = 0.0;  ///< fraction of a count not yet added
     std::int64_t last = 0;       ///< count of the previous cycle (length counters)
     std::int64_t encoder = 0;    ///< the encoder's count of the previous cycle
+
+    /// This cycle's count into the velocity window (8 NC cycles, as for the axes); with
+    /// `measure`, `velocity` becomes the counts/s over the window (0 in the first cycle).
+    void record(double cycle_ms, bool measure) noexcept {
+      const std::size_t n = std::min(seen, velocity_window);
+      if (measure) {
+        const std::int64_t oldest = n == 0 ? count : history[(seen - n) % velocity_window];
+        velocity = n == 0 ? 0.0 : static_cast<double>(count - oldest) / (static_cast<double>(n) * cycle_ms / 1000.0);
+      }
+      history[seen % velocity_window] = count;
+      ++seen;
+    }
   };
   /// FOL / flying-cutoff coupling of one axis (hil::motion::Coupling, gear law).
   struct Follow {
