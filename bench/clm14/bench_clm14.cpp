@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "hil/controllers/clm14/controller.hpp"
+#include "hil/controllers/clm14/logic_task.hpp"
 #include "hil/controllers/clm14/motion_axis_port.hpp"
 #include "hil/mocks/sim_drive.hpp"
 
@@ -159,5 +160,43 @@ void BM_ClmCycleWithAxes(benchmark::State& state) {
   if (b.clm.error() != 0) state.SkipWithError(b.clm.error_message().c_str());
 }
 BENCHMARK(BM_ClmCycleWithAxes)->Name("ClmCycle/with_axes");
+
+/// One pass of the 1000-line logic task alone (the bulk of an NC cycle).
+void BM_ClmLogicPass(benchmark::State& state) {
+  std::vector<std::string> lines;
+  for (int i = 0; i < 999; ++i) {
+    const int b = i % 8;
+    const std::string m = "M6.2" + std::to_string(i % 10) + "." + std::to_string(b);
+    switch (i % 4) {
+      case 0:
+        lines.push_back("LD I1.00." + std::to_string(b));
+        break;
+      case 1:
+        lines.push_back("AND " + m);
+        break;
+      case 2:
+        lines.push_back("OR M4.00." + std::to_string(b));
+        break;
+      default:
+        lines.push_back("ST " + m);
+    }
+  }
+  lines.emplace_back("END");
+  auto program = LogicProgram::compile(lines);
+  if (!program) {
+    state.SkipWithError(program.error().message.c_str());
+    return;
+  }
+  Image image;
+  image.set_byte({Area::input, 1, 0}, 0x5A);
+  image.set_byte({Area::marker, 4, 0}, 0x0F);
+  for (auto _ : state) {
+    program->run(image);
+    benchmark::DoNotOptimize(image.bytes().data());
+    benchmark::ClobberMemory();
+  }
+  state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations()) * static_cast<std::int64_t>(program->size()));
+}
+BENCHMARK(BM_ClmLogicPass)->Name("ClmLogic/pass_1000_lines");
 
 }  // namespace

@@ -41,6 +41,30 @@ TEST(ClmLogic, TruthTablesOfTheManual) {
   }
 }
 
+TEST(ClmLogic, StoreFamilyOverAccumulatorAndOldBit) {
+  // new bit for (acc, old) = (0,0) (0,1) (1,0) (1,1); the accumulator passes through unchanged
+  const std::vector<std::pair<std::string, std::array<bool, 4>>> stores{
+      {"ST", {false, false, true, true}},   {"STN", {true, true, false, false}},
+      {"SET", {true, true, true, true}},    {"RES", {false, false, false, false}},
+      {"SETC", {false, true, true, true}},  {"RESC", {false, true, false, false}},
+      {"SETCN", {true, true, false, true}}, {"RESCN", {false, false, false, true}}};
+  for (const auto& [op, want] : stores) {
+    // LDN loads the inverted input; the second store shows the accumulator survived the first.
+    auto p = compile({"LDN I1.00.0", op + " M6.20.3", "ST M6.20.6", "END"});
+    for (unsigned i = 0; i < 4; ++i) {
+      const bool acc = (i & 2U) != 0;
+      const bool old = (i & 1U) != 0;
+      Image im;
+      im.set_byte({Area::marker, 6, 20}, static_cast<std::uint8_t>(old ? 0xBF : 0xB7));
+      im.set_bit(b("I1.00.0"), !acc);
+      p.run(im);
+      EXPECT_EQ(im.bit(b("M6.20.3")), want[i]) << op << " acc " << acc << " old " << old;
+      EXPECT_EQ(im.bit(b("M6.20.6")), acc) << op;
+      EXPECT_EQ(im.byte({Area::marker, 6, 20}) & 0xB7, 0xB7) << op << ": other bits of the byte kept";
+    }
+  }
+}
+
 TEST(ClmLogic, BracketsSetResetAndNegatedStore) {
   // Q1.00.0 = I0 AND (I1 OR I2); Q1.00.1 = NOT that; M6.20.0 set by I3, reset by I4
   auto p = compile({"LD I1.00.0", "AND(", "LD I1.00.1", "OR I1.00.2", ")", "ST Q1.00.0", "STN Q1.00.1", "LD I1.00.3",

@@ -77,6 +77,45 @@ bool combine(LogicOp family, bool acc, bool v) {
   }
 }
 
+/// The instruction's effect on (accumulator, operand bit): the manual's semantics, evaluated only
+/// when compiling, to fill the truth tables that run() executes.
+std::pair<bool, bool> effect(LogicOp op, bool acc, bool v) {
+  switch (op) {
+    case LogicOp::ld:
+      return {v, v};
+    case LogicOp::ldn:
+      return {!v, v};
+    case LogicOp::st:
+      return {acc, acc};
+    case LogicOp::stn:
+      return {acc, !acc};
+    case LogicOp::set:
+      return {acc, true};
+    case LogicOp::res:
+      return {acc, false};
+    case LogicOp::setc:
+      return {acc, acc || v};
+    case LogicOp::resc:
+      return {acc, !acc && v};
+    case LogicOp::setcn:
+      return {acc, !acc || v};
+    case LogicOp::rescn:
+      return {acc, acc && v};
+    default:
+      return {combine(op, acc, v), v};
+  }
+}
+
+LogicInstruction compiled(LogicOp op, const BitAddress& a) {
+  LogicInstruction in{op, static_cast<std::uint8_t>(1U << a.bit), static_cast<std::uint16_t>(Image::offset(a.byte))};
+  for (unsigned i = 0; i < 4; ++i) {
+    const auto [acc, bit] = effect(op, (i & 2U) != 0, (i & 1U) != 0);
+    in.acc_table = static_cast<std::uint8_t>(in.acc_table | (acc ? 1U << i : 0U));
+    in.bit_table = static_cast<std::uint8_t>(in.bit_table | (bit ? 1U << i : 0U));
+  }
+  return in;
+}
+
 }  // namespace
 
 std::expected<LogicProgram, ProgramError> LogicProgram::compile(const std::vector<std::string>& lines) {
@@ -105,16 +144,15 @@ std::expected<LogicProgram, ProgramError> LogicProgram::compile(const std::vecto
     }
     const auto it = std::find_if(op_names.begin(), op_names.end(), [&](const Name& nm) { return nm.text == key; });
     if (it == op_names.end()) return fail(line, fmt::format("'{}' is not a logic instruction", t));
-    LogicInstruction in{it->op, {}};
+    LogicInstruction in{it->op, 0, 0};
     const bool needs_operand =
         !(is_open(in.op) || in.op == LogicOp::close || in.op == LogicOp::nop || in.op == LogicOp::end);
     if (is_open(in.op) && !operand.empty()) {
       // "AND( M5.00.0" opens the bracket with its first operand loaded
       auto b = parse_bit(operand);
       if (!b || !loadable(*b)) return fail(line, fmt::format("operand '{}' cannot be read by the logic task", operand));
-      in.operand = *b;
       p.code_.push_back(in);
-      p.code_.push_back({LogicOp::ld, *b});
+      p.code_.push_back(compiled(LogicOp::ld, *b));
       if (++depth > 64) return fail(line, "more than 64 nested parentheses");
       continue;
     }
@@ -123,7 +161,7 @@ std::expected<LogicProgram, ProgramError> LogicProgram::compile(const std::vecto
       if (!b) return fail(line, fmt::format("'{}' is not an operand I/Q/M x.yy.z", operand));
       if (is_store(in.op) ? !storable(*b) : !loadable(*b))
         return fail(line, fmt::format("operand {} is not allowed for {}", operand, key));
-      in.operand = *b;
+      in = compiled(in.op, *b);
       if (is_store(in.op) && std::find(p.owned_.begin(), p.owned_.end(), *b) == p.owned_.end() &&
           b->byte.area == Area::output)
         p.owned_.push_back(*b);
@@ -143,62 +181,32 @@ std::expected<LogicProgram, ProgramError> LogicProgram::compile(const std::vecto
 }
 
 void LogicProgram::run(Image& image) const noexcept {
+  auto& bytes = image.bytes();
   bool acc = false;
   // Bracket stack: the accumulator and the operator that waits for the bracketed result.
   std::array<std::pair<bool, LogicOp>, 64> stack{};
   std::size_t sp = 0;
   for (const auto& in : code_) {
-    switch (in.op) {
-      case LogicOp::ld:
-        acc = image.bit(in.operand);
-        break;
-      case LogicOp::ldn:
-        acc = !image.bit(in.operand);
-        break;
-      case LogicOp::st:
-        image.set_bit(in.operand, acc);
-        break;
-      case LogicOp::stn:
-        image.set_bit(in.operand, !acc);
-        break;
-      case LogicOp::set:
-        image.set_bit(in.operand, true);
-        break;
-      case LogicOp::res:
-        image.set_bit(in.operand, false);
-        break;
-      case LogicOp::setc:
-        if (acc) image.set_bit(in.operand, true);
-        break;
-      case LogicOp::resc:
-        if (acc) image.set_bit(in.operand, false);
-        break;
-      case LogicOp::setcn:
-        if (!acc) image.set_bit(in.operand, true);
-        break;
-      case LogicOp::rescn:
-        if (!acc) image.set_bit(in.operand, false);
-        break;
-      case LogicOp::and_open:
-      case LogicOp::andn_open:
-      case LogicOp::or_open:
-      case LogicOp::orn_open:
-      case LogicOp::xor_open:
-      case LogicOp::xorn_open:
-        if (sp < stack.size()) stack[sp++] = {acc, in.op};
-        break;
-      case LogicOp::close:
+    if (in.op >= LogicOp::and_open) [[unlikely]] {
+      if (in.op == LogicOp::close) {
         if (sp > 0) {
           const auto [outer, op] = stack[--sp];
           acc = combine(op, outer, acc);
         }
-        break;
-      case LogicOp::nop:
-      case LogicOp::end:
-        break;
-      default:
-        acc = combine(in.op, acc, image.bit(in.operand));
+      } else if (sp < stack.size()) {
+        stack[sp++] = {acc, in.op};
+      }
+      continue;
     }
+    auto& b = bytes[in.offset];
+    const unsigned v = (b & in.mask) != 0 ? 1U : 0U;
+    const bool acc0 = ((in.acc_table >> v) & 1U) != 0;
+    const bool acc1 = ((in.acc_table >> (2U + v)) & 1U) != 0;
+    if (in.op >= LogicOp::st && in.op <= LogicOp::rescn) {
+      const bool bit = ((in.bit_table >> ((acc ? 2U : 0U) + v)) & 1U) != 0;
+      b = static_cast<std::uint8_t>((b & ~in.mask) | (bit ? in.mask : 0U));
+    }
+    acc = acc ? acc1 : acc0;
   }
 }
 

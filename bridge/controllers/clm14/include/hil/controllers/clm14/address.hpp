@@ -5,7 +5,9 @@
 // markers: the marker group 0..6). "I1.00.6" = user input byte 0 bit 6; a byte is "M2.02".
 // Pure codec plus the device's address space (Image): bytes in, bytes out, no I/O.
 
+#include <algorithm>
 #include <array>
+#include <cstddef>
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -49,38 +51,47 @@ struct OptionalBit {
 /// written by the NC tasks and the logic task; inputs by the owner (stimuli, hardware).
 class Image {
  public:
-  [[nodiscard]] std::uint8_t byte(const ByteAddress& a) const noexcept { return *slot(a); }
-  void set_byte(const ByteAddress& a, std::uint8_t v) noexcept { *slot(a) = v; }
-  [[nodiscard]] bool bit(const BitAddress& a) const noexcept { return (byte(a.byte) >> a.bit) & 1U; }
-  void set_bit(const BitAddress& a, bool v) noexcept {
-    auto* p = slot(a.byte);
-    *p = static_cast<std::uint8_t>(v ? (*p | (1U << a.bit)) : (*p & ~(1U << a.bit)));
-  }
-  /// Clear a whole marker group or output source.
-  void clear_markers(int group) noexcept { markers_.at(static_cast<std::size_t>(group)).fill(0); }
-  void clear_outputs(int source) noexcept { outputs_.at(static_cast<std::size_t>(source)).fill(0); }
-  void clear_inputs() noexcept {
-    for (auto& s : inputs_) s.fill(0);
-  }
-
- private:
-  [[nodiscard]] std::uint8_t* slot(const ByteAddress& a) noexcept {
-    return const_cast<std::uint8_t*>(static_cast<const Image*>(this)->slot(a));
-  }
-  [[nodiscard]] const std::uint8_t* slot(const ByteAddress& a) const noexcept {
+  /// Bytes of the whole address space: inputs and outputs of sources 0..2, then marker groups 0..6.
+  static constexpr std::size_t size = 2 * 3 * io_bytes + 7 * marker_bytes;
+  /// Where a byte lives in the flat address space. Out-of-range sources and bytes wrap (parse_bit
+  /// never yields them); compiled code (the logic task) resolves its operands with this once.
+  [[nodiscard]] static constexpr std::size_t offset(const ByteAddress& a) noexcept {
     switch (a.area) {
       case Area::input:
-        return &inputs_[a.source % 3][a.byte % io_bytes];
+        return static_cast<std::size_t>(a.source % 3 * io_bytes + a.byte % io_bytes);
       case Area::output:
-        return &outputs_[a.source % 3][a.byte % io_bytes];
+        return static_cast<std::size_t>(3 * io_bytes + a.source % 3 * io_bytes + a.byte % io_bytes);
       case Area::marker:
         break;
     }
-    return &markers_[a.source % 7][a.byte % marker_bytes];
+    return static_cast<std::size_t>(6 * io_bytes + a.source % 7 * marker_bytes + a.byte % marker_bytes);
   }
-  std::array<std::array<std::uint8_t, io_bytes>, 3> inputs_{};
-  std::array<std::array<std::uint8_t, io_bytes>, 3> outputs_{};
-  std::array<std::array<std::uint8_t, marker_bytes>, 7> markers_{};
+
+  [[nodiscard]] std::uint8_t byte(const ByteAddress& a) const noexcept { return bytes_[offset(a)]; }
+  void set_byte(const ByteAddress& a, std::uint8_t v) noexcept { bytes_[offset(a)] = v; }
+  [[nodiscard]] bool bit(const BitAddress& a) const noexcept { return (byte(a.byte) >> a.bit) & 1U; }
+  void set_bit(const BitAddress& a, bool v) noexcept {
+    auto& b = bytes_[offset(a.byte)];
+    b = static_cast<std::uint8_t>(v ? (b | (1U << a.bit)) : (b & ~(1U << a.bit)));
+  }
+  /// The flat address space, indexed by offset().
+  [[nodiscard]] std::array<std::uint8_t, size>& bytes() noexcept { return bytes_; }
+  [[nodiscard]] const std::array<std::uint8_t, size>& bytes() const noexcept { return bytes_; }
+  /// Clear a whole marker group or output source.
+  void clear_markers(int group) noexcept {
+    std::fill_n(
+        bytes_.begin() + static_cast<std::ptrdiff_t>(offset({Area::marker, static_cast<std::uint8_t>(group), 0})),
+        marker_bytes, std::uint8_t{0});
+  }
+  void clear_outputs(int source) noexcept {
+    std::fill_n(
+        bytes_.begin() + static_cast<std::ptrdiff_t>(offset({Area::output, static_cast<std::uint8_t>(source), 0})),
+        io_bytes, std::uint8_t{0});
+  }
+  void clear_inputs() noexcept { std::fill_n(bytes_.begin(), 3 * io_bytes, std::uint8_t{0}); }
+
+ private:
+  std::array<std::uint8_t, size> bytes_{};
 };
 
 /// Named system I/O (manual §9.1, digest §3.2/§3.3).
