@@ -149,6 +149,7 @@ bool Wf725Controller::fast_input(int e) const noexcept {
 }
 
 bool Wf725Controller::motion_done() const noexcept {
+  if (open_loop()) return ol_done();
   const auto& st = axis(0).status();
   return !st.busy && st.state != motion::AxisState::moving && st.state != motion::AxisState::stopping;
 }
@@ -227,8 +228,13 @@ void Wf725Controller::on_cycle(const CycleTime& cycle) noexcept {
       g92_active_ = g54_active_ = false;
     }
     handle_start(now);
+    if (open_loop()) ol_cycle(now);
     run_job(cycle);
-    check_limits(now);
+    if (open_loop()) {
+      ol_check_limits(now);
+    } else {
+      check_limits(now);
+    }
   }
   m_cycle(now);
   write_status();
@@ -280,7 +286,12 @@ void Wf725Controller::handle_drive(TimePoint now) {
 void Wf725Controller::abort_job() {
   auto& ax = axis(0);
   const auto s = ax.status().state;
-  if (s == motion::AxisState::moving) (void)ax.stop();
+  if (open_loop()) {
+    ol_stop();  // speed 0 on the MD 2 ramp
+    ol_ = OpenLoop{};
+  } else if (s == motion::AxisState::moving) {
+    (void)ax.stop();
+  }
   job_ = Job::none;
   jog_dir_ = 0;
   stack_.clear();
@@ -299,6 +310,7 @@ bool Wf725Controller::go(double target_mm, std::int64_t feed, TimePoint now, mot
   }
   double t = target_mm;
   limit_side_ = 0;
+  if (open_loop()) return ol_go(t, feed, now, dir);  // F is the speed level (docs/wf725.md)
   if (armed() && !md_.rotary()) {
     // Dynamic pre-limit switches MD 11/13: the move ends exactly on them (error 95/96 there).
     const double lo = static_cast<double>(md_.integer(11)) * um, hi = static_cast<double>(md_.integer(13)) * um;
@@ -334,6 +346,15 @@ bool Wf725Controller::go(double target_mm, std::int64_t feed, TimePoint now, mot
 }
 
 bool Wf725Controller::go_velocity(int direction, std::int64_t feed, TimePoint now) {
+  if (open_loop()) {
+    // Open loop runs at the level; the pre-limits are checked on the actual value.
+    limit_side_ = 0;
+    if (feed <= 0) {
+      raise_wf(0x73, now, "speed level 0");
+      return false;
+    }
+    return ol_run(direction, feed, now);
+  }
   if (armed() && !md_.rotary()) {
     // Towards the pre-limit switch: the axis stops exactly on it.
     const double beyond =
@@ -396,7 +417,7 @@ void Wf725Controller::handle_start(TimePoint now) {
     raise_wf(0x13, now, "start without drive enable D 2.0");
     return;
   }
-  if (md_.get(2) == 0) {
+  if (md_.closed_loop() && md_.get(2) == 0) {  // open loop: MD 2 = 0 is a step change
     raise_wf(0x71, now, "MD 2 = 0");
     return;
   }
@@ -454,7 +475,8 @@ void Wf725Controller::handle_start(TimePoint now) {
       (void)start_buffer(now);
       return;
     case Submode::clamping:
-      if (md_.integer(25) < md_.integer(32)) return raise_wf(0x10, now, "clamping with MD 25 < MD 32");
+      if (md_.closed_loop() && md_.integer(25) < md_.integer(32))
+        return raise_wf(0x10, now, "clamping with MD 25 < MD 32");
       clamp_command_mm_ = machine_command_mm();
       job_ = Job::clamping;
       return;
@@ -528,6 +550,15 @@ void Wf725Controller::run_job(const CycleTime& cycle) {
       // axis runs one encoder revolution past it and stops with 09; masked, the point is taken.
       const bool zm_check = (md_.integer(41) & 131'072) == 0 && md_.integer(40) == 0;
       if (encoder_input(2) && zm_check) ref_target_axis_ = zm + side * rev;
+      if (open_loop()) {
+        // Open loop: a staged positioning at the level V_slow onto the zero mark + MD 17.
+        if (!ol_go(to_machine(ref_target_axis_), ref_speeds_[2], now, motion::Direction::shortest)) {
+          abort_job();
+          return;
+        }
+        ref_ = RefPhase::slow;
+        return;
+      }
       motion::Limits lim = c.limits;
       lim.velocity = std::min(lim.velocity, static_cast<double>(ref_speeds_[2]) / 100.0 / 60.0);
       if (const auto ec = ax.move_absolute(ref_target_axis_, motion::Direction::shortest, lim)) {
@@ -703,8 +734,9 @@ void Wf725Controller::m_cycle(TimePoint now) {
 void Wf725Controller::write_status() {
   const auto& st = axis(0).status();
   const bool moving = st.state == motion::AxisState::moving || st.state == motion::AxisState::stopping;
-  const bool peh = st.in_position && !moving && st.state == motion::AxisState::standstill;
-  if (peh && !peh_ && positioning_ && md_.integer(33) > md_.integer(25)) {
+  const bool at_rest = !moving && st.state == motion::AxisState::standstill;
+  const bool peh = at_rest && (open_loop() && ol_.positioning ? ol_.peh : st.in_position);
+  if (peh && !peh_ && positioning_ && md_.closed_loop() && md_.integer(33) > md_.integer(25)) {
     // §4.3 MD 25: with MD 33 > MD 25 the standstill check fails each time a positioning reaches
     // the PEH window (the check switches from MD 24 to MD 25 there).
     raise_wf(0x10, last_now_, "MD 33 > MD 25");
@@ -729,7 +761,7 @@ void Wf725Controller::write_status() {
   }
   db_.set_bit(dw_status, bit_error, wf_error != 0);
   db_.set_dr(dw_error, static_cast<std::uint8_t>(wf_error));
-  db_.set_dl(dw_error, 0);  // open-loop speed level: closed-loop axes only
+  db_.set_dl(dw_error, wf725_level_bcd(open_loop() ? ol_.level : 0));  // open-loop speed level, BCD
   db_.write_word(dw_io_error, s5_bcd_word(io_error));
   db_.write_dd(dd_actual, static_cast<std::int32_t>(std::llround(actual_um())));
   db_.set_dl(dw_block, static_cast<std::uint8_t>(running_program_));
@@ -739,12 +771,19 @@ void Wf725Controller::write_status() {
   db_.set_bit(dw_flags, 0, job_ == Job::program && step_ == Step::wait_start);
   db_.set_bit(dw_flags, 1, job_ == Job::program);
   db_.set_bit(dw_flags, 2, job_ == Job::program && step_ == Step::wait_enable);
-  // Fast outputs X7 A1..A6 by MD 10 (digit n = function of An): 1 PEH, 2 moving +, 3 moving -.
+  // Fast outputs X7 A1..A6 by MD 10 (digit n = function of An): 1 PEH, 2 moving +, 3 moving -,
+  // 4 last but one cut-off point (WF 726 open loop). Open loop: A1-A3 are the cut-off points A/B/C.
+  Wf725CutOffOutputs cut;
+  if (open_loop() && ol_.positioning && !ol_.zero)
+    cut = wf725_cut_off_outputs(ol_stages(), (ol_.target - unwrapped_mm()) * ol_.dir / um);
+  else if (open_loop() && ol_.positioning)
+    cut.last_but_one = !ol_.peh;
   std::int64_t md10 = md_.integer(10);
   for (std::uint8_t a = 0; a < 6; ++a, md10 /= 10) {
     const auto f = md10 % 10;
-    const bool on = (f == 1 && peh) || (f == 2 && moving && st.command_velocity > 0) ||
-                    (f == 3 && moving && st.command_velocity < 0);
+    bool on = (f == 1 && peh) || (f == 2 && moving && st.command_velocity > 0) ||
+              (f == 3 && moving && st.command_velocity < 0) || (f == 4 && cut.last_but_one);
+    if (open_loop() && a < 3) on = a == 0 ? cut.a : a == 1 ? cut.b : cut.c;
     io().set(BitAddress{IoArea::output, 0, a}, on);
   }
   io().set(BitAddress{IoArea::output, 1, 0}, peh);
