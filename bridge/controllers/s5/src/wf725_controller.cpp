@@ -19,7 +19,7 @@ namespace {
 using namespace wf_db;
 
 IoLayout wf_layout() {
-  return IoLayout{{3, 2, 1, 2U * wf_db::words}};
+  return IoLayout{{4, 2, 1, 2U * wf_db::words}};
 }
 
 }  // namespace
@@ -58,6 +58,11 @@ Wf725Controller::Wf725Controller(LoadedParameters parameters, Wf725MachineData m
                                     "encoder_pulse_loss",   "encoder_parity_error", "encoder_telegram_fault",
                                     "encoder_position_jump"};
   for (std::uint8_t b = 0; b < 7; ++b) (void)io().name_bit(faults[b] + s, {IoArea::input, 2, b});
+  // Voltage fault inputs (our model of the ADC checks, docs/wf725.md "Voltage checks"): input byte 3.
+  constexpr const char* supplies[] = {"adc_fault",         "supply_15v_fault", "supply_p15v_fault",
+                                      "supply_m15v_fault", "fuse_5v_blown",    "fuse_24v_blown"};
+  for (std::uint8_t b = 0; b < 6; ++b) (void)io().name_bit(supplies[b], {IoArea::input, 3, b});
+  (void)io().name_bit("dac_short" + s, {IoArea::input, 3, 6});
   const auto d = [&](const char* name, std::uint16_t w, std::uint8_t b) {
     (void)io().name_bit(name + s, db_.bit_address(w, b));
   };
@@ -211,6 +216,7 @@ void Wf725Controller::on_cycle(const CycleTime& cycle) noexcept {
   }
   handle_mode(now);
   encoder_cycle(now);
+  voltage_cycle(now);
   handle_drive(now);
   if (db_.rising(dw_data_execute, 0)) {
     handle_data_code(now);
@@ -474,6 +480,22 @@ void Wf725Controller::handle_start(TimePoint now) {
     case Submode::automatic_buffer:
       (void)start_buffer(now);
       return;
+    case Submode::control: {
+      // Control: the voltage of data code 1D with the polarity of D 1.1 (+) / D 1.3 (-) (errors 77/78).
+      const bool plus = db_.bit(dw_control, bit_plus), minus = db_.bit(dw_control, bit_minus);
+      if (plus && minus) return raise_wf(0x77, now, "submode control: both polarities");
+      if (!plus && !minus) return raise_wf(0x78, now, "submode control: the polarity of the voltage");
+      if (control_mv_ <= 0) return raise_wf(0x73, now, "control voltage (data code 1D) is 0");
+      const std::int64_t feed = open_loop()
+                                    ? std::max<std::int64_t>(1, std::llround(control_mv_ / 100.0))
+                                    : std::llround(static_cast<double>(control_mv_) / static_cast<double>(md_.get(23)) *
+                                                   static_cast<double>(md_.get(3)) * 100.0);
+      if (go_velocity(plus ? 1 : -1, feed, now)) {
+        job_ = Job::jog;
+        jog_dir_ = plus ? 1 : -1;
+      }
+      return;
+    }
     case Submode::clamping:
       if (md_.closed_loop() && md_.integer(25) < md_.integer(32))
         return raise_wf(0x10, now, "clamping with MD 25 < MD 32");
@@ -639,6 +661,58 @@ void Wf725Controller::handle_data_code(TimePoint now) {
     case code::jog_feed:
       jog_feed_ = std::max<std::int32_t>(p1, 0);
       break;
+    case code::encoder_speed:
+    case code::pulse_difference:
+      if (!md_.incremental() || md_.integer(34) <= 0) {
+        raise_io(113, now, fmt::format("data code {:X}: incremental encoders only (MD 34 pulses)", c));
+      } else if (c == code::pulse_difference) {
+        result = static_cast<std::int32_t>(pulse_difference_);
+      } else {
+        const auto& ax = axis(0);
+        const double inc_per_s = ax.status().velocity * static_cast<double>(ax.config().inc_per_unit.num) /
+                                 static_cast<double>(ax.config().inc_per_unit.den);
+        result =
+            static_cast<std::int32_t>(std::llround(std::abs(inc_per_s) * 60.0 / static_cast<double>(md_.integer(34))));
+      }
+      break;
+    case code::control_voltage:
+      control_mv_ = std::clamp<std::int32_t>(p1, 0, 10000);  // the 11-bit DAC: at most 10 V
+      break;
+    case code::delete_block:
+      if (running_program_ == p1 && p1 != 0) {
+        raise_io(105, now, "the program runs");
+      } else if (const int e = store_.remove_block(p1, p2)) {
+        raise_io(e, now, fmt::format("program {} block {}", p1, p2));
+      }
+      break;
+    case code::list_programs: {
+      const auto n = store_.numbers();
+      if (p1 <= 0) {
+        raise_io(145, now, "page number 0");
+      } else {
+        write_list(n, p1);
+        result = static_cast<std::int32_t>(n.size());
+      }
+      break;
+    }
+    case code::list_blocks: {
+      const Wf725Program* prog = p1 == 0 ? nullptr : store_.find(p1);
+      if (p1 == 0) {
+        raise_io(125, now);
+      } else if (prog == nullptr) {
+        raise_io(127, now, fmt::format("program {}", p1));
+      } else if (p2 <= 0) {
+        raise_io(145, now, "page number 0");
+      } else if (prog->blocks.empty()) {
+        raise_io(129, now, fmt::format("program {}", p1));
+      } else {
+        std::vector<int> n;
+        for (const auto& b : prog->blocks) n.push_back(b.number);
+        write_list(n, p2);
+        result = static_cast<std::int32_t>(n.size());
+      }
+      break;
+    }
     case code::measured:
       result = measured_um_ ? static_cast<std::int32_t>(std::llround(*measured_um_)) : 0;
       break;

@@ -184,6 +184,13 @@ class Wf725Controller final : public Controller {
   /// as well when it strikes in a data mode with the drive enabled).
   void raise_encoder(int code, TimePoint now, std::string_view context);
   [[nodiscard]] bool encoder_input(int bit) const noexcept;
+  /// The voltage checks 40-46 of every cycle (MD 41 S; docs/wf725.md "Voltage checks"), on the
+  /// voltage fault inputs (input byte 3) and the command voltage.
+  void voltage_cycle(TimePoint now);
+  /// The command voltage on X3 now, mV (closed loop: feed / MD 3 x MD 23; open loop: level x 100).
+  [[nodiscard]] double command_mv() const noexcept;
+  /// Data codes 47/4A: writes a page of numbers into DW 30..38.
+  void write_list(const std::vector<int>& numbers, int page);
   /// Data codes 44/45: program input from / output to a user data block (Software Schale).
   void program_input(int db, TimePoint now);
   void program_output(int program, int db, TimePoint now);
@@ -297,7 +304,10 @@ class Wf725Controller final : public Controller {
   bool powered_up_ = false;
   std::int64_t zero_mark_count_ = 0;  ///< zero marks passed (position_inc / MD 34), pulse monitor 08
   bool zero_mark_known_ = false;
-  int jumps_ = 0;  ///< successive position jumps > MD 34 (absolute, 33)
+  int jumps_ = 0;                      ///< successive position jumps > MD 34 (absolute, 33)
+  std::int64_t pulse_difference_ = 0;  ///< pulses lost (< 0) since power-up (data code 4)
+  std::int64_t last_inc_ = 0;
+  std::int32_t control_mv_ = 0;  ///< submode control: voltage (data code 1D)
 
   // program
   std::vector<Frame> stack_;
