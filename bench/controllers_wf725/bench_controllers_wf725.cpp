@@ -41,7 +41,7 @@ const char* const ak_md_text =
     "MD 49 = 1\nMD 4 = 3\nMD 1 = 0\nMD 2 = 0\nMD 6 = 0\nMD 7 = 1\nMD 8 = 10\nMD 9 = 1\nMD 10 = 4000\n"
     "MD 11 = -24537\nMD 12 = -42728\nMD 13 = 150000\nMD 14 = 200000\nMD 15 = 1\nMD 16 = 0\nMD 17 = 0\n"
     "MD 18 = 0\nMD 19 = 1\nMD 20 = 0\nMD 21 = 4\nMD 27 = 0\nMD 28 = 0\nMD 30 = 150\nMD 31 = 0\nMD 32 = 30\n"
-    "MD 33 = 20\nMD 34 = 10000\nMD 40 = 0\nMD 41 = 0\nMD 42 = 87\nMD 43 = 52\nMD 44 = 5\nMD 45 = 50000\n"
+    "MD 33 = 30\nMD 34 = 10000\nMD 40 = 0\nMD 41 = 0\nMD 42 = 87\nMD 43 = 52\nMD 44 = 5\nMD 45 = 50000\n"
     "MD 46 = 25000\nMD 47 = 5000\nMD 48 = 60\nMD 50 = 0\n";
 
 // Open loop: staged positionings back and forth (F = speed level).
@@ -161,6 +161,7 @@ void BM_Wf725OpenLoopModuleCycle(benchmark::State& state) {
   state.counters["blocks_per_sim_s"] =
       benchmark::Counter(static_cast<double>(a.blocks) / (static_cast<double>(state.iterations()) * a.every * 1e-3));
   if (a.ctl->level_changes().empty()) state.SkipWithError("no staged positioning ran");
+  if ((a.ctl->read_db_word(db::dw_status) & (1U << db::bit_error)) != 0) state.SkipWithError("an error stopped it");
   state.SetItemsProcessed(state.iterations());
 }
 BENCHMARK(BM_Wf725OpenLoopModuleCycle);

@@ -12,12 +12,13 @@ namespace {
 using W = Wf725Fixture;
 
 /// An open-loop incremental WF 726 axis (MD 4 = 3): the manual's MD 42-47 examples, creep level 5
-/// and MD 48 = 60 µm so that the axis stops inside MD 33 = 20 µm; MD 1/MD 2 = 0 (step change).
+/// and MD 48 = 60 µm so that the axis stops inside MD 33 = 30 µm (braking 35 µm from level 5, a
+/// 4 ms cycle's travel 33 µm of spread); MD 1/MD 2 = 0 (step change).
 std::map<int, std::string> ak_md() {
   return {{49, "1"},   {4, "3"},     {1, "0"},       {2, "0"},       {6, "0"},       {7, "1"},       {8, "0"},
           {9, "1"},    {10, "4000"}, {11, "-24537"}, {12, "-42728"}, {13, "150000"}, {14, "200000"}, {15, "1"},
           {16, "0"},   {17, "0"},    {18, "0"},      {19, "1"},      {20, "0"},      {21, "4"},      {28, "0"},
-          {30, "150"}, {31, "0"},    {32, "30"},     {33, "20"},     {34, "10000"},  {40, "0"},      {41, "0"},
+          {30, "150"}, {31, "0"},    {32, "30"},     {33, "30"},     {34, "10000"},  {40, "0"},      {41, "0"},
           {42, "87"},  {43, "52"},   {44, "5"},      {45, "50000"},  {46, "25000"},  {47, "5000"},   {48, "60"},
           {27, "0"},   {50, "0"}};
 }
@@ -128,7 +129,7 @@ TEST_F(W, OpenLoopStagesSwitchAtTheTravelDifferences) {
   const double final_rem = 100000.0 - actual();
   EXPECT_LE(final_rem, ch[3].remaining_um - braking_um + 0.5) << "final position by the overshoot model";
   EXPECT_GE(final_rem, ch[3].remaining_um - braking_um - lag_um - 0.5) << "final position by the overshoot model";
-  EXPECT_LE(std::abs(100000 - actual()), 20) << "inside MD 33";
+  EXPECT_LE(std::abs(100000 - actual()), 30) << "inside MD 33";
   EXPECT_TRUE(bit(db::dw_status, db::bit_peh));
   EXPECT_EQ(error(), 0);
   EXPECT_FALSE(out(0) || out(1) || out(2) || out(3)) << "all cut-off outputs off in position";
