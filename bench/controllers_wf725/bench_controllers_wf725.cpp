@@ -36,6 +36,18 @@ const char* const program_text =
     "%1\nN1 G90 X 2 000 F 300 000\nN2 G91 X 1 000 F 200 000 M21\nN3 G04 F 5\nN4 L2 P2\nN5 G90 X 0 F 300 000\n"
     "%2\nN1 G91 X 500 F 100 000\nN2 G91 X -500 F 100 000 T3\n";
 
+// examples/controllers/wf725-axis-ak.txt: open loop (MD 4 = 3), levels 87/52/5 at 50/25/5 mm, 0 at 60 um.
+const char* const ak_md_text =
+    "MD 49 = 1\nMD 4 = 3\nMD 1 = 0\nMD 2 = 0\nMD 6 = 0\nMD 7 = 1\nMD 8 = 10\nMD 9 = 1\nMD 10 = 4000\n"
+    "MD 11 = -24537\nMD 12 = -42728\nMD 13 = 150000\nMD 14 = 200000\nMD 15 = 1\nMD 16 = 0\nMD 17 = 0\n"
+    "MD 18 = 0\nMD 19 = 1\nMD 20 = 0\nMD 21 = 4\nMD 27 = 0\nMD 28 = 0\nMD 30 = 150\nMD 31 = 0\nMD 32 = 30\n"
+    "MD 33 = 30\nMD 34 = 10000\nMD 40 = 0\nMD 41 = 0\nMD 42 = 87\nMD 43 = 52\nMD 44 = 5\nMD 45 = 50000\n"
+    "MD 46 = 25000\nMD 47 = 5000\nMD 48 = 60\nMD 50 = 0\n";
+
+// Open loop: staged positionings back and forth (F = speed level).
+const char* const ak_program_text =
+    "%1\nN1 G90 X 60 000 F 87\nN2 G90 X 10 000 F 60\nN3 G91 X 5 000 F 20\nN4 G90 X 0 F 87\n";
+
 /// A WF axis on the simulated drive, synchronized, running program 1 in automatic cycle.
 struct Axis {
   fs::path dir = fs::temp_directory_path() / "bench_wf725";
@@ -46,10 +58,10 @@ struct Axis {
   int last_block = 0;
   std::int64_t blocks = 0;
 
-  Axis() {
+  explicit Axis(const char* md = md_text, const char* program = program_text) {
     fs::create_directories(dir);
-    std::ofstream(dir / "md.txt") << md_text;
-    std::ofstream(dir / "p.wf") << program_text;
+    std::ofstream(dir / "md.txt") << md;
+    std::ofstream(dir / "p.wf") << program;
     hil::controllers::ControllerSpec spec;
     spec.device = "wf725-726";
     spec.parameters = dir / "md.txt";
@@ -140,5 +152,18 @@ void BM_Wf725ModuleCycle(benchmark::State& state) {
   state.SetItemsProcessed(state.iterations());
 }
 BENCHMARK(BM_Wf725ModuleCycle);
+
+/// An open-loop axis (MD 4 = 3) running staged positionings: the speed-level selection by the
+/// remaining distance, the cut-off outputs, DL 4 and the PEH/21/22 watch, with the axis updates.
+void BM_Wf725OpenLoopModuleCycle(benchmark::State& state) {
+  Axis a(ak_md_text, ak_program_text);
+  for (auto _ : state) benchmark::DoNotOptimize(a.cycle());
+  state.counters["blocks_per_sim_s"] =
+      benchmark::Counter(static_cast<double>(a.blocks) / (static_cast<double>(state.iterations()) * a.every * 1e-3));
+  if (a.ctl->level_changes().empty()) state.SkipWithError("no staged positioning ran");
+  if ((a.ctl->read_db_word(db::dw_status) & (1U << db::bit_error)) != 0) state.SkipWithError("an error stopped it");
+  state.SetItemsProcessed(state.iterations());
+}
+BENCHMARK(BM_Wf725OpenLoopModuleCycle);
 
 }  // namespace

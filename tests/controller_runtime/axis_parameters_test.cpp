@@ -130,6 +130,39 @@ TEST(WfAxes, RotaryNeedsWholeIncrementsPerTurn) {
   EXPECT_DOUBLE_EQ(ratio(r->axes[0].config.inc_per_unit), 2000.0);
 }
 
+TEST(WfAxes, OpenLoopIsASpeedLevelDrive) {
+  // MD 4 = 3 (open loop): no MD 3 / MD 22-26; the drive reaches `open_loop_speed` at 10 V (level 100),
+  // MD 1/2 are voltage ramps in mV/s (WF 726), capped by the drive's own acceleration.
+  const auto p = load_parameter_file("wf725-726", "examples/controllers/wf725-axis-ak.txt");
+  ASSERT_TRUE(p) << p.error().describe();
+  ControllerSpec spec;
+  spec.options = {{"open_loop_speed", "6000"}, {"open_loop_acceleration", "400"}};
+  const auto axes = wf725_axes(*p, spec);
+  ASSERT_TRUE(axes) << axes.error().describe();
+  const auto& c = axes->axes[0].config;
+  EXPECT_DOUBLE_EQ(c.limits.velocity, 0.99 * 6000.0 / 60.0) << "level 99 = 9.9 V";
+  EXPECT_DOUBLE_EQ(c.limits.acceleration, 400.0) << "MD 1/2 = 0: a step, the drive's own ramp";
+  EXPECT_DOUBLE_EQ(c.quick_stop_deceleration, 400.0);
+  EXPECT_FALSE(c.following_error.dynamic) << "no position loop of the WF";
+  EXPECT_DOUBLE_EQ(c.in_position_window, 0.030) << "MD 33";
+  // MD 1 = MD 2 = 1200 mV/s on the same drive: 1.2 V/s of 600 mm/min per volt = 12 mm/s^2.
+  std::string text;
+  {
+    std::ifstream in("examples/controllers/wf725-axis-ak.txt");
+    std::string line;
+    while (std::getline(in, line))
+      text += (line == "MD 1 = 0" ? "MD 1 = 1200" : line == "MD 2 = 0" ? "MD 2 = 1200" : line) + "\n";
+  }
+  const auto q = load_parameter_text("wf725-726", text, "ak.txt");
+  ASSERT_TRUE(q) << q.error().describe();
+  const auto r = wf725_axes(*q, spec);
+  ASSERT_TRUE(r) << r.error().describe();
+  EXPECT_DOUBLE_EQ(r->axes[0].config.limits.acceleration, 12.0) << "MD 1 = MD 2 = 1200 mV/s";
+  EXPECT_DOUBLE_EQ(r->axes[0].config.quick_stop_deceleration, 400.0) << "the drive's own";
+  spec.options = {{"open_loop_speed", "fast"}};
+  EXPECT_FALSE(wf725_axes(*q, spec)) << "a bad drive speed is refused";
+}
+
 TEST(Ip247Axes, VmaxFromFmaxAndGear) {
   // The manual's MD DB example (§6.3.8.1): mm, 200 pulses/rev, 2000 BU/rev, fmax 5 kHz, a = 50 Hz/ms.
   const auto p = load_parameter_file("ip247", "examples/serial/ip247-md-db1.s5db");

@@ -41,6 +41,29 @@ TEST(Wf725Calc, EncoderAndPulseEvaluationFactor) {
   EXPECT_FALSE(wf725_calculate({.resolution_um = 1, .pitch_um = 100'000, .encoder_pulses = 100}).problems.empty());
 }
 
+TEST(Wf725Calc, OpenLoopRampAndLastTravelDifference) {
+  // §4.3 MD 1 (AK): MD 1 = G_soll 100 / t: level 60 in 5 s -> 1200 mV/s (the manual's example value).
+  auto r = wf725_calculate({.ramp_s = 5, .level = 60});
+  EXPECT_DOUBLE_EQ(*r.get("MD1_open_loop"), 1200.0);
+  EXPECT_TRUE(r.problems.empty());
+  r = wf725_calculate({.series = 725, .ramp_s = 5, .level = 60});
+  EXPECT_FALSE(r.problems.empty()) << "no voltage ramps on the WF 725";
+  r = wf725_calculate({.ramp_s = 0.01, .level = 99});
+  EXPECT_FALSE(r.problems.empty()) << "990 000 mV/s is beyond 65 535";
+  // Creep level 5 on a 10 m/min-at-10 V drive: 500 mm/min = 8.33 mm/s; MD 2 = 0 with the drive's
+  // 1000 mm/s^2: 34.7 um braking; half a 6 ms WF 726 cycle of travel 25 um -> MD 48 = 60 um.
+  r = wf725_calculate({.drive_speed_mm_min = 10000, .creep_level = 5, .md2_mv_s = 0, .drive_acceleration = 1000});
+  EXPECT_DOUBLE_EQ(*r.get("v_creep"), 500.0);
+  EXPECT_NEAR(*r.get("brake_creep"), 34.722, 1e-3);
+  EXPECT_NEAR(*r.get("stop_spread"), 25.0, 1e-9);
+  EXPECT_EQ(*r.get("MD48"), 60.0);
+  // MD 2 = 600 mV/s: 10 mm/s^2 -> 3472 um braking from level 5.
+  r = wf725_calculate({.drive_speed_mm_min = 10000, .creep_level = 5, .md2_mv_s = 600});
+  EXPECT_NEAR(*r.get("brake_creep"), 3472.2, 0.1);
+  r = wf725_calculate({.drive_speed_mm_min = 10000, .creep_level = 5, .md2_mv_s = 0});
+  EXPECT_FALSE(r.problems.empty()) << "a step change needs the drive's acceleration";
+}
+
 TEST(Wf725Calc, FeedRampsDacAndWindows) {
   // MD 3: n 3000/min, 10 um, 2500 pulses, 1:1, B_I 1.0, x4 -> 30 000 000 (300 m/min).
   auto r = wf725_calculate({.resolution_um = 10, .pitch_um = 100'000, .encoder_pulses = 2500, .motor_rpm = 3000});
@@ -127,6 +150,12 @@ TEST(Wf725Calc, ProfileCalcCommandPrintsTheManualsFigures) {
   EXPECT_TRUE(has(out, "1000000") && has(out, "1638") && has(out, "0.1638") && has(out, "0.16376") &&
               has(out, "enter in MD 23"))
       << out;
+  out = hilbridge(
+      "profile calc wf725-726 --level 60 --ramp-time 5 --drive-speed 10000 --creep-level 5 --md2 0 "
+      "--drive-acceleration 1000",
+      status);
+  EXPECT_EQ(status, 0) << out;
+  EXPECT_TRUE(has(out, "1200") && has(out, "mV/s") && has(out, "enter in MD 48") && has(out, " 60 ")) << out;
   out = hilbridge("profile calc wf725-726 --vmax 10000 --md24 11000 --md26 100", status);
   EXPECT_TRUE(has(out, "60.606") && has(out, "6666.66")) << out;
   out = hilbridge("profile calc wf725-726 --module WF725 --absolute --resolution 10 --factor 2.5 --vmax 10000", status);

@@ -21,6 +21,8 @@ struct WfCalcOptions {
   int resolution = 0, multiplication = 0;
   double pitch = 0, range = 0, ratio = 0, pulses = 0, factor = 0, rpm = 0, motor_ratio = 0, vmax = 0, ramp = 0, kv = 0,
          dac = 0, md24 = 0, md26 = 0, feed = 0, used = 0, possible = 0, standstill = 0;
+  int level = 0, creep = 0;
+  double drive_speed = 0, md2 = -1, drive_acc = 0;
 };
 
 void run_wf_calc(Context& ctx, const WfCalcOptions& o) {
@@ -50,6 +52,11 @@ void run_wf_calc(Context& ctx, const WfCalcOptions& o) {
   in.used_steps = opt(o.used);
   in.possible_steps = opt(o.possible);
   if (o.standstill != 0) in.standstill_um = o.standstill;
+  if (o.level > 0) in.level = o.level;
+  if (o.creep > 0) in.creep_level = o.creep;
+  in.drive_speed_mm_min = opt(o.drive_speed);
+  if (o.md2 >= 0) in.md2_mv_s = o.md2;
+  in.drive_acceleration = opt(o.drive_acc);
   const auto r = s5::wf725_calculate(in);
   if (r.lines.empty() && r.problems.empty()) {
     ctx.exit_code = report_error(o.json, "profile calc wf725-726: ",
@@ -83,7 +90,8 @@ void register_wf725(Context& ctx) {
       "WF 725/726 machine data from the manual's formulas (§4.3): encoder selection and the pulse evaluation\n"
       "factor MD 19/20 with MD 21/34, MD 3 from the motor speed, MD 1/2 from a ramp time, DAC scaling (MD 22/23,\n"
       "Factor_DAC < 3), MD 24/26 and the feeds where the following-error window changes, the minimum MD 34 of\n"
-      "an absolute encoder, MD 7 masking, MD 33/35; says which MD to enter. Exit 1 when an MD rule fails.");
+      "an absolute encoder, MD 7 masking, MD 33/35, open loop: MD 1/2 in mV/s and MD 48 from the creep level;\n"
+      "says which MD to enter. Exit 1 when an MD rule fails.");
   calc->add_option("--module", o->module, "WF725 or WF726 (cycle time for MD 34 of absolute encoders)")
       ->check(CLI::IsMember({"WF725", "WF726"}))
       ->capture_default_str();
@@ -110,13 +118,21 @@ void register_wf725(Context& ctx) {
   calc->add_option("--possible-steps", o->possible, "MD 7 (parallel absolute): steps the encoder has (e.g. 512)");
   calc->add_option("--used-steps", o->used, "MD 7 (parallel absolute): steps used of them (e.g. 360)");
   calc->add_option("--standstill-error", o->standstill, "Measured standstill following error in um (MD 33, MD 35)");
+  calc->add_option("--level", o->level,
+                   "Open loop: G_soll, the speed level 1..99 --ramp-time reaches (MD 1/2 in mV/s)");
+  calc->add_option("--drive-speed", o->drive_speed, "Open loop: the drive's speed at 10 V in mm/min");
+  calc->add_option("--creep-level", o->creep, "Open loop: MD 44, the last level before speed 0 (computes MD 48)");
+  calc->add_option("--md2", o->md2, "Open loop: MD 2, the voltage decrease ramp in mV/s (0 = step change)");
+  calc->add_option("--drive-acceleration", o->drive_acc, "Open loop: the drive's own acceleration in mm/s^2");
   calc->add_flag("--json", o->json, "Print the figures as one JSON object (docs/json.md)");
   calc->footer(
       "Examples (the manual's):\n"
       "  hilbridge profile calc wf725-726 --resolution 10 --pitch 360000 --rotary --ratio 2.51 --pulses 5000\n"
       "  hilbridge profile calc wf725-726 --resolution 100 --absolute --range 25000000 --pulses 262144\n"
       "  hilbridge profile calc wf725-726 --vmax 10000 --kv 1 --dac 8000 --resolution 1\n"
-      "  hilbridge profile calc wf725-726 --module WF725 --absolute --resolution 10 --factor 2.5 --vmax 10000");
+      "  hilbridge profile calc wf725-726 --module WF725 --absolute --resolution 10 --factor 2.5 --vmax 10000\n"
+      "  hilbridge profile calc wf725-726 --level 60 --ramp-time 5 --drive-speed 10000 --creep-level 5 --md2 0 "
+      "--drive-acceleration 1000");
   calc->callback([&ctx, o] { run_wf_calc(ctx, *o); });
 }
 

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 // WF 725/726 machine-data calculators (manual §4.3 MD 1, 3, 7, 19-21, 23, 24, 26, 33, 34, 35).
 #include "hil/controllers/s5/wf725_calc.hpp"
+#include "hil/controllers/s5/wf725_open_loop.hpp"
 
 #include <fmt/format.h>
 
@@ -150,6 +151,34 @@ Wf725CalcResult wf725_calculate(const Wf725CalcInput& in) {
     add("MD35", -*in.standstill_um, "um", "MD 35");
     if (std::fabs(*in.standstill_um) > 255.0 * in.resolution_um.value_or(1))
       problem("MD 35 is limited to +-255 resolution steps");
+  }
+  // Open loop (§4.3 MD 1/2 AK, MD 42-48).
+  if (in.level && in.ramp_s && *in.ramp_s > 0) {
+    const double md1 = *in.level * 100.0 / *in.ramp_s;
+    add("MD1_open_loop", md1, "mV/s", "MD 1 / MD 2 (open loop, WF 726)");
+    if (*in.level < 1 || *in.level > 99) problem("speed levels are 1..99 (MD 42-44)");
+    if (md1 > 65535) problem(fmt::format("MD 1 = {:.0f} mV/s: at most 65 535", md1));
+    if (in.series == 725) problem("the open-loop voltage ramps MD 1/MD 2 exist on the WF 726 only");
+  }
+  if (in.drive_speed_mm_min && *in.drive_speed_mm_min > 0) {
+    const Wf725OpenLoopDrive d{*in.drive_speed_mm_min, in.drive_acceleration.value_or(0.0)};
+    if (in.level) add("v_level", wf725_level_velocity(d, *in.level) * 60.0, "mm/min");
+    if (in.creep_level) {
+      const double v = wf725_level_velocity(d, *in.creep_level);  // mm/s
+      const double ramp = in.md2_mv_s.value_or(0.0) * d.speed_at_10v_mm_min / 60.0 / 10000.0;
+      const double acc = in.drive_acceleration ? wf725_ramp_acceleration(d, in.md2_mv_s.value_or(0.0)) : ramp;
+      add("v_creep", v * 60.0, "mm/min");
+      const double tz = in.series == 725 ? 4.0 : (in.jerk_limit ? 8.0 : 6.0);
+      if (acc > 0) {
+        const double brake = v * v / (2.0 * acc) * 1000.0;
+        const double spread = v * tz / 2.0;  // µm: half a cycle's travel (v mm/s x tz ms / 2)
+        add("brake_creep", brake, "um");
+        add("MD48", std::ceil(brake + spread), "um", "MD 48");
+        add("stop_spread", spread, "um", "MD 33 at least");
+      } else {
+        problem("MD 2 = 0 (step change) needs --drive-acceleration: the braking distance is the drive's");
+      }
+    }
   }
   return r;
 }

@@ -19,7 +19,7 @@ namespace {
 using namespace wf_db;
 
 IoLayout wf_layout() {
-  return IoLayout{{3, 2, 1, 2U * wf_db::words}};
+  return IoLayout{{4, 2, 1, 2U * wf_db::words}};
 }
 
 }  // namespace
@@ -58,6 +58,11 @@ Wf725Controller::Wf725Controller(LoadedParameters parameters, Wf725MachineData m
                                     "encoder_pulse_loss",   "encoder_parity_error", "encoder_telegram_fault",
                                     "encoder_position_jump"};
   for (std::uint8_t b = 0; b < 7; ++b) (void)io().name_bit(faults[b] + s, {IoArea::input, 2, b});
+  // Voltage fault inputs (our model of the ADC checks, docs/wf725.md "Voltage checks"): input byte 3.
+  constexpr const char* supplies[] = {"adc_fault",         "supply_15v_fault", "supply_p15v_fault",
+                                      "supply_m15v_fault", "fuse_5v_blown",    "fuse_24v_blown"};
+  for (std::uint8_t b = 0; b < 6; ++b) (void)io().name_bit(supplies[b], {IoArea::input, 3, b});
+  (void)io().name_bit("dac_short" + s, {IoArea::input, 3, 6});
   const auto d = [&](const char* name, std::uint16_t w, std::uint8_t b) {
     (void)io().name_bit(name + s, db_.bit_address(w, b));
   };
@@ -149,6 +154,7 @@ bool Wf725Controller::fast_input(int e) const noexcept {
 }
 
 bool Wf725Controller::motion_done() const noexcept {
+  if (open_loop()) return ol_done();
   const auto& st = axis(0).status();
   return !st.busy && st.state != motion::AxisState::moving && st.state != motion::AxisState::stopping;
 }
@@ -210,6 +216,7 @@ void Wf725Controller::on_cycle(const CycleTime& cycle) noexcept {
   }
   handle_mode(now);
   encoder_cycle(now);
+  voltage_cycle(now);
   handle_drive(now);
   if (db_.rising(dw_data_execute, 0)) {
     handle_data_code(now);
@@ -227,8 +234,13 @@ void Wf725Controller::on_cycle(const CycleTime& cycle) noexcept {
       g92_active_ = g54_active_ = false;
     }
     handle_start(now);
+    if (open_loop()) ol_cycle(now);
     run_job(cycle);
-    check_limits(now);
+    if (open_loop()) {
+      ol_check_limits(now);
+    } else {
+      check_limits(now);
+    }
   }
   m_cycle(now);
   write_status();
@@ -280,7 +292,12 @@ void Wf725Controller::handle_drive(TimePoint now) {
 void Wf725Controller::abort_job() {
   auto& ax = axis(0);
   const auto s = ax.status().state;
-  if (s == motion::AxisState::moving) (void)ax.stop();
+  if (open_loop()) {
+    ol_stop();  // speed 0 on the MD 2 ramp
+    ol_ = OpenLoop{};
+  } else if (s == motion::AxisState::moving) {
+    (void)ax.stop();
+  }
   job_ = Job::none;
   jog_dir_ = 0;
   stack_.clear();
@@ -299,6 +316,7 @@ bool Wf725Controller::go(double target_mm, std::int64_t feed, TimePoint now, mot
   }
   double t = target_mm;
   limit_side_ = 0;
+  if (open_loop()) return ol_go(t, feed, now, dir);  // F is the speed level (docs/wf725.md)
   if (armed() && !md_.rotary()) {
     // Dynamic pre-limit switches MD 11/13: the move ends exactly on them (error 95/96 there).
     const double lo = static_cast<double>(md_.integer(11)) * um, hi = static_cast<double>(md_.integer(13)) * um;
@@ -334,6 +352,15 @@ bool Wf725Controller::go(double target_mm, std::int64_t feed, TimePoint now, mot
 }
 
 bool Wf725Controller::go_velocity(int direction, std::int64_t feed, TimePoint now) {
+  if (open_loop()) {
+    // Open loop runs at the level; the pre-limits are checked on the actual value.
+    limit_side_ = 0;
+    if (feed <= 0) {
+      raise_wf(0x73, now, "speed level 0");
+      return false;
+    }
+    return ol_run(direction, feed, now);
+  }
   if (armed() && !md_.rotary()) {
     // Towards the pre-limit switch: the axis stops exactly on it.
     const double beyond =
@@ -396,7 +423,7 @@ void Wf725Controller::handle_start(TimePoint now) {
     raise_wf(0x13, now, "start without drive enable D 2.0");
     return;
   }
-  if (md_.get(2) == 0) {
+  if (md_.closed_loop() && md_.get(2) == 0) {  // open loop: MD 2 = 0 is a step change
     raise_wf(0x71, now, "MD 2 = 0");
     return;
   }
@@ -453,8 +480,25 @@ void Wf725Controller::handle_start(TimePoint now) {
     case Submode::automatic_buffer:
       (void)start_buffer(now);
       return;
+    case Submode::control: {
+      // Control: the voltage of data code 1D with the polarity of D 1.1 (+) / D 1.3 (-) (errors 77/78).
+      const bool plus = db_.bit(dw_control, bit_plus), minus = db_.bit(dw_control, bit_minus);
+      if (plus && minus) return raise_wf(0x77, now, "submode control: both polarities");
+      if (!plus && !minus) return raise_wf(0x78, now, "submode control: the polarity of the voltage");
+      if (control_mv_ <= 0) return raise_wf(0x73, now, "control voltage (data code 1D) is 0");
+      const std::int64_t feed = open_loop()
+                                    ? std::max<std::int64_t>(1, std::llround(control_mv_ / 100.0))
+                                    : std::llround(static_cast<double>(control_mv_) / static_cast<double>(md_.get(23)) *
+                                                   static_cast<double>(md_.get(3)) * 100.0);
+      if (go_velocity(plus ? 1 : -1, feed, now)) {
+        job_ = Job::jog;
+        jog_dir_ = plus ? 1 : -1;
+      }
+      return;
+    }
     case Submode::clamping:
-      if (md_.integer(25) < md_.integer(32)) return raise_wf(0x10, now, "clamping with MD 25 < MD 32");
+      if (md_.closed_loop() && md_.integer(25) < md_.integer(32))
+        return raise_wf(0x10, now, "clamping with MD 25 < MD 32");
       clamp_command_mm_ = machine_command_mm();
       job_ = Job::clamping;
       return;
@@ -528,6 +572,15 @@ void Wf725Controller::run_job(const CycleTime& cycle) {
       // axis runs one encoder revolution past it and stops with 09; masked, the point is taken.
       const bool zm_check = (md_.integer(41) & 131'072) == 0 && md_.integer(40) == 0;
       if (encoder_input(2) && zm_check) ref_target_axis_ = zm + side * rev;
+      if (open_loop()) {
+        // Open loop: a staged positioning at the level V_slow onto the zero mark + MD 17.
+        if (!ol_go(to_machine(ref_target_axis_), ref_speeds_[2], now, motion::Direction::shortest)) {
+          abort_job();
+          return;
+        }
+        ref_ = RefPhase::slow;
+        return;
+      }
       motion::Limits lim = c.limits;
       lim.velocity = std::min(lim.velocity, static_cast<double>(ref_speeds_[2]) / 100.0 / 60.0);
       if (const auto ec = ax.move_absolute(ref_target_axis_, motion::Direction::shortest, lim)) {
@@ -570,107 +623,6 @@ void Wf725Controller::check_limits(TimePoint now) {
   range_side_ = side;
 }
 
-void Wf725Controller::handle_data_code(TimePoint now) {
-  const std::uint16_t c = db_.read_word(dw_data_code);
-  const std::int32_t p1 = db_.read_dd(dd_data_param1), p2 = db_.read_dd(dd_data_param2);
-  db_.set_bit(dw_data_status, 1, false);
-  // A new input clears the self-acknowledging messages of the data modes (DW 40).
-  {
-    std::vector<std::pair<const profiles::ErrorCatalogue*, int>> drop;
-    for (const auto& e : errors().active())
-      if (e.ack == AckRule::self_clearing && e.catalogue != traversing_cat_) drop.emplace_back(e.catalogue, e.code);
-    for (const auto& [cat, code] : drop) (void)clear_error(*cat, code, 0);
-  }
-  std::int32_t result = 0;
-  switch (c) {
-    case 0:
-      raise_io(112, now);
-      break;
-    case code::acknowledge:
-      (void)acknowledge(Acknowledgement::acknowledge);
-      break;
-    case code::ref_rapid:
-    case code::ref_reduced:
-    case code::ref_slow:
-      ref_speeds_[c - code::ref_rapid] = p1;
-      break;
-    case code::mdi_position:
-      mdi_position_ = p1;
-      mdi_incremental_ = (p2 & 1) != 0;
-      break;
-    case code::mdi_feed:
-      if (p1 <= 0) {
-        raise_io(145, now, "MDI feed 0");
-      } else {
-        mdi_feed_ = p1;
-      }
-      break;
-    case code::jog_feed:
-      jog_feed_ = std::max<std::int32_t>(p1, 0);
-      break;
-    case code::measured:
-      result = measured_um_ ? static_cast<std::int32_t>(std::llround(*measured_um_)) : 0;
-      break;
-    case code::teach_in: {
-      // Teach-in (§6.4): the actual value becomes block p2 of program p1 (G90, the MDI feed or MD 3).
-      Wf725Block b;
-      b.g[0] = 90;
-      b.x = std::llround(actual_um());
-      b.f = mdi_feed_ > 0 ? mdi_feed_ : std::llround(md_.get(3) * 100);
-      if (const int e = store_.teach(p1, p2, b, db_.bit(dw_control, bit_ram))) raise_io(e, now);
-      break;
-    }
-    case code::tool_offset:
-      if (p1 < 1 || p1 > 20) {
-        raise_io(142, now, fmt::format("tool offset number {}", p1));
-      } else {
-        offsets_um_[static_cast<std::size_t>(p1)] = p2;
-      }
-      break;
-    case code::delete_program:
-      if (running_program_ == p1 && p1 != 0) {
-        raise_io(105, now, "the program runs");
-      } else if (const int e = store_.remove(p1)) {
-        raise_io(e, now);
-      }
-      break;
-    case code::write_md:
-      if (const int e = write_machine_data(p1, p2))
-        raise_io(e, now,
-                 e == 121 ? fmt::format("MD {}", p1) : "machine data are written in mode machine data input/output",
-                 e == 121 ? "program_io" : "memory_admin");
-      break;
-    case code::read_md:
-      if (p1 < 1 || p1 > 50) {
-        raise_io(121, now, fmt::format("MD {}", p1));
-      } else {
-        result = read_machine_data(p1);
-      }
-      break;
-    case code::buffer_length:
-      buffer_length(p1, p2, now);
-      break;
-    case code::buffer_reload:
-      buffer_reload(p1, p2, now);
-      break;
-    case code::program_in:
-    case code::program_out:
-      if (mode_bits_ != (1U << (bit_mode_program_io - 8))) {
-        raise_io(201, now, "programs are read in and out in mode program input/output (D 0.9)", "memory_admin");
-      } else if (c == code::program_in) {
-        program_input(p1, now);
-      } else {
-        program_output(p1, p2, now);
-      }
-      break;
-    default:
-      raise_io(113, now, fmt::format("data code {:X}", c));
-      break;
-  }
-  db_.write_dd(dd_data_result, result);
-  db_.set_bit(dw_data_status, 0, true);
-}
-
 void Wf725Controller::output_m(int m, TimePoint now) {
   m_ = m;
   m_history_.push_back(m);
@@ -703,8 +655,9 @@ void Wf725Controller::m_cycle(TimePoint now) {
 void Wf725Controller::write_status() {
   const auto& st = axis(0).status();
   const bool moving = st.state == motion::AxisState::moving || st.state == motion::AxisState::stopping;
-  const bool peh = st.in_position && !moving && st.state == motion::AxisState::standstill;
-  if (peh && !peh_ && positioning_ && md_.integer(33) > md_.integer(25)) {
+  const bool at_rest = !moving && st.state == motion::AxisState::standstill;
+  const bool peh = at_rest && (open_loop() && ol_.positioning ? ol_.peh : st.in_position);
+  if (peh && !peh_ && positioning_ && md_.closed_loop() && md_.integer(33) > md_.integer(25)) {
     // §4.3 MD 25: with MD 33 > MD 25 the standstill check fails each time a positioning reaches
     // the PEH window (the check switches from MD 24 to MD 25 there).
     raise_wf(0x10, last_now_, "MD 33 > MD 25");
@@ -729,7 +682,7 @@ void Wf725Controller::write_status() {
   }
   db_.set_bit(dw_status, bit_error, wf_error != 0);
   db_.set_dr(dw_error, static_cast<std::uint8_t>(wf_error));
-  db_.set_dl(dw_error, 0);  // open-loop speed level: closed-loop axes only
+  db_.set_dl(dw_error, wf725_level_bcd(open_loop() ? ol_.level : 0));  // open-loop speed level, BCD
   db_.write_word(dw_io_error, s5_bcd_word(io_error));
   db_.write_dd(dd_actual, static_cast<std::int32_t>(std::llround(actual_um())));
   db_.set_dl(dw_block, static_cast<std::uint8_t>(running_program_));
@@ -739,12 +692,19 @@ void Wf725Controller::write_status() {
   db_.set_bit(dw_flags, 0, job_ == Job::program && step_ == Step::wait_start);
   db_.set_bit(dw_flags, 1, job_ == Job::program);
   db_.set_bit(dw_flags, 2, job_ == Job::program && step_ == Step::wait_enable);
-  // Fast outputs X7 A1..A6 by MD 10 (digit n = function of An): 1 PEH, 2 moving +, 3 moving -.
+  // Fast outputs X7 A1..A6 by MD 10 (digit n = function of An): 1 PEH, 2 moving +, 3 moving -,
+  // 4 last but one cut-off point (WF 726 open loop). Open loop: A1-A3 are the cut-off points A/B/C.
+  Wf725CutOffOutputs cut;
+  if (open_loop() && ol_.positioning && !ol_.zero)
+    cut = wf725_cut_off_outputs(ol_stages(), (ol_.target - unwrapped_mm()) * ol_.dir / um);
+  else if (open_loop() && ol_.positioning)
+    cut.last_but_one = !ol_.peh;
   std::int64_t md10 = md_.integer(10);
   for (std::uint8_t a = 0; a < 6; ++a, md10 /= 10) {
     const auto f = md10 % 10;
-    const bool on = (f == 1 && peh) || (f == 2 && moving && st.command_velocity > 0) ||
-                    (f == 3 && moving && st.command_velocity < 0);
+    bool on = (f == 1 && peh) || (f == 2 && moving && st.command_velocity > 0) ||
+              (f == 3 && moving && st.command_velocity < 0) || (f == 4 && cut.last_but_one);
+    if (open_loop() && a < 3) on = a == 0 ? cut.a : a == 1 ? cut.b : cut.c;
     io().set(BitAddress{IoArea::output, 0, a}, on);
   }
   io().set(BitAddress{IoArea::output, 1, 0}, peh);

@@ -51,6 +51,10 @@ void Wf725Controller::encoder_cycle(TimePoint now) {
     // 08: pulse monitor (WF 726, MD 41 J = 0): the pulses between two zero marks (every MD 34
     // increments of the counter) differ from MD 34 while pulses are lost.
     const std::int64_t md34 = md_.integer(34);
+    // The pulses the counter misses while the encoder loses pulses (decision: one per cycle of
+    // motion): the pulse-check difference of data code 4.
+    if (encoder_input(in_pulse_loss) && st.position_inc != last_inc_) --pulse_difference_;
+    last_inc_ = st.position_inc;
     if (md34 <= 0) return;
     const std::int64_t marks = st.position_inc >= 0 ? st.position_inc / md34 : -((-st.position_inc + md34 - 1) / md34);
     if (zero_mark_known_ && marks != zero_mark_count_ && md_.series == 726 && (md41 & mask_pulse) == 0 &&

@@ -136,6 +136,8 @@ bool Wf725Controller::begin_block(TimePoint now) {
   const bool roller = md_.integer(42) == 1 && md_.closed_loop() && md_.incremental();
   if (roller && absolute_ && b->x) return fail(0x70, "roller feed (MD 42 = 1) takes G91 only");
   const int g2 = b->group(2), g3 = b->group(3), g4 = b->group(4);
+  if (open_loop() && g4 >= 0)
+    return fail(0x7A, fmt::format("G{}: the 4th G group is not allowed in open loop (MD 4 = {})", g4, md_.integer(4)));
   if (g4 >= 17 && g4 <= 19) {
     const bool jerk = md_.get(38) != 0 || md_.get(39) != 0;
     return fail(jerk ? 0xD2 : 0x86, "interpolation of axis pairs needs the combined module (not modelled)");
@@ -275,7 +277,9 @@ bool Wf725Controller::flying_change(const CycleTime& cycle) {
   // Flying block change (§4.3 MD 9, MD 46/47, MD 15 G99): only in automatic cycle with M output
   // during the block (MD 9 = 1) and finished, into a motion block in the same direction, at the
   // braking point, or MD 46 (G23-29) / MD 47 (G73-79) before the end if that is shorter.
-  if (single_ || m0_pending_ || md_.integer(9) != 1 || m_state_ != MState::idle || after_m_ >= 0 || limit_side_ != 0)
+  // Open loop: every block ends with speed 0 and the PEH window (no flying change, decision).
+  if (open_loop() || single_ || m0_pending_ || md_.integer(9) != 1 || m_state_ != MState::idle || after_m_ >= 0 ||
+      limit_side_ != 0)
     return false;
   const Wf725Block* n = peek_next();
   if (n == nullptr || !n->x || n->call || n->group(3) >= 0) return false;

@@ -42,6 +42,24 @@ int Wf725ProgramStore::remove(int number) {
   return 0;
 }
 
+int Wf725ProgramStore::remove_block(int program, int block) {
+  if (program == 0) return 125;
+  if (block == 0) return 126;
+  const auto it = std::find_if(programs_.begin(), programs_.end(), [&](const auto& q) { return q.number == program; });
+  if (it == programs_.end()) return 127;
+  const auto b = std::find_if(it->blocks.begin(), it->blocks.end(), [&](const auto& x) { return x.number == block; });
+  if (b == it->blocks.end()) return 128;
+  it->blocks.erase(b);
+  return 0;
+}
+
+std::vector<int> Wf725ProgramStore::numbers() const {
+  std::vector<int> n;
+  for (const auto& p : programs_) n.push_back(p.number);
+  std::sort(n.begin(), n.end());
+  return n;
+}
+
 int Wf725ProgramStore::teach(int program, int block_number, Wf725Block block, bool ram) {
   if (program == 0) return 135;
   if (block_number == 0) return 136;

@@ -26,7 +26,8 @@ std::optional<double> number(std::string_view s) {
 
 bool wf725_wants_module(const ControllerSpec& spec) noexcept {
   if (!spec.programs.empty()) return true;
-  for (const char* key : {"db", "module", "reference_speeds", "jog_feed", "difference_cycles"})
+  for (const char* key : {"db", "module", "reference_speeds", "jog_feed", "difference_cycles", "open_loop_speed",
+                          "open_loop_acceleration"})
     if (spec.options.contains(key)) return true;
   return false;
 }
@@ -67,13 +68,21 @@ void register_wf725(ControllerRegistry& registry) {
                       "difference_cycles: 4 or 5 (error 33 after that many jumps > MD 34 in a row; the manual "
                       "gives both)");
         opt.difference_cycles = value[0] - '0';
+      } else if (key == "open_loop_speed" || key == "open_loop_acceleration") {
+        const auto v = number(value);
+        if (!v || *v <= 0)
+          return fail(key, key == "open_loop_speed"
+                               ? "open_loop_speed: the open-loop drive's speed at 10 V (level 100) in mm/min, > 0"
+                               : "open_loop_acceleration: the open-loop drive's own acceleration in mm/s^2, > 0");
+        (key == "open_loop_speed" ? opt.drive.speed_at_10v_mm_min : opt.drive.acceleration) = *v;
       } else if (key == "jog_feed") {
         const auto v = number(value);
         if (!v) return fail(key, "jog_feed: the set-up speed in mm/min (data code 1C)");
         opt.jog_feed = std::llround(*v * 100.0);
       } else {
         return fail(key, fmt::format("unknown controller key '{}' (known: device, parameters, programs, cycle, axis, "
-                                     "module, db, reference_speeds, jog_feed, difference_cycles)",
+                                     "module, db, reference_speeds, jog_feed, difference_cycles, open_loop_speed, "
+                                     "open_loop_acceleration)",
                                      key));
       }
     }

@@ -15,6 +15,9 @@
 //   MD 34 (A) minimum  5 t_z[ms] v_max / (60 B_I A) steps (t_z 4 ms WF 725, 6/8 ms WF 726)
 //   MD 7 (A_P)         (possible steps - used steps) / 2
 //   MD 33, MD 35       3 x / - the standstill following error
+//   open loop (AK)     MD 1/MD 2 = G_soll 100 / t [mV/s]; speed of a level = G 100 mV / 10 V x the drive's
+//                      speed at 10 V; braking distance from the last level MD 44 on the MD 2 ramp (or the
+//                      drive's own) -> MD 48 = braking distance + half a cycle's travel, spread +- that
 
 #include <optional>
 #include <string>
@@ -46,6 +49,12 @@ struct Wf725CalcInput {
   std::optional<double> used_steps{};      ///< MD 7 (A_P): steps used of `possible_steps`
   std::optional<double> possible_steps{};  ///< MD 7 (A_P): steps the encoder has
   std::optional<double> standstill_um{};   ///< measured standstill following error -> MD 33, MD 35
+  // open loop (MD 4 = 3/4)
+  std::optional<int> level{};                  ///< G_soll: the speed level the ramp MD 1 reaches in ramp_s
+  std::optional<double> drive_speed_mm_min{};  ///< the drive's speed at 10 V (level 100)
+  std::optional<int> creep_level{};            ///< MD 44: the last speed level before speed 0
+  std::optional<double> md2_mv_s{};            ///< MD 2 (WF 726), mV/s; 0 = step change
+  std::optional<double> drive_acceleration{};  ///< the drive's own acceleration, mm/s^2 (a step of the voltage)
 };
 
 struct Wf725CalcLine {

@@ -39,6 +39,7 @@
 #include "hil/controllers/s5/s5_interface_db.hpp"
 #include "hil/controllers/s5/wf725_interface.hpp"
 #include "hil/controllers/s5/wf725_machine_data.hpp"
+#include "hil/controllers/s5/wf725_open_loop.hpp"
 #include "hil/controllers/s5/wf725_program_store.hpp"
 
 namespace hil::controllers::s5 {
@@ -50,6 +51,7 @@ struct Wf725Options {
   std::int64_t jog_feed = 0;               ///< 10^-2 mm/min (data code 1C)
   char variant = 'A';                      ///< module variant: A incremental, B parallel absolute, C SSI (WF 726)
   int difference_cycles = 4;               ///< error 33 after this many jumps > MD 34 in a row (manual: 4 or 5)
+  Wf725OpenLoopDrive drive;                ///< open loop: the drive behind X3 (open_loop_speed/_acceleration)
 };
 
 /// The S5 user data blocks beside the module: the PLC's DBs that the "Software Schale" FB copies
@@ -127,6 +129,16 @@ class Wf725Controller final : public Controller {
   [[nodiscard]] const std::vector<int>& m_history() const noexcept { return m_history_; }
   /// Command position (program coordinates, µm) at each flying block change, in order.
   [[nodiscard]] const std::vector<double>& block_changes_um() const noexcept { return block_changes_um_; }
+  /// Open loop (MD 4 = 3/4): every change of the speed level output during positionings, in
+  /// order: the new level and the remaining distance (µm) at which the module switched.
+  struct LevelChange {
+    int level = 0;
+    double remaining_um = 0.0;
+  };
+  [[nodiscard]] const std::vector<LevelChange>& level_changes() const noexcept { return ol_history_; }
+  /// Open loop: the speed level output now (0..99; DL 4 in BCD, X3 = level x 100 mV).
+  [[nodiscard]] int speed_level() const noexcept { return ol_.level; }
+  [[nodiscard]] bool open_loop() const noexcept { return !md_.closed_loop(); }
   /// MDs written in mode MD I/O that shape the axis: they apply at the next power-up.
   [[nodiscard]] const std::vector<int>& pending_md() const noexcept { return pending_md_; }
 
@@ -172,6 +184,13 @@ class Wf725Controller final : public Controller {
   /// as well when it strikes in a data mode with the drive enabled).
   void raise_encoder(int code, TimePoint now, std::string_view context);
   [[nodiscard]] bool encoder_input(int bit) const noexcept;
+  /// The voltage checks 40-46 of every cycle (MD 41 S; docs/wf725.md "Voltage checks"), on the
+  /// voltage fault inputs (input byte 3) and the command voltage.
+  void voltage_cycle(TimePoint now);
+  /// The command voltage on X3 now, mV (closed loop: feed / MD 3 x MD 23; open loop: level x 100).
+  [[nodiscard]] double command_mv() const noexcept;
+  /// Data codes 47/4A: writes a page of numbers into DW 30..38.
+  void write_list(const std::vector<int>& numbers, int page);
   /// Data codes 44/45: program input from / output to a user data block (Software Schale).
   void program_input(int db, TimePoint now);
   void program_output(int program, int db, TimePoint now);
@@ -207,6 +226,18 @@ class Wf725Controller final : public Controller {
   [[nodiscard]] bool fast_input(int e) const noexcept;
   [[nodiscard]] bool motion_done() const noexcept;
   [[nodiscard]] motion::Direction rotary_direction() const noexcept;
+
+  // open loop (wf725_controller_open_loop.cpp): staged positioning by speed levels
+  bool ol_go(double target_mm, std::int64_t level, TimePoint now, motion::Direction dir);
+  bool ol_run(int direction, std::int64_t level, TimePoint now);
+  void ol_cycle(TimePoint now);
+  bool ol_command(int level, TimePoint now);
+  void ol_stop();
+  void ol_check_limits(TimePoint now);
+  [[nodiscard]] bool ol_done() const noexcept;
+  [[nodiscard]] double unwrapped_mm() const noexcept;  ///< actual axis position, not wrapped
+  [[nodiscard]] Wf725OpenLoopStages ol_stages() const noexcept;
+  [[nodiscard]] double ol_acceleration(int md) const noexcept;
 
   // programs
   bool start_program(TimePoint now, bool single_block);
@@ -273,7 +304,10 @@ class Wf725Controller final : public Controller {
   bool powered_up_ = false;
   std::int64_t zero_mark_count_ = 0;  ///< zero marks passed (position_inc / MD 34), pulse monitor 08
   bool zero_mark_known_ = false;
-  int jumps_ = 0;  ///< successive position jumps > MD 34 (absolute, 33)
+  int jumps_ = 0;                      ///< successive position jumps > MD 34 (absolute, 33)
+  std::int64_t pulse_difference_ = 0;  ///< pulses lost (< 0) since power-up (data code 4)
+  std::int64_t last_inc_ = 0;
+  std::int32_t control_mv_ = 0;  ///< submode control: voltage (data code 1D)
 
   // program
   std::vector<Frame> stack_;
@@ -294,6 +328,20 @@ class Wf725Controller final : public Controller {
   bool continuous_measure_ = false;  ///< G68/G69 block waits for the fast-input edge
   int continuous_input_ = 0;
   bool g99_wait_ = false;
+
+  // open loop
+  struct OpenLoop {
+    bool active = false;       ///< a speed level runs or the axis brakes after speed 0
+    bool positioning = false;  ///< staged positioning to `target` (else an endless run: jog, reference)
+    int dir = 0;
+    int programmed = 0;
+    int level = 0;
+    double target = 0.0;  ///< unwrapped axis position, mm
+    bool zero = false;    ///< speed 0 output (MD 48 reached); MD 30 runs from `zero_at`
+    TimePoint zero_at{};
+    bool peh = false;  ///< the PEH window MD 33 was reached after speed 0: leaving it is 21
+  } ol_;
+  std::vector<LevelChange> ol_history_;
 
   // M output
   MState m_state_ = MState::idle;

@@ -55,6 +55,8 @@ inline constexpr std::uint16_t dw_block = 22;        ///< DL 22 running program,
 inline constexpr std::uint16_t dw_state = 23;        ///< DL 23 active mode bits (as DL 0), DR 23 active submode
 inline constexpr std::uint16_t dw_flags = 24;        ///< D 24.0 waits for start, D 24.1 program active,
                                                      ///< D 24.2 waits for read-in enable
+inline constexpr std::uint16_t dw_list = 30;         ///< DW 30 entries on the listed page, DW 31..38 the numbers
+inline constexpr std::uint16_t list_page = 8;        ///< numbers per page of a listing (data codes 47/4A)
 inline constexpr std::uint16_t dw_io_error = 40;     ///< program-I/O error as the manual writes it (KH: 0123)
 
 /// Operating submodes (DR 0).
@@ -69,26 +71,33 @@ enum class Submode : std::uint8_t {
   automatic_step = 7,    ///< automatic single step: one block per start
   clamping = 8,          ///< clamping (MD 32)
   automatic_buffer = 9,  ///< automatic buffer: buffer DW 5 (this axis' pair), M11/M12 change buffers
+  control = 10,          ///< control: the voltage of data code 1D with the polarity of D 1.1 / D 1.3
 };
 
 /// Data codes (DW 11), hex as the manual writes them; ours marked (decision).
 namespace code {
-inline constexpr std::uint16_t ref_rapid = 0x08;       ///< reference speed V_rapid, 10^-2 mm/min
-inline constexpr std::uint16_t ref_reduced = 0x09;     ///< V_reduced
-inline constexpr std::uint16_t ref_slow = 0x0A;        ///< V_slow
-inline constexpr std::uint16_t mdi_position = 0x19;    ///< (decision) MDI position µm; param2 bit 0 = G91
-inline constexpr std::uint16_t mdi_feed = 0x1A;        ///< MDI feed, 10^-2 mm/min (0 -> 145)
-inline constexpr std::uint16_t jog_feed = 0x1C;        ///< (decision) set-up speed, 10^-2 mm/min
-inline constexpr std::uint16_t measured = 0x32;        ///< actual value latched at the flying-measurement edge
-inline constexpr std::uint16_t teach_in = 0x40;        ///< (decision) param1 program, param2 block
-inline constexpr std::uint16_t tool_offset = 0x42;     ///< (decision) param1 number 1..20, param2 µm
-inline constexpr std::uint16_t delete_program = 0x43;  ///< (decision) param1 program
-inline constexpr std::uint16_t program_in = 0x44;      ///< (decision) param1 user DB: read in the program text there
-inline constexpr std::uint16_t program_out = 0x45;     ///< (decision) param1 program, param2 user DB to write
-inline constexpr std::uint16_t buffer_length = 0x48;   ///< (decision) param1 buffer 1..6, param2 length 1..50
-inline constexpr std::uint16_t buffer_reload = 0x49;   ///< (decision) param1 buffer, param2 user DB with blocks
-inline constexpr std::uint16_t write_md = 0x50;        ///< (decision) param1 MD number, param2 value (MD I/O mode)
-inline constexpr std::uint16_t read_md = 0x51;         ///< (decision) param1 MD number -> result
+inline constexpr std::uint16_t encoder_speed = 0x03;     ///< encoder speed in 1/min (incremental, MD 34)
+inline constexpr std::uint16_t pulse_difference = 0x04;  ///< pulse-check difference (missing pulses < 0)
+inline constexpr std::uint16_t ref_rapid = 0x08;         ///< reference speed V_rapid, 10^-2 mm/min
+inline constexpr std::uint16_t ref_reduced = 0x09;       ///< V_reduced
+inline constexpr std::uint16_t ref_slow = 0x0A;          ///< V_slow
+inline constexpr std::uint16_t mdi_position = 0x19;      ///< (decision) MDI position µm; param2 bit 0 = G91
+inline constexpr std::uint16_t mdi_feed = 0x1A;          ///< MDI feed, 10^-2 mm/min (0 -> 145)
+inline constexpr std::uint16_t jog_feed = 0x1C;          ///< (decision) set-up speed, 10^-2 mm/min
+inline constexpr std::uint16_t control_voltage = 0x1D;   ///< (decision) submode control: voltage in mV
+inline constexpr std::uint16_t measured = 0x32;          ///< actual value latched at the flying-measurement edge
+inline constexpr std::uint16_t teach_in = 0x40;          ///< (decision) param1 program, param2 block
+inline constexpr std::uint16_t tool_offset = 0x42;       ///< (decision) param1 number 1..20, param2 µm
+inline constexpr std::uint16_t delete_program = 0x43;    ///< (decision) param1 program
+inline constexpr std::uint16_t program_in = 0x44;        ///< (decision) param1 user DB: read in the program text there
+inline constexpr std::uint16_t program_out = 0x45;       ///< (decision) param1 program, param2 user DB to write
+inline constexpr std::uint16_t delete_block = 0x46;      ///< (decision) param1 program, param2 block
+inline constexpr std::uint16_t list_programs = 0x47;     ///< (decision) param1 page 1.. -> DW 30..38, result: count
+inline constexpr std::uint16_t list_blocks = 0x4A;       ///< (decision) param1 program, param2 page -> DW 30..38
+inline constexpr std::uint16_t buffer_length = 0x48;     ///< (decision) param1 buffer 1..6, param2 length 1..50
+inline constexpr std::uint16_t buffer_reload = 0x49;     ///< (decision) param1 buffer, param2 user DB with blocks
+inline constexpr std::uint16_t write_md = 0x50;          ///< (decision) param1 MD number, param2 value (MD I/O mode)
+inline constexpr std::uint16_t read_md = 0x51;           ///< (decision) param1 MD number -> result
 inline constexpr std::uint16_t acknowledge = 0x800C;
 }  // namespace code
 

@@ -22,6 +22,10 @@ class Wf725ProgramStore {
   [[nodiscard]] int store(Wf725Program p);
   /// Deletes program `number`: 0 or 125 / 127.
   [[nodiscard]] int remove(int number);
+  /// Deletes block `block` of program `program`: 0 or 125 / 126 (block 0) / 127 / 128 (no such block).
+  [[nodiscard]] int remove_block(int program, int block);
+  /// The numbers of the stored programs, ascending.
+  [[nodiscard]] std::vector<int> numbers() const;
   [[nodiscard]] const Wf725Program* find(int number) const noexcept;
   [[nodiscard]] std::size_t size() const noexcept { return programs_.size(); }
   /// Blocks stored in RAM (true) or EEPROM (false).
