@@ -3,6 +3,7 @@
 // syntax errors of the memory administration, nothing half-stored), and the RK512 data-block
 // policy of `hilbridge emulate wf725` (DB axis, MD image DB 1, user DBs) on virtual time.
 #include "hil/controllers/s5/wf725_module_endpoint.hpp"
+#include "hil/mocks/legacy/s5_block_endpoint.hpp"
 #include "wf725_fixture.hpp"
 
 namespace hil::controllers::s5::test {
@@ -193,6 +194,76 @@ TEST_F(W, ModulePolicyServesTheDbAxisMdImageAndUserBlocks) {
   data_code(db::code::program_in, 20);
   EXPECT_EQ(io_error(), 0);
   EXPECT_NE(ctl->programs().find(3), nullptr);
+}
+
+TEST(Wf725ProgramStore, ARunningProgramIsNeverChangedAndStoredProgramsNeverMove) {
+  Wf725ProgramStore store;
+  auto progs = parse_wf725_programs("%5\nN1 G90 X 100 F 1000\n%6\nN1 G90 X 200 F 1000\n");
+  ASSERT_TRUE(progs);
+  ASSERT_EQ(store.store((*progs)[0]), 0);
+  const Wf725Program* five = store.find(5);
+  int running = 5;
+  const int id = store.add_user([&](int n) { return n == running; });
+  const auto rev = store.revision();
+  EXPECT_EQ(store.store((*progs)[0]), 105);  // replace
+  EXPECT_EQ(store.remove(5), 105);
+  Wf725Block b;
+  b.g[0] = 90;
+  b.x = 5;
+  b.f = 100;
+  EXPECT_EQ(store.teach(5, 2, b, false), 105);
+  EXPECT_EQ(store.revision(), rev);  // refused: nothing changed
+  // Other programs may change while 5 runs; 5 stays where it is.
+  for (int n = 10; n < 60; ++n) {
+    Wf725Program p = (*progs)[1];
+    p.number = n;
+    ASSERT_EQ(store.store(std::move(p)), 0) << n;
+  }
+  EXPECT_EQ(store.teach(6, 3, b, true), 0);
+  EXPECT_EQ(store.remove(10), 0);
+  EXPECT_EQ(store.find(5), five);
+  EXPECT_GT(store.revision(), rev);
+  running = 0;
+  EXPECT_EQ(store.remove(5), 0);
+  store.remove_user(id);
+  EXPECT_FALSE(store.in_use(6));
+}
+
+TEST_F(W, ModulePolicyKeepsTheProgramMemoryInTheStateFile) {
+  start(base_md(), "%2\nN1 G90 X 1000 F 10 000\n");
+  auto owned = std::make_unique<Wf725ModulePolicy>(std::vector<Wf725Controller*>{ctl.get()}, milliseconds(1),
+                                                   [this](const CycleTime&) { run(milliseconds(1)); });
+  auto& policy = *owned;
+  mocks::legacy::S5BlockEndpoint ep(std::move(owned));
+  policy.share_store(ep.store());
+  EXPECT_FALSE(ep.take_dirty());  // the programs of the start are not a change
+  put_db(*ctl, 20, text_words("%3 A RAM\nN1 G90 X 5 000 F 100 000\nN2 G04 F 200\n"));
+  ep.take_dirty();  // the user DB write itself
+  select(db::bit_mode_program_io, db::Submode::none);
+  data_code(db::code::program_in, 20);
+  ASSERT_EQ(io_error(), 0);
+  EXPECT_TRUE(ep.take_dirty());  // stored by the data code at the module's cycle: save
+  EXPECT_FALSE(ep.take_dirty());
+  const std::string saved = ep.save_state();
+  EXPECT_NE(saved.find("\"module\""), std::string::npos) << saved;
+  EXPECT_NE(saved.find("%3 A RAM"), std::string::npos) << saved;
+  // Program 3 deleted, program 2 changed; the state file brings 3 back, the start's 2 wins.
+  data_code(db::code::delete_program, 3);
+  ASSERT_EQ(io_error(), 0);
+  ASSERT_EQ(ctl->programs().find(3), nullptr);
+  auto two = parse_wf725_programs("%2\nN1 G90 X 7777 F 10 000\n");
+  ASSERT_EQ(ctl->store_program(two->front()), 0);
+  ASSERT_TRUE(ep.load_state(saved)) << saved;
+  ASSERT_NE(ctl->programs().find(3), nullptr);
+  EXPECT_TRUE(ctl->programs().find(3)->ram);
+  EXPECT_EQ(ctl->programs().find(3)->blocks.size(), 2U);
+  EXPECT_EQ(*ctl->programs().find(2)->blocks[0].x, 7777);
+  EXPECT_FALSE(ep.take_dirty());  // loading is not a change to save
+  // A saved memory that does not parse is an error naming the line; nothing of it stored.
+  const auto bad = ep.load_state(R"({"device":"wf725","dbs":{},"module":{"programs":"%9\nN1 G90 G91 X 1 F 1\n"}})");
+  ASSERT_FALSE(bad);
+  EXPECT_NE(bad.error().find("line 2"), std::string::npos) << bad.error();
+  EXPECT_EQ(ctl->programs().find(9), nullptr);
 }
 
 }  // namespace

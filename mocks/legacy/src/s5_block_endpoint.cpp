@@ -88,12 +88,21 @@ std::string S5BlockEndpoint::on_idle(TimePoint now) {
   return drain(now);
 }
 
+bool S5BlockEndpoint::take_dirty() {
+  const bool device = policy_->take_dirty();  // always asked: it tracks what it reported
+  return std::exchange(dirty_, false) || device;
+}
+
 std::string S5BlockEndpoint::save_state() const {
   nlohmann::json j;
   j["device"] = policy_->name();
   nlohmann::json dbs = nlohmann::json::object();
   for (const auto& [n, w] : store_) dbs[std::to_string(n)] = w;
   j["dbs"] = dbs;
+  if (const auto module = policy_->save_module_state(); !module.empty()) {
+    auto m = nlohmann::json::parse(module, nullptr, false);
+    if (!m.is_discarded()) j["module"] = std::move(m);
+  }
   return j.dump();
 }
 
@@ -113,6 +122,7 @@ std::expected<void, std::string> S5BlockEndpoint::load_state(const std::string& 
   } catch (const std::exception& e) {
     return std::unexpected(fmt::format("state file malformed: {}", e.what()));
   }
+  if (j.contains("module")) return policy_->load_module_state(j.at("module").dump());
   return {};
 }
 

@@ -29,12 +29,13 @@ Wf725Controller::Wf725Controller(LoadedParameters parameters, Wf725MachineData m
     : Controller(parameters.profile, std::move(parameters.set), wf_layout(), cycle),
       md_(md),
       opt_(options),
-      store_(wf725_memory_limits(md.series)),
+      store_(std::make_shared<Wf725ProgramStore>(wf725_memory_limits(md.series))),
       db_(io(), S5DataBlock{options.db, 0, wf_db::words}) {
   traversing_cat_ = catalogue("traversing");
   io_cat_ = catalogue("program_io");
   admin_cat_ = catalogue("memory_admin");
   standard2_cat_ = catalogue("standard2");
+  store_user_ = store_->add_user([this](int n) { return runs_stored_program(n); });
   std::copy(std::begin(opt_.ref_speeds), std::end(opt_.ref_speeds), std::begin(ref_speeds_));
   if (auto syntax = wf725_program_syntax(profile())) syntax_ = *syntax;
   jog_feed_ = opt_.jog_feed;
@@ -617,7 +618,7 @@ void Wf725Controller::handle_data_code(TimePoint now) {
       b.g[0] = 90;
       b.x = std::llround(actual_um());
       b.f = mdi_feed_ > 0 ? mdi_feed_ : std::llround(md_.get(3) * 100);
-      if (const int e = store_.teach(p1, p2, b, db_.bit(dw_control, bit_ram))) raise_io(e, now);
+      if (const int e = store_->teach(p1, p2, b, db_.bit(dw_control, bit_ram))) raise_io(e, now);
       break;
     }
     case code::tool_offset:
@@ -630,7 +631,7 @@ void Wf725Controller::handle_data_code(TimePoint now) {
     case code::delete_program:
       if (running_program_ == p1 && p1 != 0) {
         raise_io(105, now, "the program runs");
-      } else if (const int e = store_.remove(p1)) {
+      } else if (const int e = store_->remove(p1)) {
         raise_io(e, now);
       }
       break;
