@@ -9,6 +9,8 @@
 #    (44) through axis B is refused with 105 and changes nothing;
 #  * restart with the same state file: the program memory is back (data code 45 reads it out).
 #   plc_wf726_axes.py HILBRIDGE MD-A MD-B
+#   plc_wf726_axes.py HILBRIDGE --machine FILE-A FILE-B   one machine file per axis (retrofit mode):
+#       both DB axes and MD images, a program read in through B runs on A, the machine axes follow
 # Run by ctest; exit 77 = skipped (python3-serial missing).
 import json
 import os
@@ -24,7 +26,9 @@ except ImportError:
     print("SKIP: python3-serial is not installed (apt-get install python3-serial)")
     sys.exit(77)
 
-HILBRIDGE, MD_A, MD_B = sys.argv[1], sys.argv[2], sys.argv[3]
+HILBRIDGE = sys.argv[1]
+MACHINES = sys.argv[3:5] if sys.argv[2] == "--machine" else None
+MD_A, MD_B = (None, None) if MACHINES else (sys.argv[2], sys.argv[3])
 failures = []
 
 # DB axis words (docs/wf725.md, "The DB axis")
@@ -132,8 +136,12 @@ N1 G90 X 30 000 F 60 000
 
 
 def emulator(state, *extra):
-    args = [HILBRIDGE, "emulate", "wf725", "--pty", "--format", "8N1", "--state", state, "--module", "WF726A",
-            "--md", MD_A, "--md", MD_B, "--md", MD_A, *extra]
+    args = [HILBRIDGE, "emulate", "wf725", "--pty", "--format", "8N1", "--state", state]
+    if MACHINES:
+        args += ["--machine", MACHINES[0], "--machine", MACHINES[1]]
+    else:
+        args += ["--module", "WF726A", "--md", MD_A, "--md", MD_B, "--md", MD_A]
+    args += list(extra)
     p = subprocess.Popen(args, stdin=subprocess.PIPE, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
     path = p.stdout.readline().strip()
     if not path.startswith("/dev/pts/"):
@@ -237,7 +245,46 @@ def second_run(state):
         stop(p)
 
 
+def machine_run():
+    p, link = emulator("none")
+    try:
+        a, b = Axis(link, 10), Axis(link, 11)
+        md13 = []
+        for dx in (1, 2):
+            err, md = link.fetch(dx, 24, 2, "X")
+            md13.append(s32(md[0], md[1]) if err == 0 else None)
+        check("two machine files: DX 1/2 are the MD images of A and B", md13 == [96417, 50000], md13)
+        err, _ = link.fetch(3, 0, 2, "X")
+        check("DX 3 does not exist (two axes): 08", err == 0x08, hex(err))
+        check("programs into user DB20", link.send(20, 0, text_db(PROGRAMS)) == 0)
+        b.mode(PROGRAM_IO, 0)
+        done, refused, io = b.data_code(0x44, 20)
+        check("programs read in through axis B (44)", done and not refused and io == 0, (done, refused, hex(io)))
+        a.synchronize()
+        wait([a], lambda s: s[0]["syn"], 5)
+        a.mode(TRAVERSING, AUTOMATIC)
+        a.write(DW_PROGRAM, 7)
+        a.start()
+        s, _ = wait([a], lambda s: not s[0]["program_active"] and s[0]["peh"] and s[0]["actual"] == 5000)
+        check("program 7 (read in through B) ends at 5 mm on A", s[0]["error"] == 0, s)
+        time.sleep(0.2)
+        p.stdin.write("machine\n")
+        p.stdin.flush()
+        lines = [p.stdout.readline().strip(), p.stdout.readline().strip()]
+        pos = {w[2].rstrip(":"): float(w[4]) for w in (l.split() for l in lines) if len(w) > 4 and w[3] == "position"}
+        check("the machine axes of both files; A stands at 5 mm, B at 0",
+              set(pos) == {"A", "B"} and abs(pos["A"] - 5.0) < 0.005 and abs(pos["B"]) < 0.005, lines)
+    finally:
+        stop(p)
+
+
 def main():
+    if MACHINES:
+        machine_run()
+        if failures:
+            print("\n".join(failures))
+            sys.exit(1)
+        return
     with tempfile.TemporaryDirectory() as d:
         state = os.path.join(d, "wf726.json")
         first_run(state)
