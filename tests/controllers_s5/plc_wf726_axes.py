@@ -217,7 +217,7 @@ def first_run(state):
 def second_run(state):
     with open(state) as f:
         saved = json.load(f)
-    text = saved.get("module", {}).get("programs", "")
+    text = saved.get("module", "")
     check("state file keeps the program memory (programs 9 and 5, not the deleted 7)",
           "%9 B RAM" in text and "%5 A" in text and "%7" not in text, text)
     left = set(os.listdir(os.path.dirname(state))) - {os.path.basename(state), os.path.basename(state) + ".lock"}

@@ -260,7 +260,7 @@ TEST_F(W, ModulePolicyKeepsTheProgramMemoryInTheStateFile) {
   EXPECT_EQ(*ctl->programs().find(2)->blocks[0].x, 7777);
   EXPECT_FALSE(ep.take_dirty());  // loading is not a change to save
   // A saved memory that does not parse is an error naming the line; nothing of it stored.
-  const auto bad = ep.load_state(R"({"device":"wf725","dbs":{},"module":{"programs":"%9\nN1 G90 G91 X 1 F 1\n"}})");
+  const auto bad = ep.load_state(R"({"device":"wf725","dbs":{},"module":"%9\nN1 G90 G91 X 1 F 1\n"})");
   ASSERT_FALSE(bad);
   EXPECT_NE(bad.error().find("line 2"), std::string::npos) << bad.error();
   EXPECT_EQ(ctl->programs().find(9), nullptr);

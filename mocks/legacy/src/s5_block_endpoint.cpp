@@ -99,10 +99,7 @@ std::string S5BlockEndpoint::save_state() const {
   nlohmann::json dbs = nlohmann::json::object();
   for (const auto& [n, w] : store_) dbs[std::to_string(n)] = w;
   j["dbs"] = dbs;
-  if (const auto module = policy_->save_module_state(); !module.empty()) {
-    auto m = nlohmann::json::parse(module, nullptr, false);
-    if (!m.is_discarded()) j["module"] = std::move(m);
-  }
+  if (auto module = policy_->save_module_state(); !module.empty()) j["module"] = std::move(module);
   return j.dump();
 }
 
@@ -122,7 +119,10 @@ std::expected<void, std::string> S5BlockEndpoint::load_state(const std::string& 
   } catch (const std::exception& e) {
     return std::unexpected(fmt::format("state file malformed: {}", e.what()));
   }
-  if (j.contains("module")) return policy_->load_module_state(j.at("module").dump());
+  if (j.contains("module")) {
+    if (!j.at("module").is_string()) return std::unexpected("state file malformed: 'module' is not a text");
+    return policy_->load_module_state(j.at("module").get<std::string>());
+  }
   return {};
 }
 

@@ -4,8 +4,6 @@
 
 #include <fmt/format.h>
 
-#include <nlohmann/json.hpp>
-
 namespace hil::controllers::s5 {
 
 using serial::s5::Rk512Error;
@@ -22,18 +20,11 @@ std::string Wf725ModulePolicy::save_module_state() const {
   if (axes_.empty()) return {};
   std::string text;
   for (const auto& p : axes_.front()->programs().all()) text += make_wf725_program_text(p);
-  nlohmann::json j;
-  j["programs"] = text;
-  return j.dump();
+  return text;
 }
 
-std::expected<void, std::string> Wf725ModulePolicy::load_module_state(const std::string& json) {
-  const auto j = nlohmann::json::parse(json, nullptr, false);
-  if (j.is_discarded() || !j.is_object()) return std::unexpected("state file: 'module' is not an object");
-  if (!j.contains("programs") || axes_.empty()) return {};
-  if (!j.at("programs").is_string()) return std::unexpected("state file: module.programs is not a text");
-  const auto text = j.at("programs").get<std::string>();
-  if (text.empty()) return {};
+std::expected<void, std::string> Wf725ModulePolicy::load_module_state(const std::string& text) {
+  if (text.empty() || axes_.empty()) return {};
   auto progs = parse_wf725_programs(text);
   if (!progs)
     return std::unexpected(

@@ -46,11 +46,11 @@ class DbPolicy {
   /// idle); `next_deadline` = when the device needs its next call.
   virtual void on_time(TimePoint /*now*/) {}
   [[nodiscard]] virtual TimePoint next_deadline() const { return TimePoint::max(); }
-  /// Device state beyond the DBs for the state file (e.g. a module's program memory): the text
-  /// of one JSON value, empty = none. Saved under "module" next to "dbs".
+  /// Device state beyond the DBs for the state file (e.g. a module's program memory): a text the
+  /// device reads back, empty = none. Saved as the JSON string "module" next to "dbs".
   [[nodiscard]] virtual std::string save_module_state() const { return {}; }
   /// Restores what save_module_state wrote (after the DBs are loaded).
-  virtual std::expected<void, std::string> load_module_state(const std::string& /*json*/) { return {}; }
+  virtual std::expected<void, std::string> load_module_state(const std::string& /*text*/) { return {}; }
   /// The device changed its own state since the last call (not by a SEND: e.g. a program stored
   /// by a data code at the module's cycle); the endpoint then saves its state file.
   [[nodiscard]] virtual bool take_dirty() { return false; }

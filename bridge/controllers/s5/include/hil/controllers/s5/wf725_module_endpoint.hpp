@@ -15,7 +15,7 @@
 //   any other DB 2..255: a user data block (DW 0..255) in the endpoint's store (persisted in the
 //     state file): what data codes 44/45 read a program from and write it to.
 // The program memory (the module's, shared by its axes) is saved in the state file under
-// "module" (`programs`: the canonical program text) and restored at the next start.
+// "module" (the canonical text of its programs) and restored at the next start.
 // The module cycles on the time the endpoint host passes in (`cycle` advances the machine one
 // run period: axes, then the controllers at their cycle). Thread: the endpoint host's thread only.
 
@@ -51,11 +51,11 @@ class Wf725ModulePolicy final : public mocks::legacy::DbPolicy {
                                     std::uint16_t length, std::vector<std::uint16_t>& out) override;
   void on_time(TimePoint now) override;
   [[nodiscard]] TimePoint next_deadline() const override;
-  /// {"programs": "<canonical text of every stored program>"}.
+  /// The canonical text of every stored program (make_wf725_program_text), in storage order.
   [[nodiscard]] std::string save_module_state() const override;
   /// Stores the saved programs whose number the memory does not hold yet (the programs given at
   /// power-up, `--program`, win); a text that does not parse or fit is an error naming why.
-  std::expected<void, std::string> load_module_state(const std::string& json) override;
+  std::expected<void, std::string> load_module_state(const std::string& text) override;
   /// True once after the program memory changed.
   [[nodiscard]] bool take_dirty() override;
 
