@@ -3,8 +3,9 @@
 # A Python script as the S5 PLC against `hilbridge emulate ip247` over its pty (python3-serial;
 # 3964R and RK512 from the notes in s5_plc_link.py, no hilbridge code on this side): write an MD
 # DB and a traversing-program DB, select automatic and start, read the actual value while the
-# axis moves, drive into the "end" limit switch and read the error word. Run by ctest; exit 77 =
-# skipped (python3-serial missing).
+# axis moves, run data jobs through the job block DX 4 (BA70 SYS-ID, BA67 read MD, BA66 actual
+# values while the axis moves) into the PLC's DBs DX 50/51, drive into the "end" limit switch and
+# read the error word. Run by ctest; exit 77 = skipped (python3-serial missing).
 import subprocess
 import sys
 import time
@@ -69,6 +70,16 @@ def wait_finished(link, timeout=30):
     raise TimeoutError("axis did not finish")
 
 
+def data_job(link, ba, q_db=0, q_start=0, z_db=0, z_start=0, ssnr=0):
+    """A data job through the job block DX 4 (FB165's 15 words): parameters, then DW0 = BA; the
+    module runs it and writes DW0 = 0. Returns the block (DW6 flags, DW7 MB250/MB251, DW9 words)."""
+    assert link.send(4, 1, [q_db, q_start, z_db, z_start, ssnr], typ="X") == 0
+    assert link.send(4, 0, [ba], typ="X") == 0
+    err, w = link.fetch(4, 0, 15, typ="X")
+    assert err == 0, err
+    return w
+
+
 def main():
     args = [HILBRIDGE, "emulate", "ip247", "--pty", "--format", "8N1", "--state", "none", "--switch",
             "1:limit-end:6000"]
@@ -99,7 +110,27 @@ def main():
         check("actual values read while moving", len(moving) >= 3, [x["actual"] for x in samples][:20])
         check("M10 seen while running", any(x["m"] == 10 for x in samples))
         check("program end: actual 0, M02, no error", s["actual"] == 0 and s["m"] == 2 and s["error"] == 0, s)
+        # Data jobs (DX 4) into the PLC's own DBs (DX 50, 51), created by the PLC first.
+        w = data_job(link, 70, z_db=50, ssnr=3)
+        check("BA70 into a DB the PLC has not created: MB250 8", w[0] == 0 and w[7] >> 8 == 8 and w[6] & 2, w[:10])
+        check("PLC DB50 created (DX 50)", link.send(50, 0, [0] * 9, typ="X") == 0)
+        w = data_job(link, 70, z_db=50, ssnr=3)
+        err, sysid = link.fetch(50, 0, 9, typ="X")
+        check("BA70 SYS-ID: done, 9 words, 'IP' '24' '7 '", w[0] == 0 and w[6] == 0 and w[9] == 9 and err == 0
+              and sysid[:3] == [0x4950, 0x3234, 0x3720], (w[:10], [hex(x) for x in sysid]))
+        check("PLC DB51 created (70 words)", link.send(51, 0, [0] * 70, typ="X") == 0)
+        w = data_job(link, 67, q_db=1, z_db=51, ssnr=0)
+        err, md = link.fetch(51, 0, 70, typ="X")
+        check("BA67 reads the MD DB1 of axis 1 into DB51", w[0] == 0 and w[6] == 0 and md == md_db(1), w[:10])
+        w = data_job(link, 22, q_db=50, z_db=12, ssnr=0)
+        check("BA22 on an axis tile: module error 46", w[7] & 0xFF == 46 and w[6] & 1, w[:10])
         check("BA7 forward 100 mm", link.send(1, 0, [0x0700, 0] + dd(100000) + [0x0004], typ="X") == 0)
+        time.sleep(0.3)
+        w = data_job(link, 66, z_db=50, ssnr=0)
+        err, av = link.fetch(50, 0, 6, typ="X")
+        actual, remaining = s32(av[0], av[1]), s32(av[4], av[5])
+        check("BA66 while the axis moves: actual + remaining = 100 mm", w[0] == 0 and w[6] == 0 and
+              0 < actual < 60000 and actual + remaining == 100000, (w[:10], actual, remaining))
         s, _ = wait_finished(link)
         check("limit switch end: error word 26", s["error"] == 26, s)
         check("stopped behind the switch at 60 mm", 60000 <= s["actual"] < 100000, s)

@@ -207,6 +207,45 @@ TEST(Ip247Controller, OneMachineAxisPerMachineDataSet) {
       << e.error().describe();
 }
 
+TEST(Ip247Controller, ModulesByTheModuleNumberOfTheMachineData) {
+  hil::controllers::ControllerSpec spec;
+  spec.device = "ip247";
+  spec.parameters = examples / "ip247-md-two-modules.s5db";
+  spec.options = {{"tile", "8"}};
+  auto c = hil::controllers::s5::Ip247Controller::create(spec);
+  ASSERT_TRUE(c) << c.error().describe();
+  auto& ctl = static_cast<hil::controllers::s5::Ip247Controller&>(**c);
+  ASSERT_EQ(ctl.module_count(), 2U);
+  ASSERT_EQ(ctl.axis_specs().size(), 2U);
+  EXPECT_EQ(ctl.axis_specs()[0].name, "m0a1");
+  EXPECT_EQ(ctl.axis_specs()[1].name, "m1a1");
+  // Module k: SSNR base tile + 4k, SYS-ID = the MD's module number, interface DB 10 + k, I/O bytes 3k..
+  EXPECT_EQ(ctl.module(0).base_tile(), 8);
+  EXPECT_EQ(ctl.module(1).base_tile(), 12);
+  EXPECT_EQ(ctl.module(1).sysid().module, 1);
+  EXPECT_EQ(ctl.module(0).md_db(1), 20);
+  EXPECT_EQ(ctl.module(1).md_db(1), 21);
+  ASSERT_EQ(ctl.data_blocks().size(), 2U);
+  EXPECT_EQ(ctl.data_blocks()[1].number, 11);
+  const auto bit = ctl.resolve_bit("limit_plus_m1a1");
+  ASSERT_TRUE(bit) << bit.error();
+  EXPECT_EQ(bit->byte, 3U);
+  EXPECT_EQ(bit->bit, 1);
+  EXPECT_EQ(ctl.read_data_word(11, 12).value(), 0xA200);  // module 1 axis 1: finished, mm, reference missing
+  EXPECT_EQ(ctl.read_data_word(11, 32).value(), 0xE000);  // module 1 axis 2: no MD
+  EXPECT_EQ(ctl.read_data_word(21, 3).value(), 0x0101);   // MD DB21 = module 1, axis 1
+  // With several modules the SYS-ID is the MD's module number: sysid_module is refused.
+  spec.options = {{"sysid_module", "1"}};
+  auto e = hil::controllers::s5::Ip247Controller::create(spec);
+  ASSERT_FALSE(e);
+  EXPECT_NE(e.error().describe().find("drop sysid_module"), std::string::npos) << e.error().describe();
+  // The interface DB of module 1 (DB 11) must not be an MD or program DB number.
+  spec.options = {{"interface_db", "20"}};
+  e = hil::controllers::s5::Ip247Controller::create(spec);
+  ASSERT_FALSE(e);
+  EXPECT_NE(e.error().describe().find("DB20 is the machine-data DB"), std::string::npos) << e.error().describe();
+}
+
 TEST(Ip247Controller, ConfigurationErrorsNameFileLineAndKey) {
   // plc: keys
   auto e = load_error(std::string(head) + "program:\n  - plc: {write: {db: 10, dw: 0, valu: 1}}\n");

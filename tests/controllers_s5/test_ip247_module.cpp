@@ -81,5 +81,69 @@ TEST(Ip247Module, ImagesCommandsAndStatus) {
   EXPECT_EQ(s[12] & 0xFF, 26);
   EXPECT_GE(static_cast<std::int32_t>((s[5] << 16) | s[6]), 60'000);
   EXPECT_EQ(m.dx({0x0700, 0, 0, 0x00AB, 0x0004}), Rk512Error::ok);  // binary MD: any value is a number
-  EXPECT_EQ(m.policy.on_write_dx(m.store, 4, 0, {0}), Rk512Error::db_missing);
+  EXPECT_EQ(m.policy.on_write_dx(m.store, 0, 0, {0}), Rk512Error::db_missing);
+}
+
+TEST(Ip247Module, DataJobsThroughTheJobBlockDx4) {
+  Module m({});
+  Ip247MachineData md;
+  md.limits_normally_closed = false;
+  std::vector<std::uint16_t> out;
+  // The PLC's DB 20 (DX 20) holds an MD image for DB 1 (axis 1); BA20 on tile 0 (axis 1).
+  EXPECT_EQ(m.policy.on_write_dx(m.store, 20, 0, make_ip247_md_db(md)), Rk512Error::ok);
+  const auto job = [&](std::vector<std::uint16_t> w) {
+    EXPECT_EQ(m.policy.on_write_dx(m.store, ip247_job_block_dx, 1, {w.begin() + 1, w.end()}), Rk512Error::ok);
+    EXPECT_EQ(m.policy.on_write_dx(m.store, ip247_job_block_dx, 0, {w[0]}), Rk512Error::ok);  // BA last
+    EXPECT_EQ(m.policy.on_read_dx(m.store, ip247_job_block_dx, 0, 15, out), Rk512Error::ok);
+    return out;
+  };
+  auto r = job({20, 20, 0, 1, 0, 0});
+  EXPECT_EQ(r[0], 0);  // done
+  EXPECT_EQ(r[6], 0) << "flags";
+  EXPECT_EQ(r[7], 0) << "MB250/MB251";
+  EXPECT_EQ(r[9], 70) << "words";
+  ASSERT_TRUE(m.policy.axis(1).machine_data());
+  EXPECT_TRUE(m.store.contains(1));  // the endpoint's DB 1 mirrors the module's MD image
+  // BA20 again: MB250 7 (a set is there).
+  r = job({20, 20, 0, 1, 0, 0});
+  EXPECT_EQ(r[7] >> 8, 7);
+  EXPECT_EQ(r[6], 2) << "PAFE";
+  // BA22 on an axis tile: 46; on the data channel (tile 3): stored, readable as DB 10.
+  auto vp = make_ip247_vp_db({.db = 10, .text = "%10\nN10 X5 F3000\nN20 M02\n"});
+  EXPECT_EQ(m.policy.on_write_dx(m.store, 21, 0, *vp), Rk512Error::ok);
+  r = job({22, 21, 0, 10, 0, 0});
+  EXPECT_EQ(r[7] & 0xFF, 46);
+  EXPECT_EQ(r[6] & 1, 1) << "BFEH";
+  r = job({22, 21, 0, 10, 0, 3});
+  EXPECT_EQ(r[7], 0);
+  EXPECT_EQ(m.policy.on_read(m.store, 10, 0, 1, out), Rk512Error::ok);
+  EXPECT_EQ(out[0], (*vp)[0]);
+  // BA70 SYS-ID into the PLC's DB 30 from DW 2: 'IP' '24' '7 ' ...
+  r = job({70, 0, 0, 30, 2, 3});
+  EXPECT_EQ(r[7], 8 << 8) << "DB 30 does not exist in the PLC yet";
+  EXPECT_EQ(m.policy.on_write_dx(m.store, 30, 0, std::vector<std::uint16_t>(12, 0)), Rk512Error::ok);
+  r = job({70, 0, 0, 30, 2, 3});
+  EXPECT_EQ(r[7], 0);
+  EXPECT_EQ(r[9], 9);
+  EXPECT_EQ(m.policy.on_read_dx(m.store, 30, 2, 3, out), Rk512Error::ok);
+  EXPECT_EQ(out[0], ('I' << 8) | 'P');
+  EXPECT_EQ(out[1], ('2' << 8) | '4');
+  // BA5 set at 0, BA7 forward 10 mm through DX 1, then BA66 actual values while it moves.
+  EXPECT_EQ(m.dx({0x0501, 0, 0, 0, 0x0001}), Rk512Error::ok);
+  m.run(10ms);
+  EXPECT_EQ(m.dx({0x0700, 0, 0, 10'000, 0x0004}), Rk512Error::ok);
+  m.run(100ms);
+  r = job({66, 0, 0, 30, 0, 0});
+  EXPECT_EQ(r[7], 0);
+  EXPECT_EQ(m.policy.on_read_dx(m.store, 30, 0, 6, out), Rk512Error::ok);
+  const auto actual = static_cast<std::int32_t>((out[0] << 16) | out[1]);
+  const auto remaining = static_cast<std::int32_t>((out[4] << 16) | out[5]);
+  EXPECT_GT(actual, 0);
+  EXPECT_LT(actual, 10'000);
+  EXPECT_EQ(actual + remaining, 10'000);
+  // BA23 of program 10 on the data channel: DB 10 goes from the endpoint's store too.
+  r = job({23, 0, 0, 10, 0, 3});
+  EXPECT_EQ(r[7], 0);
+  EXPECT_FALSE(m.store.contains(10));
+  EXPECT_EQ(m.policy.on_read_dx(m.store, 4, 10, 10, out), Rk512Error::target_too_small);
 }

@@ -500,7 +500,12 @@ void register_emulators(Context& ctx) {
     auto switches = std::make_shared<std::vector<std::string>>();
     auto cycle = std::make_shared<Duration>(std::chrono::milliseconds(1));
     auto machine = std::make_shared<std::string>();
+    auto tile = std::make_shared<int>(0);
     if (dev == "ip247") {
+      cmd->add_option("--tile", *tile,
+                      "SSNR base of the module (switch S2, a multiple of 4): axes 1..3 on TILE..TILE+2, the data "
+                      "channel on TILE+3 (the SSNR of the data jobs in DX 4); default 0")
+          ->check(CLI::Range(0, 252));
       cmd->add_option("--machine", *machine,
                       "Retrofit mode: a machine file (scenario with machine.axes, 1 increment = 1 pulse) whose axes "
                       "1..3 are the module's axes on real transports (step/dir on a GPIO chip, CiA 402 CSP, sim); "
@@ -513,7 +518,7 @@ void register_emulators(Context& ctx) {
                           cycle_range);
       add_duration_alias(*cmd, "--cycle-ms", "--cycle", *cycle, "ms", cycle_range);
     }
-    cmd->callback([&ctx, so, dev, switches, cycle, machine] {
+    cmd->callback([&ctx, so, dev, switches, cycle, machine, tile] {
       std::unique_ptr<Ip247Retrofit> retrofit;  // outlives the endpoint that calls its hooks
       std::unique_ptr<lg::DbPolicy> policy;
       hil::controllers::s5::Ip247ModulePolicy* module = nullptr;
@@ -522,6 +527,12 @@ void register_emulators(Context& ctx) {
         // (docs/ip247.md), DB n = MD and VP images.
         hil::controllers::s5::Ip247ModuleOptions mo;
         mo.cycle = *cycle;
+        if (*tile % 4 != 0) {
+          fmt::print(stderr, "error: --tile {}: the SSNR base is a multiple of 4 (0, 4, 8, ... 252)\n", *tile);
+          ctx.exit_code = 2;
+          return;
+        }
+        mo.tile = *tile;
         for (const auto& sw : *switches) {
           int axis = 0;
           long long a = 0, b = 0;

@@ -88,12 +88,18 @@ std::string S5BlockEndpoint::on_idle(TimePoint now) {
   return drain(now);
 }
 
+bool S5BlockEndpoint::take_dirty() {
+  const bool device = policy_->take_dirty();  // always asked: it tracks what it reported
+  return std::exchange(dirty_, false) || device;
+}
+
 std::string S5BlockEndpoint::save_state() const {
   nlohmann::json j;
   j["device"] = policy_->name();
   nlohmann::json dbs = nlohmann::json::object();
   for (const auto& [n, w] : store_) dbs[std::to_string(n)] = w;
   j["dbs"] = dbs;
+  if (auto module = policy_->save_module_state(); !module.empty()) j["module"] = std::move(module);
   return j.dump();
 }
 
@@ -112,6 +118,10 @@ std::expected<void, std::string> S5BlockEndpoint::load_state(const std::string& 
     }
   } catch (const std::exception& e) {
     return std::unexpected(fmt::format("state file malformed: {}", e.what()));
+  }
+  if (j.contains("module")) {
+    if (!j.at("module").is_string()) return std::unexpected("state file malformed: 'module' is not a text");
+    return policy_->load_module_state(j.at("module").get<std::string>());
   }
   return {};
 }

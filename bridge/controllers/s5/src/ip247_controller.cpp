@@ -33,12 +33,15 @@ constexpr std::uint8_t in_external_stop = 3;
 constexpr std::uint8_t out_in_position = 0;
 constexpr std::uint8_t out_moving = 1;
 constexpr std::uint8_t out_error = 2;
-hc::BitAddress in_bit(int axis, std::uint8_t bit) {
-  return {hc::IoArea::input, static_cast<std::uint32_t>(axis - 1), bit};
+hc::BitAddress in_bit(std::size_t module, int axis, std::uint8_t bit) {
+  return {hc::IoArea::input, static_cast<std::uint32_t>(module * ip247_axes + static_cast<std::size_t>(axis - 1)), bit};
 }
-hc::BitAddress out_bit(int axis, std::uint8_t bit) {
-  return {hc::IoArea::output, static_cast<std::uint32_t>(axis - 1), bit};
+hc::BitAddress out_bit(std::size_t module, int axis, std::uint8_t bit) {
+  return {hc::IoArea::output, static_cast<std::uint32_t>(module * ip247_axes + static_cast<std::size_t>(axis - 1)),
+          bit};
 }
+/// At most this many modules in one controller (decision: 8 modules = 24 axes, SSNR 0..31 from tile 0).
+constexpr std::size_t max_modules = 8;
 
 /// The interface DB: three axis DBs of 20 words (FB164, next axis at n+20), then the FB165 job block.
 constexpr std::size_t data_job_dw = ip247_axes * ip247_axis_db_words;
@@ -152,27 +155,52 @@ std::expected<std::unique_ptr<hc::Controller>, ConfigError> Ip247Controller::cre
           ConfigError{spec.parameters.string(), 0, 0, "controller.parameters",
                       fmt::format("DB{}: the axis number (DR 3) is {}; the IP247 has axes 1..3", d.db, md->axis)});
     for (const auto& [db, other] : mds)
-      if (other.axis == md->axis)
-        return std::unexpected(
-            ConfigError{spec.parameters.string(), 0, 0, "controller.parameters",
-                        fmt::format("DB{} and DB{} are both MD of axis {}: one MD set per axis", db, d.db, md->axis)});
+      if (other.axis == md->axis && other.module == md->module)
+        return std::unexpected(ConfigError{
+            spec.parameters.string(), 0, 0, "controller.parameters",
+            fmt::format("DB{} and DB{} are both MD of axis {} of module {}: one MD set per axis (DL 3 is the module "
+                        "number, DR 3 the axis)",
+                        db, d.db, md->axis, md->module)});
     mds.emplace_back(d.db, *md);
     md_images.emplace_back(d.db, d.words);
   }
   if (mds.empty())
     return std::unexpected(ConfigError{spec.parameters.string(), 0, 0, "controller.parameters",
                                        "no 70-word IP247 machine-data DB in the listing (DW0 = KF +00070)"});
-  std::ranges::sort(mds, {}, [](const auto& p) { return p.second.axis; });
+  std::ranges::sort(mds, {}, [](const auto& p) { return std::pair{p.second.module, p.second.axis}; });
+  // The modules: the module numbers of the MD sets (DL 3), ascending.
+  std::vector<int> module_numbers;
+  for (const auto& [db, md] : mds)
+    if (std::ranges::find(module_numbers, md.module) == module_numbers.end()) module_numbers.push_back(md.module);
+  const std::size_t modules = module_numbers.size();
+  if (modules > max_modules)
+    return std::unexpected(ConfigError{spec.parameters.string(), 0, 0, "controller.parameters",
+                                       fmt::format("the MD sets name {} module numbers (DL 3); one ip247 controller "
+                                                   "holds at most {} modules",
+                                                   modules, max_modules)});
+  if (modules > 1 && spec.options.contains("sysid_module"))
+    return std::unexpected(ConfigError{spec.file, spec.line, 0, "controller.sysid_module",
+                                       "with several modules each module's SYS-ID is the module number of its MD sets "
+                                       "(DL 3): drop sysid_module"});
+  if (*tile + 4 * static_cast<int>(modules) - 1 > 255 || *interface_db + static_cast<int>(modules) - 1 > 255)
+    return std::unexpected(ConfigError{spec.file, spec.line, 0, "controller.tile",
+                                       fmt::format("{} modules need SSNR {}..{} and interface DBs {}..{} (at most 255)",
+                                                   modules, *tile, *tile + 4 * static_cast<int>(modules) - 1,
+                                                   *interface_db, *interface_db + static_cast<int>(modules) - 1)});
+  const auto module_index = [&](int number) {
+    return static_cast<std::size_t>(std::ranges::find(module_numbers, number) - module_numbers.begin());
+  };
   if (spec.options.contains("axis") && mds.size() > 1)
     return std::unexpected(ConfigError{spec.file, spec.line, 0, "controller.axis",
                                        "'axis' names the machine axis of a one-axis module; with several MD sets the "
                                        "machine axes are named by their module axis numbers 1..3"});
+  const auto is_interface = [&](int db) { return db >= *interface_db && db < *interface_db + int(modules); };
   for (const auto& [db, md] : mds)
-    if (*interface_db == db)
+    if (is_interface(db))
       return std::unexpected(ConfigError{spec.file, spec.line, 0, "controller.interface_db",
-                                         fmt::format("DB{} is the machine-data DB: give the interface DB another "
+                                         fmt::format("DB{} is the machine-data DB: give the interface DB{} another "
                                                      "number",
-                                                     *interface_db)});
+                                                     db, db)});
 
   // The PLC's DBs: sources and targets of the data jobs.
   S5Blocks plc;
@@ -184,7 +212,7 @@ std::expected<std::unique_ptr<hc::Controller>, ConfigError> Ip247Controller::cre
     auto images = serial::s5::parse_db_listing(*t, file.string());
     if (!images) return std::unexpected(listing_error(images.error(), file, "controller.plc_dbs"));
     for (auto& im : *images) {
-      if (im.db == *interface_db)
+      if (is_interface(im.db))
         return std::unexpected(
             ConfigError{file.string(), 0, 0, "controller.plc_dbs",
                         fmt::format("DB{} is the interface DB: give the PLC's DB another number", im.db)});
@@ -221,11 +249,11 @@ std::expected<std::unique_ptr<hc::Controller>, ConfigError> Ip247Controller::cre
     }
     for (auto& f : found) {
       const bool md_number = std::ranges::any_of(mds, [&](const auto& m) { return m.first == f.number; });
-      if (f.number == *interface_db || md_number)
+      if (is_interface(f.number) || md_number)
         return std::unexpected(
             ConfigError{file.string(), 1, 1, "program",
                         fmt::format("program {} would be DB{}, which is the {} DB: use another program number",
-                                    f.number, f.number, f.number == *interface_db ? "interface" : "machine-data")});
+                                    f.number, f.number, is_interface(f.number) ? "interface" : "machine-data")});
       if (!numbers.insert(f.number).second)
         return std::unexpected(
             ConfigError{file.string(), 1, 1, "program",
@@ -235,18 +263,22 @@ std::expected<std::unique_ptr<hc::Controller>, ConfigError> Ip247Controller::cre
   }
 
   const Duration cycle = spec.cycle.value_or(std::chrono::milliseconds(2));
-  auto c =
-      std::make_unique<Ip247Controller>(*profile, *interface_db, std::move(programs), std::move(plc), cycle, *tile);
-  // The SYS-ID the PLC (or COM247) wrote before the MD (BA24).
-  {
-    S5Blocks id{{0, {static_cast<std::uint16_t>(*sysid), 0, static_cast<std::uint16_t>(*tile)}}};
-    (void)c->module_.data_job(Ip247DataJob{24, false, 0, 0, 0, 0, *tile + 3}, id);
+  auto c = std::make_unique<Ip247Controller>(*profile, *interface_db, std::move(programs), std::move(plc), cycle, *tile,
+                                             static_cast<int>(modules));
+  // The SYS-ID the PLC (or COM247) wrote before the MD (BA24): sysid_module, or with several
+  // modules the module number of each module's MD sets.
+  for (std::size_t k = 0; k < modules; ++k) {
+    const int id_number = modules == 1 ? *sysid : module_numbers[k];
+    const int base = *tile + 4 * static_cast<int>(k);
+    S5Blocks id{{0, {static_cast<std::uint16_t>(id_number), 0, static_cast<std::uint16_t>(base)}}};
+    (void)c->modules_[k]->data_job(Ip247DataJob{24, false, 0, 0, 0, 0, base + 3}, id);
   }
   for (const auto& [db, words] : md_images) {
     const int n = words[3] & 0xFF;
-    const auto r = c->module_.write_md(n, db, words);
+    auto& m = *c->modules_[modules == 1 ? 0 : module_index(words[3] >> 8)];
+    const auto r = m.write_md(n, db, words);
     if (r.module_error != stepdir::Ip247Error::none || r.interface_error != Ip247InterfaceError::none) {
-      const int md_error = c->module_.md_image(n) != nullptr ? ((*c->module_.md_image(n))[4] & 0xFF) : 0;
+      const int md_error = m.md_image(n) != nullptr ? ((*m.md_image(n))[4] & 0xFF) : 0;
       return std::unexpected(
           ConfigError{spec.parameters.string(), 0, 0, "controller.parameters",
                       fmt::format("DB{}: IP247 MD error {}: {}", db, md_error,
@@ -259,7 +291,10 @@ std::expected<std::unique_ptr<hc::Controller>, ConfigError> Ip247Controller::cre
   for (const auto& [db, md_ref] : mds) {
     const Ip247MachineData& md = md_ref;
     hc::ControllerAxis a;
-    a.name = spec.options.contains("axis") ? spec.options.find("axis")->second : std::to_string(md.axis);
+    const std::size_t k = module_index(md.module);
+    a.name = spec.options.contains("axis") ? spec.options.find("axis")->second
+             : modules == 1                ? std::to_string(md.axis)
+                                           : fmt::format("m{}a{}", md.module, md.axis);
     const std::int64_t bu_per_unit = md.unit == Ip247Unit::inch ? 10'000 : 1'000;
     a.units = md.unit == Ip247Unit::inch ? "inch" : md.unit == Ip247Unit::degree ? "deg" : "mm";
     auto& cfg = a.config;
@@ -292,18 +327,18 @@ std::expected<std::unique_ptr<hc::Controller>, ConfigError> Ip247Controller::cre
                       fmt::format("DB{}: the machine data give an axis the motion core rejects: {}", db, v.error())});
     const std::string& n = a.name;
     auto& io = c->io();
-    for (const auto& [name, bit] : {std::pair{"limit_minus_" + n, in_bit(md.axis, in_limit_start)},
-                                    {"limit_plus_" + n, in_bit(md.axis, in_limit_end)},
-                                    {"reference_cam_" + n, in_bit(md.axis, in_reference)},
-                                    {"external_stop_" + n, in_bit(md.axis, in_external_stop)},
-                                    {"in_position_" + n, out_bit(md.axis, out_in_position)},
-                                    {"moving_" + n, out_bit(md.axis, out_moving)},
-                                    {"error_" + n, out_bit(md.axis, out_error)}}) {
+    for (const auto& [name, bit] : {std::pair{"limit_minus_" + n, in_bit(k, md.axis, in_limit_start)},
+                                    {"limit_plus_" + n, in_bit(k, md.axis, in_limit_end)},
+                                    {"reference_cam_" + n, in_bit(k, md.axis, in_reference)},
+                                    {"external_stop_" + n, in_bit(k, md.axis, in_external_stop)},
+                                    {"in_position_" + n, out_bit(k, md.axis, out_in_position)},
+                                    {"moving_" + n, out_bit(k, md.axis, out_moving)},
+                                    {"error_" + n, out_bit(k, md.axis, out_error)}}) {
       if (auto r = io.name_bit(name, bit); !r)
         return std::unexpected(ConfigError{spec.file, spec.line, 0, "controller.axis", r.error()});
     }
     c->add_axis(std::move(a));
-    c->axes_.push_back(md.axis);
+    c->axes_.push_back({k, md.axis});
   }
   c->followers_.resize(c->axes_.size());
   c->shown_error_.assign(c->axes_.size(), 0);
@@ -312,55 +347,78 @@ std::expected<std::unique_ptr<hc::Controller>, ConfigError> Ip247Controller::cre
 }
 
 Ip247Controller::Ip247Controller(std::shared_ptr<const profiles::Profile> profile, int interface_db,
-                                 std::vector<Ip247ProgramFile> programs, S5Blocks plc_dbs, Duration cycle, int tile)
+                                 std::vector<Ip247ProgramFile> programs, S5Blocks plc_dbs, Duration cycle, int tile,
+                                 int modules)
     : hc::Controller(std::move(profile), profiles::ParameterSet{},
-                     hc::IoLayout{{ip247_axes, ip247_axes, 1, interface_bytes}}, cycle),
-      interface_{static_cast<std::uint16_t>(interface_db), 0, static_cast<std::uint16_t>(interface_words)},
+                     hc::IoLayout{{static_cast<std::uint32_t>(ip247_axes * std::max(modules, 1)),
+                                   static_cast<std::uint32_t>(ip247_axes * std::max(modules, 1)), 1,
+                                   interface_bytes * static_cast<std::uint32_t>(std::max(modules, 1))}},
+                     cycle),
       program_files_(std::move(programs)),
-      plc_(std::move(plc_dbs)),
-      module_(tile) {
-  words_.assign(interface_words, 0);
+      plc_(std::move(plc_dbs)) {
+  for (int k = 0; k < std::max(modules, 1); ++k) {
+    interfaces_.push_back(S5DataBlock{static_cast<std::uint16_t>(interface_db + k),
+                                      static_cast<std::uint32_t>(k) * interface_bytes,
+                                      static_cast<std::uint16_t>(interface_words)});
+    modules_.push_back(std::make_unique<Ip247Module>(tile + 4 * k));
+  }
+  shown_data_error_.assign(modules_.size(), 0);
+  words_.assign(interface_words * modules_.size(), 0);
   publish_status();
+}
+
+std::size_t Ip247Controller::machine_axis(std::size_t k, int n) const noexcept {
+  for (std::size_t i = 0; i < axes_.size(); ++i)
+    if (axes_[i].module == k && axes_[i].axis == n) return i;
+  return axis_count();
 }
 
 void Ip247Controller::publish_status() noexcept {
   std::vector<std::uint16_t> block(ip247_axis_db_words, 0);
-  for (int n = 1; n <= ip247_axes; ++n) {
-    const auto base = static_cast<std::size_t>(n - 1) * ip247_axis_db_words;
-    std::copy_n(words_.begin() + static_cast<std::ptrdiff_t>(base), ip247_axis_db_words, block.begin());
-    const Ip247Axis& a = module_.axis(n);
-    write_ip247_status(block, a, a.machine_data() && a.machine_data()->ag_bcd);
-    std::copy(block.begin(), block.end(), words_.begin() + static_cast<std::ptrdiff_t>(base));
+  for (std::size_t k = 0; k < modules_.size(); ++k) {
+    const std::size_t mbase = k * interface_words;
+    for (int n = 1; n <= ip247_axes; ++n) {
+      const auto base = mbase + static_cast<std::size_t>(n - 1) * ip247_axis_db_words;
+      std::copy_n(words_.begin() + static_cast<std::ptrdiff_t>(base), ip247_axis_db_words, block.begin());
+      const Ip247Axis& a = modules_[k]->axis(n);
+      write_ip247_status(block, a, a.machine_data() && a.machine_data()->ag_bcd);
+      std::copy(block.begin(), block.end(), words_.begin() + static_cast<std::ptrdiff_t>(base));
+    }
+    for (std::size_t w = 0; w < interface_words; ++w)
+      (void)Controller::write_data_word(interfaces_[k].number, static_cast<int>(w), words_[mbase + w]);
   }
-  for (std::size_t w = 0; w < words_.size(); ++w)
-    (void)Controller::write_data_word(interface_.number, static_cast<int>(w), words_[w]);
 }
 
 std::expected<hc::BitAddress, std::string> Ip247Controller::resolve_bit(std::string_view text) const {
   if (auto named = hc::Controller::resolve_bit(text)) return named;
-  auto a = hc::parse_s5_address(text, interface_.number);
+  auto a = hc::parse_s5_address(text, interfaces_.front().number);
   if (!a) return std::unexpected(a.error());
   return hc::to_bit_address(*a, data_blocks());
 }
 
 std::expected<std::uint16_t, std::string> Ip247Controller::read_data_word(int db, int dw) const {
-  if (db == interface_.number) return Controller::read_data_word(db, dw);
+  for (const auto& i : interfaces_)
+    if (db == i.number) return Controller::read_data_word(db, dw);
   std::optional<std::vector<std::uint16_t>> image;
-  std::string what;
   if (const auto it = plc_.find(db); it != plc_.end()) {
     image = it->second;
-    what = "PLC DB";
   } else {
-    for (int n = 1; n <= ip247_axes && !image; ++n)
-      if (module_.md_db(n) == db) image = *module_.md_image(n);
-    if (!image) image = module_.vp_image(db);
+    for (const auto& m : modules_) {
+      for (int n = 1; n <= ip247_axes && !image; ++n)
+        if (m->md_db(n) == db) image = *m->md_image(n);
+      if (!image) image = m->vp_image(db);
+      if (image) break;
+    }
   }
   if (!image) {
-    std::string list = fmt::format("DB{} (interface)", interface_.number);
+    std::string list;
+    for (const auto& i : interfaces_) list += fmt::format("{}DB{} (interface)", list.empty() ? "" : ", ", i.number);
     for (const auto& [n, w] : plc_) list += fmt::format(", DB{} (PLC)", n);
-    for (int n = 1; n <= ip247_axes; ++n)
-      if (module_.md_db(n) >= 0) list += fmt::format(", DB{} (machine data of axis {})", module_.md_db(n), n);
-    for (const auto& [n, len] : module_.programs().directory()) list += fmt::format(", DB{} (program {})", n, n);
+    for (const auto& m : modules_) {
+      for (int n = 1; n <= ip247_axes; ++n)
+        if (m->md_db(n) >= 0) list += fmt::format(", DB{} (machine data of axis {})", m->md_db(n), n);
+      for (const auto& [n, len] : m->programs().directory()) list += fmt::format(", DB{} (program {})", n, n);
+    }
     return std::unexpected(fmt::format("the ip247 module has no DB{} (it has {})", db, list));
   }
   if (dw < 0 || static_cast<std::size_t>(dw) >= image->size())
@@ -377,13 +435,13 @@ std::expected<void, std::string> Ip247Controller::write_data_word(int db, int dw
     it->second[static_cast<std::size_t>(dw)] = value;
     return {};
   }
-  if (db != interface_.number)
-    return std::unexpected(fmt::format(
-        "DB{} of the ip247 module is not written word by word: the PLC writes the interface DB{} and its own DBs "
-        "(plc_dbs:); the MD and VP DBs are images the module takes as a whole (data jobs BA20/22 from a PLC DB, or "
-        "'parameters:' and 'programs:')",
-        db, interface_.number));
-  return Controller::write_data_word(db, dw, value);
+  for (const auto& i : interfaces_)
+    if (db == i.number) return Controller::write_data_word(db, dw, value);
+  return std::unexpected(fmt::format(
+      "DB{} of the ip247 module is not written word by word: the PLC writes the interface DB{} and its own DBs "
+      "(plc_dbs:); the MD and VP DBs are images the module takes as a whole (data jobs BA20/22 from a PLC DB, or "
+      "'parameters:' and 'programs:')",
+      db, interfaces_.front().number));
 }
 
 std::vector<std::string> Ip247Controller::trace_signals() const {
@@ -398,7 +456,7 @@ std::vector<std::string> Ip247Controller::trace_signals() const {
 
 double Ip247Controller::trace_value(std::size_t i) const noexcept {
   if (i / 3 >= axes_.size()) return 0.0;
-  const Ip247Axis& a = module_.axis(axes_[i / 3]);
+  const Ip247Axis& a = module_axis(i / 3);
   switch (i % 3) {
     case 0:
       return static_cast<double>(a.actual());
@@ -410,21 +468,24 @@ double Ip247Controller::trace_value(std::size_t i) const noexcept {
 }
 
 void Ip247Controller::write_programs() {
-  for (const auto& f : program_files_) {
-    auto image = make_ip247_vp_db(Ip247VpImage{static_cast<std::uint8_t>(f.number), f.text, 0, 0});
-    Ip247SyntaxFault fault;
-    const auto r = image ? module_.write_vp(f.number, *image, &fault)
-                         : Ip247DataResult{Ip247InterfaceError::source_too_large, stepdir::Ip247Error::none, 0, 0};
-    if (r.module_error == stepdir::Ip247Error::none && r.interface_error == Ip247InterfaceError::none) continue;
-    const int code = r.module_error != stepdir::Ip247Error::none
-                         ? static_cast<int>(r.module_error)
-                         : static_cast<int>(stepdir::Ip247Error::program_faulty);
-    refused_.push_back(
-        {code, r.module_error == stepdir::Ip247Error::program_faulty
-                   ? fmt::format("program {} ({}): syntax error {} in block N{}: {}", f.number, f.file.string(),
-                                 static_cast<int>(fault.code), fault.block_number, fault.message)
-                   : fmt::format("program {} ({}) not stored: {}", f.number, f.file.string(),
-                                 image ? make_error_code(r.module_error).message() : image.error())});
+  for (std::size_t k = 0; k < modules_.size(); ++k) {
+    for (const auto& f : program_files_) {
+      auto image = make_ip247_vp_db(Ip247VpImage{static_cast<std::uint8_t>(f.number), f.text, 0, 0});
+      Ip247SyntaxFault fault;
+      const auto r = image ? modules_[k]->write_vp(f.number, *image, &fault)
+                           : Ip247DataResult{Ip247InterfaceError::source_too_large, stepdir::Ip247Error::none, 0, 0};
+      if (r.module_error == stepdir::Ip247Error::none && r.interface_error == Ip247InterfaceError::none) continue;
+      if (k > 0) continue;  // every module refuses it the same way: reported once
+      const int code = r.module_error != stepdir::Ip247Error::none
+                           ? static_cast<int>(r.module_error)
+                           : static_cast<int>(stepdir::Ip247Error::program_faulty);
+      refused_.push_back(
+          {code, r.module_error == stepdir::Ip247Error::program_faulty
+                     ? fmt::format("program {} ({}): syntax error {} in block N{}: {}", f.number, f.file.string(),
+                                   static_cast<int>(fault.code), fault.block_number, fault.message)
+                     : fmt::format("program {} ({}) not stored: {}", f.number, f.file.string(),
+                                   image ? make_error_code(r.module_error).message() : image.error())});
+    }
   }
 }
 
@@ -432,7 +493,7 @@ void Ip247Controller::report_errors(TimePoint now) noexcept {
   const auto* cat = catalogue("module");
   if (cat == nullptr) return;
   for (std::size_t i = 0; i < axes_.size(); ++i) {
-    const Ip247Axis& a = module_.axis(axes_[i]);
+    const Ip247Axis& a = module_axis(i);
     const int e = a.error() >= 10 ? a.error() : 0;
     if (e == shown_error_[i]) continue;
     if (shown_error_[i] != 0) (void)clear_error(*cat, shown_error_[i], static_cast<int>(i));
@@ -443,11 +504,15 @@ void Ip247Controller::report_errors(TimePoint now) noexcept {
     shown_error_[i] = e;
   }
   // The data channel's error (a data job refused: 48, 49, 13 ...), until its next job or BA17.
-  const int d = module_.data_channel_error() >= 10 ? module_.data_channel_error() : 0;
-  if (d != shown_data_error_) {
-    if (shown_data_error_ != 0) (void)clear_error(*cat, shown_data_error_, -1);
-    if (d != 0) raise(*cat, d, now, -1, "data channel", hc::AckRule::self_clearing, false);
-    shown_data_error_ = d;
+  for (std::size_t k = 0; k < modules_.size(); ++k) {
+    const int d = modules_[k]->data_channel_error() >= 10 ? modules_[k]->data_channel_error() : 0;
+    if (d == shown_data_error_[k]) continue;
+    if (shown_data_error_[k] != 0) (void)clear_error(*cat, shown_data_error_[k], -1);
+    if (d != 0)
+      raise(*cat, d, now, -1,
+            modules_.size() == 1 ? std::string("data channel") : fmt::format("data channel of module {}", k),
+            hc::AckRule::self_clearing, false);
+    shown_data_error_[k] = d;
   }
 }
 
@@ -462,64 +527,70 @@ void Ip247Controller::on_cycle(const CycleTime& cycle) noexcept {
       for (const auto& [code, context] : refused_) raise(*cat, code, cycle.now, 0, context, std::nullopt, false);
     started_ = true;
   }
-  // The PLC's jobs: BA, parameters and a command bit in each axis DB; a data job in the job block.
-  // Until the power section is up at power-on the module takes no job (the PLC's handshake waits).
-  for (std::size_t w = 0; w < words_.size(); ++w)
-    words_[w] = Controller::read_data_word(interface_.number, static_cast<int>(w)).value_or(0);
-  std::array<std::uint16_t, ip247_axes> pending{};
-  std::array<int, ip247_axes> decode_error{};
   std::vector<std::uint16_t> block(ip247_axis_db_words, 0);
-  for (int n = 1; n <= ip247_axes; ++n) {
-    const auto k = static_cast<std::size_t>(n - 1);
-    const auto base = k * ip247_axis_db_words;
-    pending[k] = words_[base + 4];
-    if (!ready) continue;
-    std::copy_n(words_.begin() + static_cast<std::ptrdiff_t>(base), ip247_axis_db_words, block.begin());
-    const Ip247Axis& a = module_.axis(n);
-    if (auto job = take_ip247_job(block, a.machine_data() && a.machine_data()->ag_bcd)) {
-      if (*job) {
-        module_.command(n, **job);
-      } else {
-        decode_error[k] = static_cast<int>(job->error());
+  for (std::size_t k = 0; k < modules_.size(); ++k) {
+    Ip247Module& m = *modules_[k];
+    const std::size_t mbase = k * interface_words;
+    // The PLC's jobs: BA, parameters and a command bit in each axis DB; a data job in the job block.
+    // Until the power section is up at power-on the module takes no job (the PLC's handshake waits).
+    for (std::size_t w = 0; w < interface_words; ++w)
+      words_[mbase + w] = Controller::read_data_word(interfaces_[k].number, static_cast<int>(w)).value_or(0);
+    std::array<std::uint16_t, ip247_axes> pending{};
+    std::array<int, ip247_axes> decode_error{};
+    for (int n = 1; n <= ip247_axes; ++n) {
+      const auto i = static_cast<std::size_t>(n - 1);
+      const auto base = mbase + i * ip247_axis_db_words;
+      pending[i] = words_[base + 4];
+      if (!ready) continue;
+      std::copy_n(words_.begin() + static_cast<std::ptrdiff_t>(base), ip247_axis_db_words, block.begin());
+      const Ip247Axis& a = m.axis(n);
+      if (auto job = take_ip247_job(block, a.machine_data() && a.machine_data()->ag_bcd)) {
+        if (*job) {
+          m.command(n, **job);
+        } else {
+          decode_error[i] = static_cast<int>(job->error());
+        }
       }
     }
-  }
-  std::vector<std::uint16_t> data_block(words_.begin() + static_cast<std::ptrdiff_t>(data_job_dw), words_.end());
-  if (ready) {
-    if (const auto job = take_ip247_data_job(data_block)) {
-      const auto r = module_.data_job(*job, plc_);
-      write_ip247_data_result(data_block, r);
-      std::copy(data_block.begin(), data_block.end(), words_.begin() + static_cast<std::ptrdiff_t>(data_job_dw));
+    const auto job_at = static_cast<std::ptrdiff_t>(mbase + data_job_dw);
+    std::vector<std::uint16_t> data_block(words_.begin() + job_at,
+                                          words_.begin() + job_at + static_cast<std::ptrdiff_t>(ip247_data_job_words));
+    if (ready) {
+      if (const auto job = take_ip247_data_job(data_block)) {
+        const auto r = m.data_job(*job, plc_);
+        write_ip247_data_result(data_block, r);
+        std::copy(data_block.begin(), data_block.end(), words_.begin() + job_at);
+      }
     }
+    for (int n = 1; n <= ip247_axes; ++n) {
+      Ip247Inputs in;
+      in.limit_start = io().get(in_bit(k, n, in_limit_start));
+      in.limit_end = io().get(in_bit(k, n, in_limit_end));
+      in.reference = io().get(in_bit(k, n, in_reference));
+      in.external_stop = io().get(in_bit(k, n, in_external_stop));
+      const std::size_t i = machine_axis(k, n);
+      const bool bb = ready && i < axes_.size() && axis(i).status().state != motion::AxisState::error;
+      in.ready = bb;
+      Ip247Axis& a = m.axis(n);
+      a.step(now_ns, period_ns_, in, nullptr);
+      if (bb) followers_[i].step(axis(i), a, period_ns_);  // module pulse 0 = where the axis stood at power-up
+      io().set(out_bit(k, n, out_in_position), a.position_reached());
+      io().set(out_bit(k, n, out_moving), a.running());
+      io().set(out_bit(k, n, out_error), a.error() >= 10);
+    }
+    for (int n = 1; n <= ip247_axes; ++n) {
+      const auto i = static_cast<std::size_t>(n - 1);
+      const auto base = mbase + i * ip247_axis_db_words;
+      std::copy_n(words_.begin() + static_cast<std::ptrdiff_t>(base), ip247_axis_db_words, block.begin());
+      const Ip247Axis& a = m.axis(n);
+      write_ip247_status(block, a, a.machine_data() && a.machine_data()->ag_bcd);
+      if (!ready) block[4] = pending[i];
+      if (decode_error[i] != 0) block[12] = static_cast<std::uint16_t>((block[12] & 0xFF00) | decode_error[i]);
+      std::copy(block.begin(), block.end(), words_.begin() + static_cast<std::ptrdiff_t>(base));
+    }
+    for (std::size_t w = 0; w < interface_words; ++w)
+      (void)Controller::write_data_word(interfaces_[k].number, static_cast<int>(w), words_[mbase + w]);
   }
-  for (int n = 1; n <= ip247_axes; ++n) {
-    Ip247Inputs in;
-    in.limit_start = io().get(in_bit(n, in_limit_start));
-    in.limit_end = io().get(in_bit(n, in_limit_end));
-    in.reference = io().get(in_bit(n, in_reference));
-    in.external_stop = io().get(in_bit(n, in_external_stop));
-    const auto i = static_cast<std::size_t>(std::ranges::find(axes_, n) - axes_.begin());
-    const bool bb = ready && i < axes_.size() && axis(i).status().state != motion::AxisState::error;
-    in.ready = bb;
-    Ip247Axis& a = module_.axis(n);
-    a.step(now_ns, period_ns_, in, nullptr);
-    if (bb) followers_[i].step(axis(i), a, period_ns_);  // module pulse 0 = where the axis stood at power-up
-    io().set(out_bit(n, out_in_position), a.position_reached());
-    io().set(out_bit(n, out_moving), a.running());
-    io().set(out_bit(n, out_error), a.error() >= 10);
-  }
-  for (int n = 1; n <= ip247_axes; ++n) {
-    const auto k = static_cast<std::size_t>(n - 1);
-    const auto base = k * ip247_axis_db_words;
-    std::copy_n(words_.begin() + static_cast<std::ptrdiff_t>(base), ip247_axis_db_words, block.begin());
-    const Ip247Axis& a = module_.axis(n);
-    write_ip247_status(block, a, a.machine_data() && a.machine_data()->ag_bcd);
-    if (!ready) block[4] = pending[k];
-    if (decode_error[k] != 0) block[12] = static_cast<std::uint16_t>((block[12] & 0xFF00) | decode_error[k]);
-    std::copy(block.begin(), block.end(), words_.begin() + static_cast<std::ptrdiff_t>(base));
-  }
-  for (std::size_t w = 0; w < words_.size(); ++w)
-    (void)Controller::write_data_word(interface_.number, static_cast<int>(w), words_[w]);
   report_errors(cycle.now);
 }
 

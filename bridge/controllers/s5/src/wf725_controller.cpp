@@ -29,12 +29,13 @@ Wf725Controller::Wf725Controller(LoadedParameters parameters, Wf725MachineData m
     : Controller(parameters.profile, std::move(parameters.set), wf_layout(), cycle),
       md_(md),
       opt_(options),
-      store_(wf725_memory_limits(md.series)),
+      store_(std::make_shared<Wf725ProgramStore>(wf725_memory_limits(md.series))),
       db_(io(), S5DataBlock{options.db, 0, wf_db::words}) {
   traversing_cat_ = catalogue("traversing");
   io_cat_ = catalogue("program_io");
   admin_cat_ = catalogue("memory_admin");
   standard2_cat_ = catalogue("standard2");
+  store_user_ = store_->add_user([this](int n) { return runs_stored_program(n); });
   std::copy(std::begin(opt_.ref_speeds), std::end(opt_.ref_speeds), std::begin(ref_speeds_));
   if (auto syntax = wf725_program_syntax(profile())) syntax_ = *syntax;
   jog_feed_ = opt_.jog_feed;

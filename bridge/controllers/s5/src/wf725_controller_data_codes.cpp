@@ -70,12 +70,12 @@ void Wf725Controller::handle_data_code(TimePoint now) {
     case code::delete_block:
       if (running_program_ == p1 && p1 != 0) {
         raise_io(105, now, "the program runs");
-      } else if (const int e = store_.remove_block(p1, p2)) {
+      } else if (const int e = store_->remove_block(p1, p2)) {
         raise_io(e, now, fmt::format("program {} block {}", p1, p2));
       }
       break;
     case code::list_programs: {
-      const auto n = store_.numbers();
+      const auto n = store_->numbers();
       if (p1 <= 0) {
         raise_io(145, now, "page number 0");
       } else {
@@ -85,7 +85,7 @@ void Wf725Controller::handle_data_code(TimePoint now) {
       break;
     }
     case code::list_blocks: {
-      const Wf725Program* prog = p1 == 0 ? nullptr : store_.find(p1);
+      const Wf725Program* prog = p1 == 0 ? nullptr : store_->find(p1);
       if (p1 == 0) {
         raise_io(125, now);
       } else if (prog == nullptr) {
@@ -111,7 +111,7 @@ void Wf725Controller::handle_data_code(TimePoint now) {
       b.g[0] = 90;
       b.x = std::llround(actual_um());
       b.f = mdi_feed_ > 0 ? mdi_feed_ : std::llround(md_.get(3) * 100);
-      if (const int e = store_.teach(p1, p2, b, db_.bit(dw_control, bit_ram))) raise_io(e, now);
+      if (const int e = store_->teach(p1, p2, b, db_.bit(dw_control, bit_ram))) raise_io(e, now);
       break;
     }
     case code::tool_offset:
@@ -124,7 +124,7 @@ void Wf725Controller::handle_data_code(TimePoint now) {
     case code::delete_program:
       if (running_program_ == p1 && p1 != 0) {
         raise_io(105, now, "the program runs");
-      } else if (const int e = store_.remove(p1)) {
+      } else if (const int e = store_->remove(p1)) {
         raise_io(e, now);
       }
       break;

@@ -87,19 +87,20 @@ void Wf725Controller::program_input(int db, TimePoint now) {
                     "memory_admin");
   }
   // All or nothing: a program the memory refuses leaves the memory as it was.
-  Wf725ProgramStore trial = store_;
-  for (auto& p : *progs) {
+  // The trial is a copy; the memory itself is changed in place (an axis of the module may run
+  // another of its programs: stored programs never move).
+  Wf725ProgramStore trial = *store_;
+  for (const auto& p : *progs) {
     if (running_program_ != 0 && p.number == running_program_)
       return raise_io(105, now, fmt::format("program {} runs", p.number));
-    const int n = p.number;
-    if (const int e = trial.store(std::move(p))) return raise_io(e, now, fmt::format("program {}", n));
+    if (const int e = trial.store(p)) return raise_io(e, now, fmt::format("program {}", p.number));
   }
-  store_ = std::move(trial);
+  for (auto& p : *progs) (void)store_->store(std::move(p));
 }
 
 void Wf725Controller::program_output(int program, int db, TimePoint now) {
   if (program == 0) return raise_io(125, now);
-  const Wf725Program* p = store_.find(program);
+  const Wf725Program* p = store_->find(program);
   if (p == nullptr) return raise_io(127, now, fmt::format("program {}", program));
   if (db < 1 || db > 255 || db == opt_.db)
     return raise_io(402, now, fmt::format("DB{} is not a user data block", db), "schale");

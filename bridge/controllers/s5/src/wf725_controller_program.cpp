@@ -20,12 +20,12 @@ constexpr int loop_budget = 32;  // blocks without motion interpreted per cycle 
 bool Wf725Controller::start_program(TimePoint now, bool single) {
   const int number = db_.read_word(dw_program);
   if (number == 0) return raise_wf(0x80, now), false;
-  const Wf725Program* p = store_.find(number);
+  const Wf725Program* p = store_->find(number);
   if (p == nullptr) return raise_wf(0x81, now, fmt::format("program {}", number)), false;
   if (!p->valid_for(opt_.axis))
     return raise_wf(0x90, now, fmt::format("program {} is valid for {}", number, p->valid_axes)), false;
   if (p->blocks.empty()) return raise_wf(0x82, now, fmt::format("program {}", number)), false;
-  if (static_cast<int>(p->blocks.size()) > store_.limits().blocks_per_program)
+  if (static_cast<int>(p->blocks.size()) > store_->limits().blocks_per_program)
     return raise_wf(0x68, now, fmt::format("program {} has {} blocks", number, p->blocks.size())), false;
   std::size_t index = 0;
   if (submode_ == Submode::single_step) {
@@ -121,7 +121,7 @@ bool Wf725Controller::begin_block(TimePoint now) {
   }
   if (b->call) {
     if (stack_.size() >= 3) return fail(0x91, "a third subprogram level");
-    const Wf725Program* sub = store_.find(*b->call);
+    const Wf725Program* sub = store_->find(*b->call);
     if (sub == nullptr) return fail(0x81, fmt::format("L{}", *b->call));
     if (!sub->valid_for(opt_.axis)) return fail(0x90, fmt::format("L{}", *b->call));
     if (sub->blocks.empty()) return fail(0x82, fmt::format("L{}", *b->call));

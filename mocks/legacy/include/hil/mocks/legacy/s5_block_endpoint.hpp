@@ -6,6 +6,7 @@
 // The manuals give the block layouts but no serial framing: the mapping is ours (docs/serial.md).
 
 #include <cstdint>
+#include <expected>
 #include <functional>
 #include <map>
 #include <memory>
@@ -45,6 +46,14 @@ class DbPolicy {
   /// idle); `next_deadline` = when the device needs its next call.
   virtual void on_time(TimePoint /*now*/) {}
   [[nodiscard]] virtual TimePoint next_deadline() const { return TimePoint::max(); }
+  /// Device state beyond the DBs for the state file (e.g. a module's program memory): a text the
+  /// device reads back, empty = none. Saved as the JSON string "module" next to "dbs".
+  [[nodiscard]] virtual std::string save_module_state() const { return {}; }
+  /// Restores what save_module_state wrote (after the DBs are loaded).
+  virtual std::expected<void, std::string> load_module_state(const std::string& /*text*/) { return {}; }
+  /// The device changed its own state since the last call (not by a SEND: e.g. a program stored
+  /// by a data code at the module's cycle); the endpoint then saves its state file.
+  [[nodiscard]] virtual bool take_dirty() { return false; }
 };
 
 /// Checks a complete image (e.g. an IP247 MD DB) against the device profile: 0 = valid, else
@@ -76,7 +85,7 @@ class S5BlockEndpoint final : public Endpoint {
   std::string on_line_error(std::error_code ec, TimePoint now) override;
   std::string on_idle(TimePoint now) override;
   [[nodiscard]] TimePoint next_deadline() const override;
-  bool take_dirty() override { return std::exchange(dirty_, false); }
+  bool take_dirty() override;
   std::string save_state() const override;
   std::expected<void, std::string> load_state(const std::string& text);
 

@@ -9,7 +9,11 @@
 //   controller: {device: ip247, parameters: MD-DBs.s5db, programs: [VP.txt, ...], interface_db: 10,
 //                plc_dbs: PLC-DBs.s5db}
 // The MD listing holds one 70-word MD DB per axis the module has at start (battery-backed); the
-// axis is DR 3 of each set (1..3), as on the module.
+// axis is DR 3 of each set (1..3), as on the module. Several modules: the module number of each
+// set (DL 3, what the SYS-ID check compares) says which module it belongs to; module k (in
+// ascending module number) has SSNR base tile + 4k, interface DB interface_db + k, I/O bytes
+// 3k..3k+2, its own program memory (every program file is written into each), and its machine
+// axes are named m<module>a<axis> (docs/ip247.md, "Several modules").
 //
 // The PLC side is the interface DB (`interface_db`, default 10) in the image's data area, laid out
 // as FB164/FB165 lay their blocks: DW 20(k-1) .. 20(k-1)+19 = the axis DB of axis k
@@ -61,20 +65,29 @@ class Ip247Controller final : public hil::controllers::Controller {
   [[nodiscard]] static std::expected<std::unique_ptr<hil::controllers::Controller>, ConfigError> create(
       const ControllerSpec& spec);
 
+  /// `modules`: how many IP247 modules (1..8) the controller holds, at tiles tile + 4k and
+  /// interface DBs interface_db + k.
   Ip247Controller(std::shared_ptr<const profiles::Profile> profile, int interface_db,
-                  std::vector<Ip247ProgramFile> programs, S5Blocks plc_dbs, Duration cycle, int tile = 0);
+                  std::vector<Ip247ProgramFile> programs, S5Blocks plc_dbs, Duration cycle, int tile = 0,
+                  int modules = 1);
 
   [[nodiscard]] std::expected<hil::controllers::BitAddress, std::string> resolve_bit(
       std::string_view text) const override;
   [[nodiscard]] std::expected<std::uint16_t, std::string> read_data_word(int db, int dw) const override;
   std::expected<void, std::string> write_data_word(int db, int dw, std::uint16_t value) override;
-  [[nodiscard]] std::span<const S5DataBlock> data_blocks() const noexcept override { return {&interface_, 1}; }
+  [[nodiscard]] std::span<const S5DataBlock> data_blocks() const noexcept override { return interfaces_; }
   [[nodiscard]] std::vector<std::string> trace_signals() const override;
   [[nodiscard]] double trace_value(std::size_t i) const noexcept override;
 
   /// The module axis of the first machine axis.
-  [[nodiscard]] const Ip247Axis& module_axis() const noexcept { return module_.axis(axes_.front()); }
-  [[nodiscard]] const Ip247Module& module() const noexcept { return module_; }
+  [[nodiscard]] const Ip247Axis& module_axis() const noexcept { return module_axis(0); }
+  /// The module axis of machine axis i.
+  [[nodiscard]] const Ip247Axis& module_axis(std::size_t i) const noexcept {
+    return modules_[axes_[i].module]->axis(axes_[i].axis);
+  }
+  /// Module k (0 = the lowest module number).
+  [[nodiscard]] const Ip247Module& module(std::size_t k = 0) const noexcept { return *modules_[k]; }
+  [[nodiscard]] std::size_t module_count() const noexcept { return modules_.size(); }
   /// The PLC's data blocks (plc_dbs).
   [[nodiscard]] const S5Blocks& plc_blocks() const noexcept { return plc_; }
 
@@ -92,17 +105,25 @@ class Ip247Controller final : public hil::controllers::Controller {
   /// Status words of every axis (its DW4 cleared) into the interface DB.
   void publish_status() noexcept;
 
-  S5DataBlock interface_{};
+  /// A machine axis: module index and module axis number (1..3).
+  struct AxisRef {
+    std::size_t module = 0;
+    int axis = 1;
+  };
+  /// The machine axis of module k's axis n, or axis_count() when it has none.
+  [[nodiscard]] std::size_t machine_axis(std::size_t k, int n) const noexcept;
+
+  std::vector<S5DataBlock> interfaces_;  ///< interface DB of each module
   std::vector<Ip247ProgramFile> program_files_;
   std::vector<std::pair<int, std::string>> refused_;  ///< module error and text of refused VPs
   S5Blocks plc_;                                      ///< the PLC's DBs
-  Ip247Module module_;
-  std::vector<int> axes_;  ///< module axis number of each machine axis, in declaration order
+  std::vector<std::unique_ptr<Ip247Module>> modules_;
+  std::vector<AxisRef> axes_;  ///< module and module axis of each machine axis, in declaration order
   std::vector<Ip247Follower> followers_;
   std::vector<int> shown_error_;
-  int shown_data_error_ = 0;
-  std::vector<std::uint16_t> words_;  ///< scratch: the interface DB of this cycle
-  bool started_ = false;              ///< the refusals of the programs are reported
+  std::vector<int> shown_data_error_;  ///< per module
+  std::vector<std::uint16_t> words_;   ///< scratch: the interface DB of module k at k * interface words
+  bool started_ = false;               ///< the refusals of the programs are reported
   std::int64_t period_ns_ = 0;
 };
 

@@ -77,9 +77,21 @@ class Wf725Controller final : public Controller {
  public:
   Wf725Controller(LoadedParameters parameters, Wf725MachineData md, ControllerAxis axis, Duration cycle,
                   Wf725Options options);
+  ~Wf725Controller() override { store_->remove_user(store_user_); }
+  Wf725Controller(const Wf725Controller&) = delete;
+  Wf725Controller& operator=(const Wf725Controller&) = delete;
 
   /// Stores parsed programs (the scenario's `programs:`): 0 or the program-I/O error.
-  [[nodiscard]] int store_program(Wf725Program p) { return store_.store(std::move(p)); }
+  [[nodiscard]] int store_program(Wf725Program p) { return store_->store(std::move(p)); }
+  /// The program memory; the module's axes share one (docs/wf725.md, "Several axes").
+  [[nodiscard]] const std::shared_ptr<Wf725ProgramStore>& program_store() const noexcept { return store_; }
+  /// Uses `store` (non-null) as the program memory from now on: the axes of one module share
+  /// their memory. Call between cycles while no program runs on this axis.
+  void use_program_store(std::shared_ptr<Wf725ProgramStore> store) {
+    store_->remove_user(store_user_);
+    store_ = std::move(store);
+    store_user_ = store_->add_user([this](int n) { return runs_stored_program(n); });
+  }
 
   // ---- the PLC's view: the DB axis as plain words (S5InterfaceDb) ----------------------------
   [[nodiscard]] std::uint16_t read_db_word(std::uint16_t w) const noexcept { return db_.read_word(w); }
@@ -118,7 +130,7 @@ class Wf725Controller final : public Controller {
   [[nodiscard]] bool traversing() const noexcept { return traversing_; }
   [[nodiscard]] wf_db::Submode submode() const noexcept { return submode_; }
   [[nodiscard]] const Wf725MachineData& machine_data() const noexcept { return md_; }
-  [[nodiscard]] const Wf725ProgramStore& programs() const noexcept { return store_; }
+  [[nodiscard]] const Wf725ProgramStore& programs() const noexcept { return *store_; }
   /// Buffer n (1..6) of the automatic buffer.
   [[nodiscard]] const Wf725Buffer& buffer(int n) const noexcept {
     return buffers_[static_cast<std::size_t>(std::clamp(n, 1, 6) - 1)];
@@ -212,6 +224,11 @@ class Wf725Controller final : public Controller {
   void write_status();
 
   void abort_job();
+  /// Whether this axis runs the stored program `number` (main or subprogram; not a buffer).
+  [[nodiscard]] bool runs_stored_program(int number) const noexcept {
+    const Wf725Program* p = store_->find(number);
+    return p != nullptr && std::any_of(stack_.begin(), stack_.end(), [p](const Frame& f) { return f.program == p; });
+  }
   /// Moves to machine position `target_mm` at `feed` (10^-2 mm/min), clamped to the armed
   /// pre-limits. False when the axis refused (error raised).
   bool go(double target_mm, std::int64_t feed, TimePoint now, motion::Direction dir = motion::Direction::shortest);
@@ -258,7 +275,8 @@ class Wf725Controller final : public Controller {
 
   Wf725MachineData md_;
   Wf725Options opt_;
-  Wf725ProgramStore store_;
+  std::shared_ptr<Wf725ProgramStore> store_;
+  int store_user_ = -1;
   S5InterfaceDb db_;
   Wf725ProgramSyntax syntax_ = wf725_default_syntax();
   Wf725UserBlocks own_blocks_;

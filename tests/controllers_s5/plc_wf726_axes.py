@@ -1,0 +1,297 @@
+#!/usr/bin/python3
+# SPDX-License-Identifier: MIT
+# A Python script as the S5 PLC against `hilbridge emulate wf725` serving a WF 726 with three axes
+# (python3-serial; 3964R and RK512 in s5_plc_link.py, no hilbridge code on this side):
+#  * DB 10/11/12 are the DB axes of A/B/C, DX 1..3 their MD images (axis B has its own MD 13);
+#  * a program read in by data code 44 on axis B is in the module's one memory: axes A and C run it
+#    at the same time (live actual values of both), a program valid for B only gives 90 on C;
+#  * the memory is the module's: while A runs program 5, deleting it (43) or reading it in again
+#    (44) through axis B is refused with 105 and changes nothing;
+#  * restart with the same state file: the program memory is back (data code 45 reads it out).
+#   plc_wf726_axes.py HILBRIDGE MD-A MD-B
+#   plc_wf726_axes.py HILBRIDGE --machine FILE-A FILE-B   one machine file per axis (retrofit mode):
+#       both DB axes and MD images, a program read in through B runs on A, the machine axes follow
+# Run by ctest; exit 77 = skipped (python3-serial missing).
+import json
+import os
+import subprocess
+import sys
+import tempfile
+import time
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+try:
+    from s5_plc_link import Link, dd, s32
+except ImportError:
+    print("SKIP: python3-serial is not installed (apt-get install python3-serial)")
+    sys.exit(77)
+
+HILBRIDGE = sys.argv[1]
+MACHINES = sys.argv[3:5] if sys.argv[2] == "--machine" else None
+MD_A, MD_B = (None, None) if MACHINES else (sys.argv[2], sys.argv[3])
+failures = []
+
+# DB axis words (docs/wf725.md, "The DB axis")
+DW_MODE, DW_CONTROL, DW_ENABLE, DW_STATUS, DW_ERROR, DW_PROGRAM = 0, 1, 2, 3, 4, 5
+DW_CODE, DW_EXEC, DD_P1, DW_DSTAT, DD_ACTUAL, DW_FLAGS, DW_IOERR = 11, 12, 13, 17, 20, 24, 40
+TRAVERSING, PROGRAM_IO = 0x01, 0x02  # DL 0 bits
+SET_ACTUAL, AUTOMATIC = 3, 6  # DR 0 submodes
+
+
+def check(name, ok, detail=""):
+    print(f"{'ok  ' if ok else 'FAIL'} {name}" + ("" if ok else f": {detail}"))
+    if not ok:
+        failures.append(f"{name}: {detail}")
+
+
+def text_db(text):
+    raw = text.encode("ascii")
+    n = len(raw)
+    if n % 2:
+        raw += b"\0"
+    return [n] + [(raw[i] << 8) | raw[i + 1] for i in range(0, len(raw), 2)]
+
+
+def db_text(words):
+    raw = b"".join(bytes([w >> 8, w & 0xFF]) for w in words[1:])
+    return raw[:words[0]].decode("ascii")
+
+
+class Axis:
+    """One axis of the module through its DB axis."""
+
+    def __init__(self, link, db):
+        self.link, self.db = link, db
+
+    def words(self, dw, n):
+        err, w = self.link.fetch(self.db, dw, n)
+        assert err == 0, f"FETCH DB{self.db} DW{dw}: {err:#x}"
+        return w
+
+    def write(self, dw, *words):
+        err = self.link.send(self.db, dw, list(words))
+        assert err == 0, f"SEND DB{self.db} DW{dw}: {err:#x}"
+
+    def mode(self, bits, submode):
+        self.write(DW_MODE, (bits << 8) | submode)
+        time.sleep(0.05)
+
+    def start(self):
+        w = self.words(DW_CONTROL, 1)[0]
+        self.write(DW_CONTROL, w | 1)
+        time.sleep(0.05)
+        self.write(DW_CONTROL, w & ~1)
+        time.sleep(0.05)
+
+    def data_code(self, code, p1=0, p2=0):
+        """Data code with its parameters (rising edge of D 12.0): (done, refused, DW 40)."""
+        self.write(DW_CODE, code)
+        self.write(DD_P1, *dd(p1), *dd(p2))
+        self.write(DW_EXEC, 1)
+        deadline = time.time() + 2
+        while True:
+            w = self.words(DW_DSTAT, 1)
+            if w[0] & 3 or time.time() > deadline:
+                break
+            time.sleep(0.02)
+        io = self.words(DW_IOERR, 1)[0]
+        self.write(DW_EXEC, 0)
+        time.sleep(0.03)
+        return (w[0] & 1) != 0, (w[0] & 2) != 0, io
+
+    def status(self):
+        w = self.words(0, 25)
+        return {"peh": bool(w[DW_STATUS] & 1), "syn": bool(w[DW_STATUS] & 0x40), "error": w[DW_ERROR] & 0xFF,
+                "actual": s32(w[DD_ACTUAL], w[DD_ACTUAL + 1]), "program_active": bool(w[DW_FLAGS] & 2)}
+
+    def synchronize(self):
+        self.mode(TRAVERSING, SET_ACTUAL)
+        self.write(DW_ENABLE, 1)  # D 2.0 drive enable
+        time.sleep(0.1)
+        self.start()
+
+
+def wait(axes, cond, timeout=30):
+    """Polls the axes until cond(statuses); returns (statuses, every sample)."""
+    deadline = time.time() + timeout
+    samples = []
+    while time.time() < deadline:
+        s = [a.status() for a in axes]
+        samples.append(s)
+        if cond(s):
+            return s, samples
+        time.sleep(0.03)
+    raise TimeoutError(f"condition not reached: {samples[-1] if samples else None}")
+
+
+PROGRAMS = """%7
+N1 G90 X 20 000 F 300 000
+N2 G90 X 40 000 F 600 000
+N3 G90 X 5 000 F 300 000
+%9 B RAM
+N1 G91 X 1 000 F 100 000
+%5 A
+N1 G90 X 30 000 F 60 000
+"""
+
+
+def emulator(state, *extra):
+    args = [HILBRIDGE, "emulate", "wf725", "--pty", "--format", "8N1", "--state", state]
+    if MACHINES:
+        args += ["--machine", MACHINES[0], "--machine", MACHINES[1]]
+    else:
+        args += ["--module", "WF726A", "--md", MD_A, "--md", MD_B, "--md", MD_A]
+    args += list(extra)
+    p = subprocess.Popen(args, stdin=subprocess.PIPE, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    path = p.stdout.readline().strip()
+    if not path.startswith("/dev/pts/"):
+        p.kill()
+        raise RuntimeError("emulator printed no pty: " + path + p.stderr.read())
+    return p, Link(path)
+
+
+def stop(p):
+    try:
+        p.stdin.write("quit\n")
+        p.stdin.flush()
+        p.wait(timeout=10)
+    except Exception:
+        p.kill()
+
+
+def first_run(state):
+    p, link = emulator(state)
+    try:
+        a, b, c = Axis(link, 10), Axis(link, 11), Axis(link, 12)
+        for ax in (a, b, c):
+            err, w = link.fetch(ax.db, 0, 48)
+            check(f"DB{ax.db} is a DB axis (48 words)", err == 0 and len(w) == 48, hex(err))
+        md13 = []
+        for dx in (1, 2, 3):
+            err, md = link.fetch(dx, 24, 2, "X")
+            md13.append(s32(md[0], md[1]) if err == 0 else None)
+        check("DX 1..3: each axis' MD image (MD 13 of B = 50 mm)", md13 == [96417, 50000, 96417], md13)
+        err, _ = link.fetch(4, 0, 2, "X")
+        check("DX 4 does not exist (a module has 3 axes): 08", err == 0x08, hex(err))
+        # Program input on axis B; the memory is the module's.
+        check("programs into user DB20", link.send(20, 0, text_db(PROGRAMS)) == 0)
+        b.mode(PROGRAM_IO, 0)
+        done, refused, io = b.data_code(0x44, 20)
+        check("programs 7, 9, 5 read in through axis B (44)", done and not refused and io == 0, (done, refused, hex(io)))
+        # Axes A and C run program 7 together.
+        for ax in (a, c):
+            ax.synchronize()
+        s, _ = wait([a, c], lambda s: all(x["syn"] for x in s), 5)
+        check("A and C synchronized", all(x["syn"] and x["actual"] == 0 for x in s), s)
+        for ax in (a, c):
+            ax.mode(TRAVERSING, AUTOMATIC)
+            ax.write(DW_PROGRAM, 7)
+        a.start()
+        c.start()
+        s, samples = wait([a, c], lambda s: all(not x["program_active"] and x["peh"] and x["actual"] == 5000
+                                                for x in s))
+        both = [x for x in samples if all(0 < y["actual"] < 40000 and y["program_active"] for y in x)]
+        check("A and C move at the same time (actual values of both read in one poll)", len(both) >= 3, len(both))
+        check("program 7 ends at 5 mm on A and on C", all(x["actual"] == 5000 and x["error"] == 0 for x in s), s)
+        c.write(DW_PROGRAM, 9)
+        c.start()
+        s, _ = wait([c], lambda s: s[0]["error"] != 0, 5)
+        check("program 9 (valid for B only) on axis C: error 90", s[0]["error"] == 0x90, s)
+        # While A runs program 5, axis B cannot delete it or read it in again (105).
+        a.write(DW_PROGRAM, 5)
+        a.start()
+        wait([a], lambda s: s[0]["program_active"], 5)
+        done, refused, io = b.data_code(0x43, 5)
+        check("delete program 5 while A runs it: 105", refused and io == 0x0105, (done, refused, hex(io)))
+        done, refused, io = b.data_code(0x44, 20)
+        check("read in program 5 while A runs it: 105", refused and io == 0x0105, (done, refused, hex(io)))
+        s, _ = wait([a], lambda s: not s[0]["program_active"] and s[0]["peh"], 10)
+        check("program 5 ran to its end on A (30 mm)", s[0]["actual"] == 30000 and s[0]["error"] == 0, s)
+        done, refused, io = b.data_code(0x43, 7)
+        check("program 7 deleted through axis B (43)", done and not refused and io == 0, (done, refused, hex(io)))
+        time.sleep(0.5)  # the line is quiet: the emulator saves its state file
+    finally:
+        stop(p)
+
+
+def second_run(state):
+    with open(state) as f:
+        saved = json.load(f)
+    text = saved.get("module", "")
+    check("state file keeps the program memory (programs 9 and 5, not the deleted 7)",
+          "%9 B RAM" in text and "%5 A" in text and "%7" not in text, text)
+    left = set(os.listdir(os.path.dirname(state))) - {os.path.basename(state), os.path.basename(state) + ".lock"}
+    check("no temporary file left beside the state file (atomic save)", not left, left)
+    p, link = emulator(state)
+    try:
+        a, c = Axis(link, 10), Axis(link, 12)
+        c.mode(PROGRAM_IO, 0)
+        done, refused, io = c.data_code(0x45, 9, 30)
+        err, n = link.fetch(30, 0, 1)
+        err, words = link.fetch(30, 0, 1 + (n[0] + 1) // 2) if err == 0 else (err, [0])
+        out = db_text(words) if err == 0 else ""
+        check("after the restart program 9 is in the memory (45 into DB30)",
+              done and not refused and out.startswith("%9 B RAM") and "X1000" in out.replace(" ", ""), (io, out))
+        done, refused, io = c.data_code(0x45, 7, 31)
+        check("the deleted program 7 stays deleted: 127", refused and io == 0x0127, (done, refused, hex(io)))
+        a.synchronize()
+        wait([a], lambda s: s[0]["syn"], 5)
+        a.mode(TRAVERSING, AUTOMATIC)
+        a.write(DW_PROGRAM, 5)
+        a.start()
+        s, _ = wait([a], lambda s: not s[0]["program_active"] and s[0]["peh"] and s[0]["actual"] == 30000, 10)
+        check("the restored program 5 runs on A", s[0]["error"] == 0, s)
+    finally:
+        stop(p)
+
+
+def machine_run():
+    p, link = emulator("none")
+    try:
+        a, b = Axis(link, 10), Axis(link, 11)
+        md13 = []
+        for dx in (1, 2):
+            err, md = link.fetch(dx, 24, 2, "X")
+            md13.append(s32(md[0], md[1]) if err == 0 else None)
+        check("two machine files: DX 1/2 are the MD images of A and B", md13 == [96417, 50000], md13)
+        err, _ = link.fetch(3, 0, 2, "X")
+        check("DX 3 does not exist (two axes): 08", err == 0x08, hex(err))
+        check("programs into user DB20", link.send(20, 0, text_db(PROGRAMS)) == 0)
+        b.mode(PROGRAM_IO, 0)
+        done, refused, io = b.data_code(0x44, 20)
+        check("programs read in through axis B (44)", done and not refused and io == 0, (done, refused, hex(io)))
+        a.synchronize()
+        wait([a], lambda s: s[0]["syn"], 5)
+        a.mode(TRAVERSING, AUTOMATIC)
+        a.write(DW_PROGRAM, 7)
+        a.start()
+        s, _ = wait([a], lambda s: not s[0]["program_active"] and s[0]["peh"] and s[0]["actual"] == 5000)
+        check("program 7 (read in through B) ends at 5 mm on A", s[0]["error"] == 0, s)
+        time.sleep(0.2)
+        p.stdin.write("machine\n")
+        p.stdin.flush()
+        lines = [p.stdout.readline().strip(), p.stdout.readline().strip()]
+        pos = {w[2].rstrip(":"): float(w[4]) for w in (l.split() for l in lines) if len(w) > 4 and w[3] == "position"}
+        check("the machine axes of both files; A stands at 5 mm, B at 0",
+              set(pos) == {"A", "B"} and abs(pos["A"] - 5.0) < 0.005 and abs(pos["B"]) < 0.005, lines)
+    finally:
+        stop(p)
+
+
+def main():
+    if MACHINES:
+        machine_run()
+        if failures:
+            print("\n".join(failures))
+            sys.exit(1)
+        return
+    with tempfile.TemporaryDirectory() as d:
+        state = os.path.join(d, "wf726.json")
+        first_run(state)
+        second_run(state)
+    if failures:
+        print("\n".join(failures))
+        sys.exit(1)
+
+
+main()
