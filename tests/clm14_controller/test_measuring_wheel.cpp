@@ -166,6 +166,18 @@ TEST(ClmMeasuringWheel, Mode4CorrectsUntilAx27AndCarriesTheRestToTheNextMove) {
   EXPECT_NEAR(w.r.pos(1), second, count_iu);
 }
 
+TEST(ClmMeasuringWheel, Mode4LeavesTheSlipOfTheLastWindowUncorrected) {
+  WheelRig w(4, {{"A127", "M2.00.0 0005.000"}});
+  w.wheels[0]->slip = 0.98;
+  w.r.program(two_feeds);
+  w.start();
+  w.run_to(1);
+  EXPECT_NEAR(w.wheels[0]->wheel_iu, 100.0 - 0.1, 0.01);  // 2 % of the last 5 IU
+  w.r.set(bit("I1.00.6"), true);
+  w.run_to(3);
+  EXPECT_NEAR(w.wheels[0]->wheel_iu, 200.0 - 0.1, 0.01);  // not 0.2: the residual went into the second feed
+}
+
 TEST(ClmMeasuringWheel, Mode3WithTheOption2DigitIsOption2) {
   WheelRig w(3, {{"A100", "1 3 0 0 1"}, {"A127", "M2.00.0 0000.500"}});
   w.wheels[0]->slip = 0.98;

@@ -370,12 +370,18 @@ void Controller::update_safety(TimePoint now) {
       t1.stack.clear();
       t1.phase = 0;
       if (mat_owner_ == 1) mat_owner_ = -1;
-      if (settings_.interrupt_vector_aborts_move)
+      if (settings_.interrupt_vector_aborts_move) {
         for (auto& a : axes_)
           if (a.port != nullptr && a.has_target && a.feeding) {
             a.port->stop();
             a.has_target = a.feeding = false;
           }
+        // FOL mode 2 "stops / re-syncs on Interrupt" (§5.7) [decided]: with p = 1 a mode-2 slave
+        // ramps out (the coupling stays, at ratio 0); the next FOL, or Start after a stop, ramps
+        // it back in. With p = 0 it keeps following, as a positioning keeps running.
+        if (options_.fol2_stops_at_interrupt)
+          for (int ax = 1; ax <= 4; ++ax) pause_follow(ax, true);
+      }
     }
   }
   // Start, Immediate Stop, Restart (Automatic only).

@@ -70,6 +70,9 @@ struct Options {
   /// first-order lag of this many NC cycles (the wheel loop's gain: stable while the wheel's
   /// signal lags the motor by a few cycles - its compliance, the drive's own lag). 1 = at once.
   int wheel_correction_cycles = 16;
+  /// B015 interrupt vector with p = 1 (moves interrupted): FOL mode-2 slaves ramp out, to be
+  /// re-synchronised by the next FOL (or Start after a stop). false: they keep following.
+  bool fol2_stops_at_interrupt = true;
 };
 
 /// LMR (manual §5.7, vector 37): the raster distance (material from the previous mark at the
