@@ -131,6 +131,48 @@ TEST(ClmFol, Mode2RampsDownAtImmediateStopAndResynchronisesOnStart) {
   EXPECT_NEAR(r.clm.velocity(2), 10.0, 0.16) << "re-synchronised";
 }
 
+/// FOL mode 2 at the B015 interrupt vector (p = `p`): axis 2 follows the material at 0.5; the
+/// vector's program waits 0.5 s, then gives FOL again. The slave's velocity 300 ms after the
+/// vector and 400 ms after that FOL.
+std::pair<double, double> fol2_at_interrupt_vector(char p) {
+  Rig r({{"A200", "1 2 5 0 0"},
+         {"C000", "01250 0000"},
+         {"C002", "0020.00000"},
+         {"B015", std::string("I1.00.3 1 ") + p + " 0100"}},
+        2);
+  auto& material = r.add_master_encoder();
+  r.program({{0, "FOL 2 2 +0.500000"},
+             {1, "WAI 09.000"},
+             {2, "JMP 0002"},
+             {100, "WAI 00.500"},
+             {101, "FOL 2 2 +0.500000"},
+             {102, "JMP 0102"}});
+  r.run_for(20ms);
+  EXPECT_FALSE(material.move_velocity(20.0, material_limits(20.0)));
+  r.run_for(200ms);
+  r.start_auto();
+  r.run_for(300ms);
+  EXPECT_NEAR(r.clm.velocity(2), 10.0, 0.16);
+  r.pulse(bit("I1.00.3"));
+  EXPECT_EQ(r.clm.task(1).pc, 100);
+  r.run_for(300ms);
+  const double during = r.clm.velocity(2);
+  EXPECT_TRUE(r.clm.coupled(2));
+  EXPECT_TRUE(r.run_until([&] { return r.clm.task(1).pc == 102; }, 1s));
+  r.run_for(400ms);
+  EXPECT_EQ(r.clm.error(), 0) << r.clm.error_message();
+  return {during, r.clm.velocity(2)};
+}
+
+TEST(ClmFol, Mode2RampsOutAtTheInterruptVectorAndTheNextFolResynchronises) {
+  const auto [during, after] = fol2_at_interrupt_vector('1');
+  EXPECT_NEAR(during, 0.0, 0.16) << "B015 p = 1: the slave ramped out";
+  EXPECT_NEAR(after, 10.0, 0.16) << "FOL re-synchronised it";
+  const auto [during0, after0] = fol2_at_interrupt_vector('0');
+  EXPECT_NEAR(during0, 10.0, 0.16) << "B015 p = 0: the slave keeps following";
+  EXPECT_NEAR(after0, 10.0, 0.16);
+}
+
 TEST(ClmFol, FactorOnANormalAxisOnlySetsTheVeoMultiplier) {
   Rig r({{"C002", "0020.00000"}});
   auto& material = r.add_master_encoder();

@@ -244,6 +244,17 @@ TEST(ClmRuntime, UnknownControllerKeyAndUnusedEncoderAreConfigErrors) {
   c = registry.create(spec);
   ASSERT_FALSE(c);
   EXPECT_NE(c.error().describe().find("test mode"), std::string::npos) << c.error().describe();
+  // wheel_window: the unit of the Ax16 windows, iu or percent
+  spec.options.clear();
+  spec.options.emplace("wheel_window", "mm");
+  c = registry.create(spec);
+  ASSERT_FALSE(c);
+  EXPECT_NE(c.error().describe().find("controller.wheel_window"), std::string::npos) << c.error().describe();
+  for (const char* unit : {"iu", "percent"}) {
+    spec.options.clear();
+    spec.options.emplace("wheel_window", unit);
+    EXPECT_TRUE(registry.create(spec).has_value()) << unit;
+  }
 }
 
 }  // namespace

@@ -411,6 +411,7 @@ std::string Clm14Station::on_command(const Telegram& t) {
     for (int i = a; i <= b; ++i) (void)clm_.set_variable(i, 0);
   } else if (c == "CL0") {
     if (mode() != ClmMode::manual) return error(code(SerialError::invalid_mode));
+    (void)clm_.command_start_0000();  // flying cutoff: the next Automatic starts at 0000 (A138)
   } else if (c == "CLL1" || c == "CLL2") {
     clm_.clear_length_counter(c[3] - '0');  // flying cutoff: material / product length counter (status 54)
   } else if (c.size() >= 4 && c[0] == 'M' && c[1] >= '1' && c[1] <= '4' &&

@@ -80,9 +80,9 @@ std::string Clm14Station::status_content(int n, std::string_view arg, bool& ok, 
     case 8:
       return task_pair(1, false) + " " + task_pair(2, false) + " " + task_pair(3, false);
     case 9:
-      // measuring-wheel mode is not modelled: the wheel is the motor encoder
+      // m: axis 1's position (the sum of its measuring-wheel moves), n: its motor encoder position
       return " " + position_field(c.position(1), c.homed(1), 5).substr(0, 1) + signed_field(c.position(1), 5, 3) + " " +
-             signed_field(c.position(1), 6, 3);
+             signed_field(c.motor_position(1), 6, 3);
     case 10:
       return signed_field(c.following_error(1), 5, 3) + " " + signed_field(c.following_error(2), 6, 3);
     case 19:

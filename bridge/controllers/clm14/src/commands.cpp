@@ -120,6 +120,17 @@ bool Controller::store_variable(int var, Micro v, int t) {
     vars_[static_cast<std::size_t>(var)] = v;
     return true;
   }
+  if ((var == 47 || var == 48) && settings_.axes[static_cast<std::size_t>(var - 47)].measuring_wheel()) {
+    // measuring wheel: the motor position of axis 1 / 2, writable while not homed (§5.6)
+    if (homed(var - 46) || !set_motor_position(var - 46, to_double(v))) {
+      fail(t, static_cast<int>(ClmError::write_system_variable),
+           fmt::format("V{:03d} (motor position of axis {}) is writable only while the axis is not homed", var,
+                       var - 46));
+      return false;
+    }
+    vars_[static_cast<std::size_t>(var)] = v;
+    return true;
+  }
   if (var < 600 && var != 47 && var != 48) {
     fail(t, static_cast<int>(ClmError::write_system_variable), fmt::format("V{:03d} is a system variable", var));
     return false;

@@ -177,6 +177,9 @@ void Controller::power_up(TimePoint now) {
     a.homer.abort();
     a.homed_out.reset();
   }
+  wheel_ = {};
+  cutoff_length_line_ = -1;
+  start_0000_ = false;
   reset_coupled_state();
   apply_parameters(now);
   compile_logic();
@@ -202,6 +205,7 @@ void Controller::cycle(TimePoint now) {
   update_master2_in();
   update_mode(now);
   update_safety(now);
+  step_wheels();
   step_axis_inputs();
   jog(now);
   step_axis_functions(now);
@@ -283,6 +287,8 @@ void Controller::enter_mode(Mode m, TimePoint now) {
       a.rtm = 0;
       a.fak = micro_one;
     }
+    wheel_ = {};
+    cutoff_length_line_ = -1;  // the program may have changed: the next start is at 0000
     fak5_ = micro_one;
     if (tasks_[2].used && settings_ok_) {
       tasks_[2].active = true;
@@ -310,8 +316,10 @@ void Controller::enter_mode(Mode m, TimePoint now) {
       if (std::abs(clm_position(1)) > window)
         raise(static_cast<int>(ClmError::not_home_position),
               fmt::format("flying cutoff: the carriage is at {:.3f} IU, not at its origin", clm_position(1)));
-      else
+      else {
         start_program(now);
+        tasks_[0].pc = cutoff_start_line();
+      }
     }
   }
 }
@@ -362,12 +370,18 @@ void Controller::update_safety(TimePoint now) {
       t1.stack.clear();
       t1.phase = 0;
       if (mat_owner_ == 1) mat_owner_ = -1;
-      if (settings_.interrupt_vector_aborts_move)
+      if (settings_.interrupt_vector_aborts_move) {
         for (auto& a : axes_)
           if (a.port != nullptr && a.has_target && a.feeding) {
             a.port->stop();
             a.has_target = a.feeding = false;
           }
+        // FOL mode 2 "stops / re-syncs on Interrupt" (§5.7) [decided]: with p = 1 a mode-2 slave
+        // ramps out (the coupling stays, at ratio 0); the next FOL, or Start after a stop, ramps
+        // it back in. With p = 0 it keeps following, as a positioning keeps running.
+        if (options_.fol2_stops_at_interrupt)
+          for (int ax = 1; ax <= 4; ++ax) pause_follow(ax, true);
+      }
     }
   }
   // Start, Immediate Stop, Restart (Automatic only).
@@ -690,6 +704,10 @@ void Controller::update_system_variables() {
     vars_[b + 4] = clamp(a.fb.velocity);
     vars_[b + 10] = a.has_target ? clamp(a.target - clm_position(ax)) : 0;
   }
+  for (int ax = 1; ax <= 2; ++ax)
+    if (settings_.axes[static_cast<std::size_t>(ax - 1)].measuring_wheel() &&
+        axes_[static_cast<std::size_t>(ax - 1)].port)
+      vars_[static_cast<std::size_t>(46 + ax)] = clamp(motor_position(ax));  // V047 / V048
   update_measurements();
   hours_ms_ += settings_.cycle_ms;
   vars_[19] = clamp(hours_ms_ / 3.6e6);

@@ -413,6 +413,7 @@ Controller::Flow Controller::exec_coupled(int t, Task& k, const Instruction& in)
         if (f.coupling.gear().phase() == motion::GearPhase::ramping) return Flow::wait;
         const double dr = ratio->value() - f.coupling.gear().ratio().value();
         f.mode = *m;
+        f.paused = false;  // ramped out (Immediate Stop, B015): this FOL re-synchronises it
         if (f.coupling.gear().change({*ratio, ramp(dr), {}})) {
           fail(t, static_cast<int>(ClmError::invalid_program_command), "FOL: the ratio change was refused");
           return Flow::halt;

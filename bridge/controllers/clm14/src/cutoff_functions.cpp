@@ -42,6 +42,27 @@ bool Controller::carriage_home() const {
   return !ramp_started && std::abs(clm_position(1)) <= window;
 }
 
+bool Controller::command_start_0000() {
+  if (mode_ != Mode::manual) return false;
+  start_0000_ = true;
+  return true;
+}
+
+int Controller::cutoff_start_line() {
+  // §7.12: "task 1 starts immediately on Manual -> Automatic at 'previous length instruction - 1',
+  // or at 0000 per A138 / !CL0 / keys". 0000 also when no length instruction ran since power-up
+  // or Parameter mode, or that line no longer holds one [decided].
+  const auto& as = settings_.axes[0];
+  const bool input = as.start_0000_input && image_.bit(*as.start_0000_input);
+  const bool request = start_0000_ || input || as.always_0000;
+  start_0000_ = false;
+  const int l = cutoff_length_line_;
+  if (request || l < 1 || l >= program_lines) return 0;
+  const Op op = program_[static_cast<std::size_t>(l)].op;
+  if (op != Op::lml && op != Op::lmk && op != Op::lmr) return 0;
+  return l - 1;
+}
+
 void Controller::update_internal_material(std::int64_t encoder, bool have_encoder) {
   const auto& as = settings_.axes[0];
   const bool cutoff = flying_cutoff() && settings_.me1.used();
@@ -148,6 +169,9 @@ void Controller::step_cutoff_inputs() {
   const auto edge = [&](const std::optional<BitAddress>& b) {
     return b && image_.bit(*b) && !previous_inputs_.bit(*b);
   };
+  // A138 input "start at instruction 0000": a rising edge in Manual makes the next entry into
+  // Automatic start at 0000 (its level at that entry does too).
+  if (mode_ == Mode::manual && edge(as.start_0000_input)) start_0000_ = true;
   auto& f = follow_[0];
   auto& g = f.coupling.gear();
   // The manual cut vector (A134 in Manual): the program at A134's start line, ending with RTS

@@ -81,8 +81,10 @@ void Controller::step_cutoff() {
   auto& a = axes_[0];
   auto& f = follow_[0];
   // The first Raster 1 edge since de-sync (EOS); a mark while in sync is not a new part's.
+  // A138 field 2: 0 = the raster's level (the profile's default), 1 = its rising edge [decided order]
   const bool in = image_.bit(sys::raster1);
-  if (in && !cut_.raster_last && cut_.phase != Cutoff::Phase::synchronous && !cut_.raster) cut_.raster = me1_.count;
+  const bool mark = settings_.axes[0].raster_edge ? in && !cut_.raster_last : in;
+  if (mark && cut_.phase != Cutoff::Phase::synchronous && !cut_.raster) cut_.raster = me1_.count;
   cut_.raster_last = in;
   if (cut_.phase == Cutoff::Phase::armed && f.active && f.coupling.gear().phase() == motion::GearPhase::armed &&
       !cut_.inhibited && !cut_.at_once) {
@@ -148,6 +150,7 @@ Controller::Flow Controller::exec_cutoff(int t, Task& k, const Instruction& in) 
   }
   auto ax = integer(in.n[0], t, 1, 1);
   if (!ax) return Flow::halt;
+  if (t == 1 && k.pc > 0) cutoff_length_line_ = k.pc;  // A138: the next entry may start before it
   if (k.pc == 0) return bad(fmt::format("{} must not be at line 0000", mnemonic(in.op)));
   if (k.phase == 1) {
     const auto& g = f.coupling.gear();

@@ -63,6 +63,7 @@ void Controller::set_home(int axis, std::int64_t home_inc) {
   a.base = as.home_offset - raw_at_home;
   a.sac = 0.0;
   a.homed = true;
+  reset_wheel(axis);  // homing runs on the motor encoder: axis and motor position read Ax25
 }
 
 bool Controller::start_homing(int axis, int t) {
@@ -153,6 +154,7 @@ void Controller::step_homing(int axis) {
       a.homed = true;
       a.base = as.home_offset - a.fb.position;
       a.sac = 0.0;
+      reset_wheel(axis);
     }
     return;
   }

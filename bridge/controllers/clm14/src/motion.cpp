@@ -38,12 +38,12 @@ bool moves_axis(Op op) {
 
 double Controller::clm_position(int axis) const {
   const auto& a = axes_[static_cast<std::size_t>(axis - 1)];
-  return a.fb.position + a.base + a.sac;
+  return a.fb.position + a.base + a.sac + wheel_offset(axis);
 }
 
 double Controller::raw_of(int axis, double clm) const {
   const auto& a = axes_[static_cast<std::size_t>(axis - 1)];
-  return clm - a.base - a.sac;
+  return clm - a.base - a.sac - wheel_offset(axis);
 }
 
 double Controller::feed_velocity(int axis, int permille) const {
@@ -119,6 +119,7 @@ bool Controller::command_move(int axis, double target, double velocity, int t) {
   a.con = false;
   a.velocity = velocity;
   a.presignal = false;
+  on_wheel_move(axis);
   if (run_ == RunState::running || tasks_[0].manual_vector) {
     a.held = false;
     a.pending = !a.fb.enabled;  // the drive is still enabling: the feed starts once it is
@@ -392,7 +393,7 @@ Controller::Flow Controller::exec_motion(int t, Task& k, const Instruction& in, 
       const MoveLimits l = limits_for(ax, std::abs(v));
       double d = v * v / (2.0 * l.acceleration);
       if (std::isfinite(l.jerk)) d += std::abs(v) * (l.acceleration / l.jerk) / 2.0;  // the jerk ramp
-      a.target = a.fb.command_position + a.base + a.sac + (v > 0.0 ? d : -d);
+      a.target = a.fb.command_position + a.base + a.sac + wheel_offset(ax) + (v > 0.0 ? d : -d);
       a.has_target = a.feeding = true;
       a.port->move_to(raw_of(ax, a.target), l);
       return Flow::next;

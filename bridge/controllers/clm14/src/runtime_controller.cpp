@@ -123,6 +123,13 @@ std::expected<std::unique_ptr<hc::Controller>, ConfigError> RuntimeController::c
                         "(the drive's homing method)",
                         value));
       options.drive_homing = value == "drive";
+    } else if (key == "wheel_window") {
+      if (value != "iu" && value != "percent")
+        return bad(fmt::format(
+            "wheel_window '{}': expected iu (the Ax16 windows in IU per wheel revolution) or percent (in % of "
+            "the wheel's feed constant C002 / C006)",
+            value));
+      options.wheel_window = value == "iu" ? WheelWindowUnit::iu : WheelWindowUnit::percent;
     } else if (key.size() == 7 && key.starts_with("marker") && key[6] >= '1' && key[6] <= '4') {
       MarkerSource& m = options.markers[static_cast<std::size_t>(key[6] - '1')];
       if (auto b = parse_bit(value); b && b->byte.area == Area::input) {
@@ -140,7 +147,7 @@ std::expected<std::unique_ptr<hc::Controller>, ConfigError> RuntimeController::c
     } else {
       return bad(fmt::format(
           "unknown clm14 controller key '{}' (known: master_encoder, master_encoder2, test_speed_step, homing, "
-          "marker1..marker4)",
+          "marker1..marker4, wheel_window)",
           key));
     }
   }

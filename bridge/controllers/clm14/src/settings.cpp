@@ -103,6 +103,7 @@ std::expected<Settings, ProgramError> make_settings(const ParameterLookup& looku
     a.mode = r.integer(p(0), x00[1]);
     a.master = x00.size() > 2 && !x00[2].empty() ? r.integer(p(0), x00[2]) : 0;
     a.test_mode = x00.size() > 3 && x00[3] == "1";
+    a.wheel_option2 = x00.size() > 4 && x00[4] == "1";
     a.feed_constant = r.number(p(1), r.fields(p(1), 1)[0]);
     a.min_limit = r.number(p(3), r.fields(p(3), 1)[0]);
     a.max_limit = r.number(p(4), r.fields(p(4), 1)[0]);
@@ -119,6 +120,13 @@ std::expected<Settings, ProgramError> make_settings(const ParameterLookup& looku
     const auto x15 = r.fields(p(15), 2);
     a.feed_angle_input = r.io(p(15), x15[0]);
     a.interrupt_input = r.io(p(15), x15[1]);
+    if (!lookup(p(16)).empty()) {
+      const auto x16 = r.fields(p(16), 3);
+      a.wheel_window1 = r.integer(p(16), x16[0]);
+      a.wheel_window2 = r.integer(p(16), x16[1]);
+      a.tolerance2_output = r.io(p(16), x16[2]);
+    }
+    if (!lookup(p(31)).empty()) a.wheel_input = r.io(p(31), r.fields(p(31), 1)[0]);
     const auto x19 = r.fields(p(19), 2);
     a.encoder_pulses = r.integer(p(19), x19[0]);
     a.encoder_revolutions = r.integer(p(19), x19[1]);
@@ -173,6 +181,12 @@ std::expected<Settings, ProgramError> make_settings(const ParameterLookup& looku
         a.max_stroke = r.number(p(37), f[0]);
         a.max_stroke_line = r.integer(p(37), f[1]);
       }
+      if (given(38)) {
+        const auto f = r.fields(p(38), 3);
+        a.start_0000_input = r.io(p(38), f[0]);
+        a.raster_edge = f[1] == "1";
+        a.always_0000 = f[2] == "1";
+      }
       if (given(39)) {
         const auto f = r.fields(p(39), 2);
         a.reverse_opt_input = r.io(p(39), f[0]);
@@ -218,6 +232,15 @@ std::expected<Settings, ProgramError> make_settings(const ParameterLookup& looku
   }
   s.me2.feed_constant = lookup("C006").empty() ? 0.0 : r.number("C006", r.fields("C006", 1)[0]);
   if (r.failed.empty() && s.me2.feed_constant < 0.0) r.failed = "C006: the feed constant must be >= 0";
+  // Measuring wheel (§7.2): axis 1 on master encoder 1, axis 2 on master encoder 2; the encoder
+  // must be in use (its feed constant set).
+  for (int ax = 1; ax <= 2; ++ax) {
+    const AxisSettings& a = s.axes[static_cast<std::size_t>(ax - 1)];
+    const MasterEncoderSettings& me = ax == 1 ? s.me1 : s.me2;
+    if (r.failed.empty() && a.enabled && a.measuring_wheel() && !me.used())
+      r.failed = fmt::format("A{}00: measuring-wheel mode {} needs master encoder {} ({} > 0)", ax, a.mode, ax,
+                             ax == 1 ? "C002" : "C006");
+  }
   if (!r.failed.empty()) return std::unexpected(ProgramError{ClmError::parameter_invalid, -1, r.failed});
   return s;
 }

@@ -41,6 +41,12 @@ enum class Mode : std::uint8_t { parameter, manual, automatic };
 /// Program run state of tasks 1, 2, 4, 5 (manual §7.2).
 enum class RunState : std::uint8_t { idle, running, stopped };
 
+/// The unit of the Ax16 windows "ww" (manual: "units not stated"; docs/clm14.md).
+enum class WheelWindowUnit : std::uint8_t {
+  iu,       ///< IU of wheel-motor difference within one wheel revolution (C002 / C006 IU of wheel travel)
+  percent,  ///< % of the wheel's feed constant (C002 / C006) within one wheel revolution
+};
+
 /// Decisions where the manual lost a detail (docs/clm14.md lists each); defaults as documented.
 struct Options {
   Duration logic_period{std::chrono::milliseconds(4)};   ///< §6: "minimum cycle 4 ms"
@@ -58,6 +64,15 @@ struct Options {
   bool drive_homing = false;
   /// The marker pulse of axes 1..4 (homing options 1 and 2).
   std::array<MarkerSource, 4> markers{};
+  /// Ax16 window unit (measuring-wheel modes 3/4).
+  WheelWindowUnit wheel_window = WheelWindowUnit::iu;
+  /// Measuring-wheel modes 3/4: the motor target takes the wheel-motor difference through a
+  /// first-order lag of this many NC cycles (the wheel loop's gain: stable while the wheel's
+  /// signal lags the motor by a few cycles - its compliance, the drive's own lag). 1 = at once.
+  int wheel_correction_cycles = 16;
+  /// B015 interrupt vector with p = 1 (moves interrupted): FOL mode-2 slaves ramp out, to be
+  /// re-synchronised by the next FOL (or Start after a stop). false: they keep following.
+  bool fol2_stops_at_interrupt = true;
 };
 
 /// LMR (manual §5.7, vector 37): the raster distance (material from the previous mark at the
@@ -142,6 +157,9 @@ class Controller {
   void command_stop();
   /// !CLEAR: acknowledge the error.
   void command_clear();
+  /// !CL0 (Manual): the flying cutoff's next entry into Automatic starts task 1 at 0000 instead
+  /// of before the last length instruction (§7.12, A138). False outside Manual.
+  bool command_start_0000();
   /// !CCLVAR0019: clear the hour counter V019.
   void clear_hour_counter() { hours_ms_ = 0.0; }
   /// !MxON / !MxOFF.
@@ -186,6 +204,12 @@ class Controller {
   /// Master encoder 1: travel in IU (C002 × FAK 5 per C000 × 4 counts) and velocity (V011).
   [[nodiscard]] double master_position() const noexcept;
   [[nodiscard]] double master_velocity() const noexcept;
+  /// The motor encoder's position of axis 1 / 2 in CLM coordinates (IU): V047 / V048 and
+  /// status 09's n in measuring-wheel mode; = position(axis) when the wheel never closed the loop.
+  [[nodiscard]] double motor_position(int axis) const;
+  /// Whether the measuring wheel of axis 1 / 2 closes the loop this cycle (Ax00 mode 3/4,
+  /// Automatic, the Ax31 input).
+  [[nodiscard]] bool wheel_active(int axis) const noexcept;
   /// Master encoder 2: travel in IU (C006 per C004 × 4 counts) and velocity (IU/s, 8 NC cycles).
   [[nodiscard]] double master2_position() const noexcept;
   [[nodiscard]] double master2_velocity() const noexcept;
@@ -336,6 +360,26 @@ class Controller {
       ++seen;
     }
   };
+  /// Measuring-wheel mode of axis 1 (master encoder 1) / axis 2 (master encoder 2), manual §7.2.
+  struct Wheel {
+    bool active = false;      ///< the wheel closes the loop (Automatic, Ax31); else the motor
+    bool have_last = false;   ///< last_wheel / last_motor are valid
+    double last_wheel = 0.0;  ///< wheel travel (IU) of the previous cycle
+    double last_motor = 0.0;  ///< motor position (axis IU) of the previous cycle
+    /// Axis position - motor position: the wheel-motor difference gathered while the wheel was
+    /// active (the axis position is the sum of the wheel's moves then, of the motor's otherwise).
+    double offset = 0.0;
+    bool revolution = false;  ///< Ax16: rev_wheel / rev_motor hold the current revolution's start
+    double rev_wheel = 0.0;
+    double rev_motor = 0.0;
+    bool tolerance2 = false;   ///< Ax16 window 2 exceeded in this or the previous revolution
+    bool exceeded2 = false;    ///< ... in this revolution
+    bool correcting = false;   ///< the running move's motor target takes the difference
+    double move_offset = 0.0;  ///< offset when the move was commanded
+    double move_length = 0.0;  ///< |its distance| (the correction's bound)
+    double commanded = 0.0;    ///< the motor target last sent (axis coordinates)
+    double applied = 0.0;      ///< the offset the motor target carries (follows `offset`)
+  };
   /// FOL / flying-cutoff coupling of one axis (hil::motion::Coupling, gear law).
   struct Follow {
     motion::Coupling coupling{"clm"};
@@ -474,6 +518,16 @@ class Controller {
   void pause_follow(int axis, bool pause);
   void reset_coupled_state();
   [[nodiscard]] bool master_available() const noexcept;
+  // measuring_wheel.cpp: Ax00 modes 3/4, Ax16, Ax31, V047/V048
+  void step_wheels();
+  void step_wheel(int axis);
+  [[nodiscard]] double wheel_offset(int axis) const noexcept;
+  /// A move of `axis` was commanded (its target is set): the wheel correction starts.
+  void on_wheel_move(int axis);
+  /// Homing / Parameter mode: the axis and motor positions are the same again.
+  void reset_wheel(int axis);
+  /// SET V047 / V048 while not homed: the motor position becomes `v`, the axis position stays.
+  bool set_motor_position(int axis, double v);
   // master_encoder2.cpp
   void update_master2_in();
   [[nodiscard]] bool master2_available() const noexcept;
@@ -505,6 +559,9 @@ class Controller {
   [[nodiscard]] std::int64_t cutoff_ramp() const;
   bool arm_cutoff_engage();
   [[nodiscard]] bool flying_cutoff() const noexcept;
+  /// Task 1's start line on Manual -> Automatic (§7.12, A138): 0000 or the line before the last
+  /// length instruction.
+  [[nodiscard]] int cutoff_start_line();
 
   Options options_;
   ParameterLookup parameters_;
@@ -554,8 +611,11 @@ class Controller {
   double material_length_ = 0.0;            ///< status 54, IU
   double product_length_ = 0.0;
   int last_srm_axis_ = 0;
-  bool inhibit_ = false;  ///< Inhibit Operation (Q0.01.5): a move was blocked this cycle
-  MasterIn me2_{};        ///< master encoder 2 (C004-C006)
+  bool inhibit_ = false;          ///< Inhibit Operation (Q0.01.5): a move was blocked this cycle
+  MasterIn me2_{};                ///< master encoder 2 (C004-C006)
+  std::array<Wheel, 2> wheel_{};  ///< measuring wheel of axes 1 and 2
+  int cutoff_length_line_ = -1;   ///< flying cutoff: the line of task 1's last length instruction (A138)
+  bool start_0000_ = false;       ///< A138 input edge / !CL0 in Manual: the next start is at 0000
 };
 
 [[nodiscard]] const char* to_string(Mode m) noexcept;

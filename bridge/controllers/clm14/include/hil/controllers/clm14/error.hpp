@@ -48,6 +48,7 @@ enum class ClmError : std::uint8_t {
   cam_too_short = 0x49,          ///< homing: braked past the cam, or the cam ended before its marker
   no_marker_pulse = 0x4A,        ///< homing: no marker within one revolution
   marker_pulse_position = 0x4B,  ///< homing: cam edge - marker outside 1/16 .. 15/16 revolution
+  encoder_fault = 0x4C,          ///< measuring-wheel mode: the wheel does not follow the motor (Ax16 window 1)
   max_override = 0x4D,
   axis_disabled = 0x4E,
   marker_high = 0x4F,  ///< homing: the marker line stays high

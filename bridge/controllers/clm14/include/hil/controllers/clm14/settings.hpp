@@ -26,6 +26,7 @@ struct AxisSettings {
   int mode = 0;                            ///< Ax00 field 2 (0 normal .. 5 flying cutoff)
   int master = 0;                          ///< Ax00 field 3: 0 none, 1..3 axis, 5 master encoder 1 (profile decision)
   bool test_mode = false;                  ///< Ax00 field 4: flying cutoff test mode (internal material clock)
+  bool wheel_option2 = false;              ///< Ax00 field 5: measuring-wheel option 2 (with mode 3 [decided])
   double feed_constant = 10.0;             ///< Ax01, IU per encoder revolution
   double min_limit = -111111.111;          ///< Ax03, IU
   double max_limit = 100000.0;             ///< Ax04, IU
@@ -39,6 +40,9 @@ struct AxisSettings {
   double jerk_time_s = 0.0;                           ///< Ax10 as entered (rounded up to 2^n cycles when used)
   std::optional<BitAddress> feed_angle_input;         ///< Ax15 field 1
   std::optional<BitAddress> interrupt_input;          ///< Ax15 field 2
+  int wheel_window1 = 0;                              ///< Ax16 ww 1: wheel-motor difference -> 4C/7C (0 = off)
+  int wheel_window2 = 0;                              ///< Ax16 ww 2: -> the "Tolerance 2 exceeded" output (0 = off)
+  std::optional<BitAddress> tolerance2_output;        ///< Ax16 field 3
   int encoder_pulses = 1024;                          ///< Ax19 pulses/rev
   int encoder_revolutions = 1024;                     ///< Ax19 revolutions / ratio
   int encoder_type = 0;                               ///< Ax20 field 1: 0 incremental, 1/2 absolute, 3 controlled
@@ -55,6 +59,7 @@ struct AxisSettings {
   double presignal_distance = 0.0;                    ///< IU
   std::optional<BitAddress> open_feed_roll_input;     ///< Ax30 field 1
   std::optional<BitAddress> open_feed_roll_output;    ///< Ax30 field 2: "open feed roll enabled"
+  std::optional<BitAddress> wheel_input;              ///< Ax31 "measuring wheel active" (none = always, modes 3/4)
   std::optional<BitAddress> velocity_reached_output;  ///< Ax32 left
   std::optional<BitAddress> decelerating_output;      ///< Ax32 right
   int feedforward = 0;                                ///< Ax11 f: 0 off, 1 on, 2..9 averaging of 2..256 values
@@ -74,11 +79,18 @@ struct AxisSettings {
   double reverse_wait_s = 0.0;                      ///< Ax40 field 1: wait at the origin, s
   int reverse_min_accel_permille = 0;               ///< Ax40 field 2: minimum reverse acceleration, ‰ of Ax08
   int reverse_velocity_window_permille = 0;         ///< Ax40 field 3: material speed rise, ‰ of Ax06
+  std::optional<BitAddress> start_0000_input;       ///< Ax38 field 1: a rising edge restarts task 1 at 0000
+  bool raster_edge = false;                         ///< Ax38 field 2: raster detection 0 level / 1 edge
+  bool always_0000 = false;                         ///< Ax38 field 3: Manual -> Automatic always begins at 0000
   double tool_width = 0.0;                          ///< Ax41, IU: added to the LML length
   double crop_length = 0.0;                         ///< Ax42 field 1, IU
   std::optional<BitAddress> crop_input;             ///< Ax42 field 2: rising edge at home = crop cut
 
   [[nodiscard]] bool absolute_encoder() const noexcept { return encoder_type == 1 || encoder_type == 2; }
+  /// Ax00 mode 3 or 4: the measuring wheel (axis 1: master encoder 1, axis 2: master encoder 2).
+  [[nodiscard]] bool measuring_wheel() const noexcept { return mode == 3 || mode == 4; }
+  /// Option 2 (motor loop + correction): mode 4, or mode 3 with the option-2 digit [decided].
+  [[nodiscard]] bool wheel_correction() const noexcept { return mode == 4 || (mode == 3 && wheel_option2); }
 };
 
 /// Master encoder 1 (C000-C002, §8.4). C002 = 0: not used.
