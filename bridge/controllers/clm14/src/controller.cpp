@@ -200,6 +200,7 @@ void Controller::cycle(TimePoint now) {
   update_axes_in(now);
   update_master_in();
   update_master2_in();
+  update_analog_in();
   update_mode(now);
   update_safety(now);
   step_axis_inputs();
