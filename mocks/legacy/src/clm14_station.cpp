@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <charconv>
+#include <cstdlib>
 #include <nlohmann/json.hpp>
 
 #include "hil/serial/clm14/serial_error.hpp"
@@ -125,8 +126,19 @@ void Clm14Station::tick(TimePoint now) {
   }
   if (next_cycle_ <= now) next_cycle_ = now + clm_.cycle_time();  // too far behind: skip, do not replay
   // A running program changes counters and variables all the time: persist about once a second.
-  if (clm_.run_state() == cc::RunState::running && now - last_save_ >= std::chrono::seconds(1)) {
+  // The console's hardware settings are saved at once; the length counters, which the material
+  // moves in Manual too, like a running program.
+  const std::array<int, 5> hw{clm_.analog_input(1), clm_.analog_input(2), clm_.analog_input(3), clm_.analog_input(4),
+                              clm_.test_speed_step()};
+  if (hw != saved_hardware_) {
+    saved_hardware_ = hw;
+    dirty_ = true;
+  }
+  const std::array<double, 2> lengths{clm_.length_counter(1), clm_.length_counter(2)};
+  if ((clm_.run_state() == cc::RunState::running || lengths != saved_lengths_) &&
+      now - last_save_ >= std::chrono::seconds(1)) {
     last_save_ = now;
+    saved_lengths_ = lengths;
     dirty_ = true;
   }
 }
@@ -428,6 +440,9 @@ nlohmann::json Clm14Station::to_json() const {
   j["station"] = station_;
   j["parameters"] = parameters_;
   j["controller"] = clm_.to_json();
+  j["hardware"] = {{"analog_mv", std::array<int, 4>{clm_.analog_input(1), clm_.analog_input(2), clm_.analog_input(3),
+                                                    clm_.analog_input(4)}},
+                   {"test_speed_step", clm_.test_speed_step()}};
   return j;
 }
 
@@ -455,6 +470,23 @@ std::expected<void, std::string> Clm14Station::from_json(const nlohmann::json& j
       if (!all_digits(k) || to_int(k) >= program_lines)
         return std::unexpected(fmt::format("program: bad line number '{}'", k));
     if (auto r = clm_.from_json(c); !r) return std::unexpected(r.error());
+    if (j.contains("hardware")) {
+      const auto& h = j.at("hardware");
+      const auto mv = h.value("analog_mv", std::array<int, 4>{});
+      for (int i = 0; i < 4; ++i) {
+        if (std::abs(mv[static_cast<std::size_t>(i)]) > 10000)
+          return std::unexpected(
+              fmt::format("hardware: analog input AE{} {} mV outside ±10000", i + 1, mv[static_cast<std::size_t>(i)]));
+        clm_.set_analog_input(i + 1, mv[static_cast<std::size_t>(i)]);
+      }
+      const int step = h.value("test_speed_step", 0);
+      if (step < 0 || step >= cc::Controller::test_speed_steps)
+        return std::unexpected(fmt::format("hardware: test speed step {} outside 0..31", step));
+      clm_.set_test_speed_step(step);
+    }
+    saved_hardware_ = {clm_.analog_input(1), clm_.analog_input(2), clm_.analog_input(3), clm_.analog_input(4),
+                       clm_.test_speed_step()};
+    saved_lengths_ = {clm_.length_counter(1), clm_.length_counter(2)};
   } catch (const nlohmann::json::exception& e) {
     return std::unexpected(fmt::format("state file malformed: {}", e.what()));
   }

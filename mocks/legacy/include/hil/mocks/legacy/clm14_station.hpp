@@ -88,6 +88,9 @@ class Clm14Station {
   [[nodiscard]] std::string program_line(int n) const;
   [[nodiscard]] std::string parameter(std::string_view number) const;
 
+  /// The station's state file: parameters, the controller's battery-buffered state
+  /// (Controller::to_json, with the status 54 length counters) and the unit's hardware settings
+  /// the console made ("hardware": analog inputs AE1..AE4 in mV, the test mode's speed step).
   [[nodiscard]] nlohmann::json to_json() const;
   /// Restore from to_json(); unknown keys are ignored, bad entries reported.
   [[nodiscard]] std::expected<void, std::string> from_json(const nlohmann::json& j);
@@ -127,6 +130,10 @@ class Clm14Station {
   bool started_ = false;
   std::vector<std::string> parameter_order_;
   bool dirty_ = false;
+  /// The unit's hardware settings last saved (analog inputs AE1..AE4 mV, test speed step) and the
+  /// length counters: a change is persisted (hardware at once, the counters about once a second).
+  std::array<int, 5> saved_hardware_{};
+  std::array<double, 2> saved_lengths_{};
 };
 
 }  // namespace hil::mocks::legacy
