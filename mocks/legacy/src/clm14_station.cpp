@@ -81,7 +81,7 @@ Clm14Station::Clm14Station(int station, std::shared_ptr<const serial::clm14::Dev
     attach_axes();
     auto* before = wheel_.port();
     wheel_.rebuild(s);
-    if (wheel_.port() != before) clm_.attach_master_encoder(wheel_.port());
+    if (wheel_.port() != before && external_me_[0] == nullptr) clm_.attach_master_encoder(wheel_.port());
   });
   // The wiring of a unit on the bench: E-Stop and Immediate Stop closed, axis enables on.
   auto& im = clm_.image();
@@ -93,6 +93,16 @@ Clm14Station::Clm14Station(int station, std::shared_ptr<const serial::clm14::Dev
 void Clm14Station::attach_axes() {
   for (int ax = 1; ax <= 4; ++ax)
     clm_.attach_axis(ax, external_axes_ ? external_ports_[static_cast<std::size_t>(ax - 1)] : sim_.port(ax));
+}
+
+void Clm14Station::use_master_encoder(int n, cc::MasterEncoderPort* port) {
+  if (n == 1) {
+    external_me_[0] = port;
+    clm_.attach_master_encoder(port != nullptr ? port : wheel_.port());
+  } else if (n == 2) {
+    external_me_[1] = port;
+    clm_.attach_master_encoder2(port);
+  }
 }
 
 void Clm14Station::use_axes(std::array<cc::AxisPort*, 4> ports, std::function<void(const CycleTime&)> update) {
