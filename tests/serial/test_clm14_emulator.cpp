@@ -262,6 +262,9 @@ TEST(Clm14Emulator, LengthCountersAnalogInputsAndTestSpeedSurviveRestart) {
   bad["hardware"]["analog_mv"][1] = 12000;
   EXPECT_FALSE(Clm14Station(0, data()).from_json(bad));
   bad = saved;
+  bad["hardware"]["analog_mv"][0] = 1.5;
+  EXPECT_FALSE(Clm14Station(0, data()).from_json(bad)) << "whole mV only";
+  bad = saved;
   bad["hardware"]["test_speed_step"] = 32;
   EXPECT_FALSE(Clm14Station(0, data()).from_json(bad));
   bad = saved;

@@ -7,6 +7,7 @@
 #include <charconv>
 #include <cstdlib>
 #include <nlohmann/json.hpp>
+#include <optional>
 
 #include "hil/serial/clm14/serial_error.hpp"
 
@@ -482,17 +483,32 @@ std::expected<void, std::string> Clm14Station::from_json(const nlohmann::json& j
     if (auto r = clm_.from_json(c); !r) return std::unexpected(r.error());
     if (j.contains("hardware")) {
       const auto& h = j.at("hardware");
-      const auto mv = h.value("analog_mv", std::array<int, 4>{});
-      for (int i = 0; i < 4; ++i) {
-        if (std::abs(mv[static_cast<std::size_t>(i)]) > 10000)
-          return std::unexpected(
-              fmt::format("hardware: analog input AE{} {} mV outside ±10000", i + 1, mv[static_cast<std::size_t>(i)]));
-        clm_.set_analog_input(i + 1, mv[static_cast<std::size_t>(i)]);
+      // Whole numbers only (a float outside int would not convert): bad values are errors.
+      const auto whole = [](const nlohmann::json& v, std::int64_t lo, std::int64_t hi) -> std::optional<int> {
+        if (!v.is_number_integer()) return std::nullopt;
+        const auto x = v.get<std::int64_t>();
+        if (x < lo || x > hi) return std::nullopt;
+        return static_cast<int>(x);
+      };
+      if (h.contains("analog_mv")) {
+        const auto& mv = h.at("analog_mv");
+        if (!mv.is_array() || mv.size() != 4)
+          return std::unexpected("hardware: analog_mv needs 4 values (AE1..AE4, mV)");
+        for (std::size_t i = 0; i < 4; ++i) {
+          const auto v = whole(mv[i], -10000, 10000);
+          if (!v)
+            return std::unexpected(
+                fmt::format("hardware: analog input AE{} {} outside ±10000 mV", i + 1, mv[i].dump()));
+          clm_.set_analog_input(static_cast<int>(i) + 1, *v);
+        }
       }
-      const int step = h.value("test_speed_step", 0);
-      if (step < 0 || step >= cc::Controller::test_speed_steps)
-        return std::unexpected(fmt::format("hardware: test speed step {} outside 0..31", step));
-      clm_.set_test_speed_step(step);
+      if (h.contains("test_speed_step")) {
+        const auto step = whole(h.at("test_speed_step"), 0, cc::Controller::test_speed_steps - 1);
+        if (!step)
+          return std::unexpected(
+              fmt::format("hardware: test speed step {} outside 0..31", h.at("test_speed_step").dump()));
+        clm_.set_test_speed_step(*step);
+      }
     }
     saved_hardware_ = {clm_.analog_input(1), clm_.analog_input(2), clm_.analog_input(3), clm_.analog_input(4),
                        clm_.test_speed_step()};
