@@ -73,9 +73,72 @@ TEST(ClmOverrideInputs, VeoHasPriorityAndHomingIsNotOverridden) {
   EXPECT_NEAR(command_velocity(h), 10.0, 1e-6) << "V1 = 100 ‰ of Vmax without override";
 }
 
-TEST(ClmOverrideInputs, AnalogSourcesAreAParameterError) {
+TEST(ClmAnalogAverage, MovingAverageOverTwoToTheCodePlusThreeSamples) {
+  AnalogAverage f;
+  f.reset(0, 0);
+  EXPECT_EQ(f.samples(), 8U);
+  for (int k = 1; k <= 8; ++k) {
+    f.push(5000);
+    EXPECT_EQ(f.millivolts(), 5000.0 * k / 8) << k;  // exact: N is a power of two
+  }
+  f.push(5000);
+  EXPECT_EQ(f.millivolts(), 5000.0);
+  f.reset(1, -2000);  // a new code starts from a steady input
+  EXPECT_EQ(f.samples(), 16U);
+  EXPECT_EQ(f.millivolts(), -2000.0);
+  f.reset(8, 0);
+  EXPECT_EQ(f.samples(), 2048U);
+  f.reset(12, 0);
+  EXPECT_EQ(f.code(), 9);
+  EXPECT_EQ(f.samples(), 4096U);
+  EXPECT_EQ(analog_override(5000.0), 0.5);
+  EXPECT_EQ(analog_override(12000.0), 1.0);
+  EXPECT_EQ(analog_override(-3000.0), 0.0) << "a negative voltage is 0 % [decided]";
+}
+
+TEST(ClmOverrideInputs, AnalogSourceScalesByVoltageOverTenVolts) {
+  // §5.6: F = 0 … 1 for 0 … 10 V. Axis 1 on AE1 at 5 V: 50 %; on AE3 at 2.5 V: 25 %.
+  Rig r({{"B017", "0 1 0 0 0 0"}});
+  r.clm.set_analog_input(1, 5000);
+  r.clm.set_analog_input(3, 2500);
+  EXPECT_NEAR(cruise(r), 99.9 * 0.5, 1e-6);
+  EXPECT_EQ(r.clm.variable(7), to_micro(0.5)) << "V007 normalised to ±1";
+  EXPECT_EQ(r.clm.variable(9), to_micro(0.25));
+  EXPECT_EQ(r.clm.variable(8), 0);
+  Rig q({{"B017", "0 3 0 0 0 0"}});
+  q.clm.set_analog_input(3, 2500);
+  EXPECT_NEAR(cruise(q), 99.9 * 0.25, 1e-6);
+}
+
+TEST(ClmOverrideInputs, AnalogAveragingFollowsAStepOverNCycles) {
+  // B017 averaging 1 = 16 samples, one per NC cycle (2 ms): V007 after a 0 -> 10 V step rises by
+  // 1/16 per cycle and the feed's override with it.
+  Rig r({{"B017", "1 1 0 0 0 0"}});
+  r.clm.set_analog_input(1, 0);
+  r.program({{0, "POI 1 +000500.000 999"}, {1, "JMP 0001"}});
+  r.start_auto();
+  r.run_for(200ms);
+  EXPECT_EQ(r.clm.variable(7), 0);
+  EXPECT_NEAR(command_velocity(r), 0.0, 1e-9) << "0 V: the feed waits";
+  EXPECT_NEAR(r.pos(), 0.0, 1e-9);
+  r.clm.set_analog_input(1, 10000);
+  for (int k = 1; k <= 16; ++k) {
+    r.cycle();
+    EXPECT_EQ(r.clm.variable(7), to_micro(k / 16.0)) << k;
+    EXPECT_EQ(r.clm.analog_average(1), 10000.0 * k / 16) << k;
+  }
+  r.run_for(1500ms);
+  EXPECT_NEAR(command_velocity(r), 99.9, 1e-6);
+  r.clm.set_analog_input(1, -5000);  // negative: 0 %, the feed stops with its ramp
+  r.run_for(1s);
+  EXPECT_NEAR(command_velocity(r), 0.0, 1e-9);
+  EXPECT_EQ(r.clm.variable(7), to_micro(-0.5));
+  EXPECT_EQ(r.clm.error(), 0);
+}
+
+TEST(ClmOverrideInputs, AveragingCodeOutOfRangeIsAParameterError) {
   auto params = base_parameters();
-  params["B017"] = "0 1 0 0 0 0";
+  params["B017"] = "0 7 0 0 0 0";
   auto data = serial::clm14::load_device_data();
   ASSERT_TRUE(data.has_value());
   auto s = make_settings([&](std::string_view n) {
@@ -85,6 +148,11 @@ TEST(ClmOverrideInputs, AnalogSourcesAreAParameterError) {
   ASSERT_FALSE(s.has_value());
   EXPECT_EQ(s.error().error, ClmError::parameter_invalid);
   EXPECT_EQ(s.error().message.substr(0, 4), "B017") << s.error().message;
+  params["B017"] = "0 4 4 4 4 0";  // the analog sources 1-4 are valid
+  EXPECT_TRUE(make_settings([&](std::string_view n) {
+                const auto it = params.find(std::string(n));
+                return it != params.end() ? it->second : (*data)->parameter_default(n);
+              }).has_value());
 }
 
 TEST(ClmFeedAngle, NoFeedStartsWithoutItAndLosingItInAFeedIs41) {

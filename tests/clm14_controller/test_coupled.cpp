@@ -438,6 +438,63 @@ TEST(ClmFlyingCutoff, CarriageAwayFromItsOriginIsError36) {
   EXPECT_EQ(r.clm.error(), 0x36);
 }
 
+TEST(ClmFlyingCutoff, PassiveHomingOption5EntersAutomaticOnTheSwitch) {
+  // §7.9 option 5 (Ax24 type 4, home switch I1.00.1): the carriage, jogged away from 0 and not
+  // homed, stands on its switch: Manual -> Automatic is allowed (no 36), and the carriage is homed
+  // (Ax25 = +2) where, synchronised with the material, it leaves the switch.
+  Rig r({CUTOFF_PARAMETERS, {"A123", "00.00.0 I1.00.1"}, {"A124", "M2.01.0 +100 4"}, {"A125", "+00002.000"}});
+  auto& material = r.add_master_encoder();
+  const auto raw = [&] { return r.motion_axes[0]->status().position; };  // machine position, IU
+  r.program({{0, "NOP"}, {1, "LML 1 000050.000"}, {2, "WAI 00.200"}, {3, "EOS"}, {4, "JMP 0001"}});
+  r.run_for(20ms);
+  r.set(sys::jog_forward[0], true);
+  r.run_for(200ms);
+  r.set(sys::jog_forward[0], false);
+  r.run_for(300ms);
+  const double parked = raw();
+  ASSERT_GT(parked, 0.5) << "away from the origin";
+  r.set(bit("I1.00.1"), true);  // on the home switch
+  r.enter_auto();
+  ASSERT_EQ(r.clm.error(), 0) << r.clm.error_message();
+  EXPECT_EQ(r.clm.run_state(), RunState::running);
+  EXPECT_FALSE(r.clm.homed(1));
+  ASSERT_FALSE(material.move_velocity(40.0, material_limits(40.0)));
+  // The switch ends 1 IU ahead of where the carriage stands: it drops when the carriage passes.
+  const double switch_end = parked + 1.0;
+  while (!r.clm.homed(1) && r.now < TimePoint{} + 10s) {
+    r.set(bit("I1.00.1"), raw() < switch_end);
+    r.cycle();
+    ASSERT_EQ(r.clm.error(), 0) << r.clm.error_message();
+  }
+  ASSERT_TRUE(r.clm.homed(1));
+  EXPECT_TRUE(r.clm.coupled(1)) << "homed by the synchronous carriage";
+  EXPECT_TRUE(r.get(bit("M2.01.0"))) << "the Ax24 homed output";
+  // After EOS the carriage returns to its origin (CLM position 0) and waits there for the next
+  // part: Ax25 (+2) behind the position sampled in the cycle that saw the switch drop (at 40 IU/s
+  // the carriage moves 0.08 IU per NC cycle).
+  ASSERT_TRUE(r.run_until([&] { return !r.clm.coupled(1); }, 10s));
+  ASSERT_TRUE(r.run_until([&] { return std::abs(r.clm.position(1)) < 0.011; }, 2s));
+  r.run_for(20ms);
+  ASSERT_EQ(r.clm.error(), 0) << r.clm.error_message();
+  EXPECT_NEAR(r.clm.position(1), 0.0, 0.011);
+  const double home_raw = raw() - r.clm.position(1) + 2.0;
+  EXPECT_GE(home_raw, switch_end - 0.011);
+  EXPECT_LT(home_raw, switch_end + 0.08 + 0.011);
+}
+
+TEST(ClmFlyingCutoff, PassiveHomingOffTheSwitchIsStillError36) {
+  Rig r({CUTOFF_PARAMETERS, {"A123", "00.00.0 I1.00.1"}, {"A124", "M2.01.0 +100 4"}});
+  r.add_master_encoder();
+  r.program({{0, "NOP"}, {1, "LML 1 000020.000"}, {2, "EOS"}});
+  r.run_for(20ms);
+  r.set(sys::jog_forward[0], true);
+  r.run_for(200ms);
+  r.set(sys::jog_forward[0], false);
+  r.run_for(300ms);
+  r.enter_auto();
+  EXPECT_EQ(r.clm.error(), 0x36) << "not homed, off the switch, away from 0";
+}
+
 TEST(ClmFlyingCutoff, ForbiddenCommandsAndOtherTasks) {
   for (const std::string line :
        {"POA 1 +000010.000 999", "HOM 1", "FOL 1 1 +1.000000", "JST 0001", "SRP 1 1 0 V600 M2.02"}) {

@@ -213,3 +213,61 @@ TEST(Clm14Emulator, StateSurvivesRestart) {
   EXPECT_FALSE(restarted.load_state("{not json"));
   EXPECT_FALSE(restarted.load_state(R"({"device":"clm14","stations":[{"program":{"9999":"NOP"}}]})"));
 }
+
+// The emulator's restart keeps, besides program, variables and counters, the flying cutoff's
+// length counters (status 54), the analog inputs AE1..AE4 (status 49/45, the console's
+// potentiometers) and the test mode's speed step (the CTA's keys).
+TEST(Clm14Emulator, LengthCountersAnalogInputsAndTestSpeedSurviveRestart) {
+  using namespace std::chrono_literals;
+  Clm14Station s(0, data());
+  s.set_mode(ClmMode::parameter);
+  EXPECT_EQ(ask(s, '#', "K A100 1 5 0 0 0"), "Y\r\n");   // axis 1 a flying cutoff
+  EXPECT_EQ(ask(s, '#', "K C000 01250 0000"), "Y\r\n");  // measuring wheel: 1250 pulses per 20 IU
+  EXPECT_EQ(ask(s, '#', "K C002 0020.00000"), "Y\r\n");
+  s.set_mode(ClmMode::manual);
+  hil::TimePoint t{};
+  s.tick(t);
+  ASSERT_EQ(s.fault(), 0) << s.controller().error_message();
+  ASSERT_TRUE(s.set_material_velocity(40.0));
+  s.tick(t += 500ms);
+  ASSERT_TRUE(s.set_material_velocity(0.0));
+  s.tick(t += 1s);
+  const double material = s.controller().length_counter(1);
+  EXPECT_GT(material, 15.0);  // 40 IU/s for about 0.5 s, ramped
+  EXPECT_EQ(s.controller().length_counter(2), 0.0) << "product: Automatic only";
+  s.controller().set_analog_input(1, 5000);
+  s.controller().set_analog_input(3, -2500);
+  s.controller().set_test_speed_step(7);
+  s.tick(t += 2s);
+  EXPECT_TRUE(s.take_dirty()) << "the hardware settings and the counters are persisted";
+  const std::string status54 = ask(s, '?', "X 54 ");
+  const std::string status49 = ask(s, '?', "X 49 ");
+  EXPECT_NE(status49.find("+05000 +00000"), std::string::npos) << status49;
+  const auto saved = s.to_json();
+
+  Clm14Station restarted(0, data());
+  ASSERT_TRUE(restarted.from_json(saved));
+  EXPECT_EQ(restarted.controller().length_counter(1), material);
+  EXPECT_EQ(restarted.controller().analog_input(1), 5000);
+  EXPECT_EQ(restarted.controller().analog_input(3), -2500);
+  EXPECT_EQ(restarted.controller().test_speed_step(), 7);
+  restarted.tick(t);
+  EXPECT_EQ(ask(restarted, '?', "X 54 "), status54);
+  EXPECT_EQ(ask(restarted, '?', "X 49 "), status49);
+  EXPECT_EQ(ask(restarted, '?', "X 45 "), make_telegram('X', ' ', "45 -02500 +00000 "));
+  EXPECT_EQ(hil::controllers::clm14::to_double(restarted.controller().variable(9)), -0.25)
+      << "V009 from the restored AE3";
+
+  auto bad = saved;
+  bad["hardware"]["analog_mv"][1] = 12000;
+  EXPECT_FALSE(Clm14Station(0, data()).from_json(bad));
+  bad = saved;
+  bad["hardware"]["analog_mv"][0] = 1.5;
+  EXPECT_FALSE(Clm14Station(0, data()).from_json(bad)) << "whole mV only";
+  bad = saved;
+  bad["hardware"]["test_speed_step"] = 32;
+  EXPECT_FALSE(Clm14Station(0, data()).from_json(bad));
+  bad = saved;
+  bad["controller"]["length_counters"] = "x";
+  EXPECT_FALSE(Clm14Station(0, data()).from_json(bad));
+}

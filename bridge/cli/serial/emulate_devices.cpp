@@ -25,6 +25,7 @@
 #include "hil/core/clock.hpp"
 #include "hil/core/text_file.hpp"
 #include "hil/mocks/legacy/clm14_line.hpp"
+#include "hil/mocks/legacy/clm14_retrofit.hpp"
 #include "hil/mocks/legacy/elg_run_endpoint.hpp"
 #include "hil/mocks/legacy/elg_tape_endpoint.hpp"
 #include "hil/mocks/legacy/s5_block_endpoint.hpp"
@@ -44,22 +45,29 @@ void register_wf725_emulator(Context& ctx);  // emulate_wf725.cpp
 namespace {
 
 /// Retrofit mode: the CLM's axes 1..4 are the axes of a machine file, each on its transport
-/// (CANopen, Modbus, step/dir, sim), driven once per NC cycle.
+/// (CANopen, Modbus, step/dir, sim), driven once per NC cycle; axes named ME1 / ME2 are master
+/// encoders 1 / 2 (lg::Clm14Retrofit).
 struct Retrofit : MachineFile {
-  std::vector<std::unique_ptr<hil::controllers::clm14::MotionAxisPort>> ports;
+  std::optional<lg::Clm14Retrofit> ports;
 };
 
 std::expected<std::unique_ptr<Retrofit>, std::string> make_retrofit(const std::string& file,
                                                                     const TransportRegistry& registry) {
   auto loaded = load_machine<Retrofit>(file, registry, [&](const hil::runtime::Scenario& sc) {
-    return sc.axes.empty() || sc.axes.size() > 4
-               ? fmt::format("{}: machine.axes: give 1 to 4 axes (CLM axes 1..4, in IU)", file)
-               : std::string();
+    std::vector<std::string> names;
+    for (const auto& a : sc.axes) names.push_back(a.name);
+    auto roles = lg::clm14_machine_roles(names, file);
+    return roles ? std::string() : roles.error();
   });
   if (!loaded) return std::unexpected(loaded.error());
   auto r = std::move(*loaded);
-  for (auto& a : r->machine->axes())
-    r->ports.push_back(std::make_unique<hil::controllers::clm14::MotionAxisPort>(*a.axis));
+  std::vector<std::string> names;
+  std::vector<hil::motion::Axis*> axes;
+  for (auto& a : r->machine->axes()) {
+    names.push_back(a.spec->name);
+    axes.push_back(a.axis.get());
+  }
+  r->ports.emplace(axes, *lg::clm14_machine_roles(names, file));
   return r;
 }
 
@@ -169,7 +177,8 @@ void register_emulators(Context& ctx) {
       ->capture_default_str();
   clm->add_option("--machine", co->machine,
                   "Retrofit mode: a machine file (scenario with machine.axes, units = the CLM's IU) whose axes 1..4 "
-                  "are the CLM's axes on real-transport drives (canopen, modbus, stepdir, sim)")
+                  "are the CLM's axes on real-transport drives (canopen, modbus, stepdir, sim); axes named ME1 / ME2 "
+                  "are master encoders 1 / 2 (their actual increments are the encoder counts)")
       ->check(CLI::ExistingFile);
   clm->footer(
       "Console commands (stdin): 'mode parameter|manual|auto' changes the mode inputs of every station, "
@@ -208,14 +217,12 @@ void register_emulators(Context& ctx) {
         return;
       }
       retrofit = std::move(*r);
-      co->axes = std::max(co->axes, static_cast<int>(retrofit->ports.size()));
+      co->axes = std::max(co->axes, static_cast<int>(retrofit->ports->axis_count()));
     }
     lg::Clm14Line line(*data, co->stations, co->axes);
     if (retrofit) {
-      std::array<hil::controllers::clm14::AxisPort*, 4> ports{};
-      for (std::size_t i = 0; i < retrofit->ports.size(); ++i) ports[i] = retrofit->ports[i].get();
       auto* rf = retrofit.get();
-      line.station(0).use_axes(ports, [rf](const CycleTime& c) {
+      rf->ports->attach(line.station(0), [rf](const CycleTime& c) {
         rf->io.poll();
         rf->machine->cycle(c);
       });
@@ -268,7 +275,8 @@ void register_emulators(Context& ctx) {
         for (std::size_t i = 0; i < l.size(); ++i) {
           auto& st = l.station(i);
           if (what == "material" && !st.set_material_velocity(a))
-            return "error: master encoder 1 is not used (C002 = 0)";
+            return st.external_master_encoder() ? "error: master encoder 1 is the machine axis ME1 (--machine)"
+                                                : "error: master encoder 1 is not used (C002 = 0)";
           if (two) st.controller().set_analog_input(static_cast<int>(a), static_cast<int>(std::lround(b)));
           if (what == "test-speed") st.controller().set_test_speed_step(static_cast<int>(a));
         }

@@ -228,6 +228,7 @@ std::optional<ConfigError> Machine::attach_io(const Scenario& scenario, const Cl
     io.attach(*src);
     stimuli_.push_back(std::move(src));
   }
+  if (auto e = attach_analog(scenario)) return e;
   for (const IoExpectation& e : scenario.io_expectations) {
     auto bit = resolve(e.signal, e.source);
     if (!bit) return bit.error();
@@ -237,6 +238,39 @@ std::optional<ConfigError> Machine::attach_io(const Scenario& scenario, const Cl
     if (e.kind != ControllerExpectation::Kind::value) continue;
     if (auto h = controller_->resolve_value(e.name); !h)
       return ConfigError{scenario.file, e.source.line, 0, e.source.path + ".controller", h.error()};
+  }
+  return std::nullopt;
+}
+
+std::optional<ConfigError> Machine::attach_analog(const Scenario& scenario) {
+  // One schedule per input, its entries in file order (strictly increasing `at`).
+  std::vector<std::pair<std::string, std::vector<const AnalogStimulus*>>> inputs;
+  for (const AnalogStimulus& a : scenario.analog) {
+    auto it = std::find_if(inputs.begin(), inputs.end(), [&](const auto& p) { return p.first == a.input; });
+    if (it == inputs.end()) it = inputs.insert(inputs.end(), {a.input, {}});
+    it->second.push_back(&a);
+  }
+  const Duration cycle = controller_->cycle_period();
+  for (const auto& [name, entries] : inputs) {
+    const AnalogStimulus& first = *entries.front();
+    auto spec = controller_->resolve_analog(name);
+    if (!spec) return ConfigError{scenario.file, first.source.line, 0, first.source.path + ".analog", spec.error()};
+    std::vector<controllers::AnalogStep> steps;
+    for (const AnalogStimulus* a : entries) {
+      if (a->value < spec->min || a->value > spec->max)
+        return ConfigError{scenario.file, a->source.line, 0, a->source.path + ".value",
+                           fmt::format("{} {} is outside the input {}'s range {} .. {} {}", a->value, spec->unit, name,
+                                       spec->min, spec->max, spec->unit)};
+      if (!steps.empty() && a->at <= steps.back().at)
+        return ConfigError{scenario.file, a->source.line, 0, a->source.path + ".at",
+                           fmt::format("the entries of analog input {} must come in increasing time", name)};
+      steps.push_back({a->at, a->value, a->ramp});
+    }
+    auto src = std::make_unique<controllers::AnalogSchedule>(*controller_, spec->handle, std::move(steps));
+    // The controller samples the last value at its next cycle: run until then.
+    last_stimulus_ = std::max(last_stimulus_, src->last_change() + cycle);
+    controller_->io().attach(*src);
+    stimuli_.push_back(std::move(src));
   }
   return std::nullopt;
 }

@@ -11,6 +11,7 @@
 
 #include <fmt/format.h>
 
+#include "analog_stimulus_loader.hpp"
 #include "controller_expectation_loader.hpp"
 #include "coupling_loader.hpp"
 #include "hil/config/yaml_field.hpp"
@@ -80,7 +81,12 @@ class Loader {
 
     if (auto io = top.child("io"); io.present()) {
       if (!s.controller) io.fail("'io:' drives a controller's inputs: add a 'controller:' block");
-      for (const Field& f : io.items()) s.io.push_back(load_stimulus(f));
+      for (const Field& f : io.items()) {
+        if (f.node().IsMap() && f.child("analog").present())
+          s.analog.push_back(detail::load_analog_stimulus(f));
+        else
+          s.io.push_back(load_stimulus(f));
+      }
     }
     if (auto links = top.child("io_links"); links.present()) {
       if (!s.controller) links.fail("'io_links:' wire real I/O to a controller's image: add a 'controller:' block");
@@ -416,7 +422,7 @@ class Loader {
       if (!kind.empty()) f.child(k).fail(fmt::format("one stimulus per entry; got '{}' and '{}'", kind, k));
       kind = k;
     }
-    if (kind.empty()) f.fail("an io entry needs one of: set, pulse, cam, mark");
+    if (kind.empty()) f.fail("an io entry needs one of: set, pulse, cam, mark, analog");
     st.signal = signal_name(f.child(kind));
     auto allow = [&](std::initializer_list<std::string_view> allowed) {
       for (const auto& k : keys) {

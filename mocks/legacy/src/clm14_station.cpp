@@ -5,7 +5,9 @@
 
 #include <algorithm>
 #include <charconv>
+#include <cstdlib>
 #include <nlohmann/json.hpp>
+#include <optional>
 
 #include "hil/serial/clm14/serial_error.hpp"
 
@@ -80,7 +82,7 @@ Clm14Station::Clm14Station(int station, std::shared_ptr<const serial::clm14::Dev
     attach_axes();
     auto* before = wheel_.port();
     wheel_.rebuild(s);
-    if (wheel_.port() != before) clm_.attach_master_encoder(wheel_.port());
+    if (wheel_.port() != before && external_me_[0] == nullptr) clm_.attach_master_encoder(wheel_.port());
   });
   // The wiring of a unit on the bench: E-Stop and Immediate Stop closed, axis enables on.
   auto& im = clm_.image();
@@ -92,6 +94,16 @@ Clm14Station::Clm14Station(int station, std::shared_ptr<const serial::clm14::Dev
 void Clm14Station::attach_axes() {
   for (int ax = 1; ax <= 4; ++ax)
     clm_.attach_axis(ax, external_axes_ ? external_ports_[static_cast<std::size_t>(ax - 1)] : sim_.port(ax));
+}
+
+void Clm14Station::use_master_encoder(int n, cc::MasterEncoderPort* port) {
+  if (n == 1) {
+    external_me_[0] = port;
+    clm_.attach_master_encoder(port != nullptr ? port : wheel_.port());
+  } else if (n == 2) {
+    external_me_[1] = port;
+    clm_.attach_master_encoder2(port);
+  }
 }
 
 void Clm14Station::use_axes(std::array<cc::AxisPort*, 4> ports, std::function<void(const CycleTime&)> update) {
@@ -125,8 +137,19 @@ void Clm14Station::tick(TimePoint now) {
   }
   if (next_cycle_ <= now) next_cycle_ = now + clm_.cycle_time();  // too far behind: skip, do not replay
   // A running program changes counters and variables all the time: persist about once a second.
-  if (clm_.run_state() == cc::RunState::running && now - last_save_ >= std::chrono::seconds(1)) {
+  // The console's hardware settings are saved at once; the length counters, which the material
+  // moves in Manual too, like a running program.
+  const std::array<int, 5> hw{clm_.analog_input(1), clm_.analog_input(2), clm_.analog_input(3), clm_.analog_input(4),
+                              clm_.test_speed_step()};
+  if (hw != saved_hardware_) {
+    saved_hardware_ = hw;
+    dirty_ = true;
+  }
+  const std::array<double, 2> lengths{clm_.length_counter(1), clm_.length_counter(2)};
+  if ((clm_.run_state() == cc::RunState::running || lengths != saved_lengths_) &&
+      now - last_save_ >= std::chrono::seconds(1)) {
     last_save_ = now;
+    saved_lengths_ = lengths;
     dirty_ = true;
   }
 }
@@ -429,6 +452,9 @@ nlohmann::json Clm14Station::to_json() const {
   j["station"] = station_;
   j["parameters"] = parameters_;
   j["controller"] = clm_.to_json();
+  j["hardware"] = {{"analog_mv", std::array<int, 4>{clm_.analog_input(1), clm_.analog_input(2), clm_.analog_input(3),
+                                                    clm_.analog_input(4)}},
+                   {"test_speed_step", clm_.test_speed_step()}};
   return j;
 }
 
@@ -456,6 +482,38 @@ std::expected<void, std::string> Clm14Station::from_json(const nlohmann::json& j
       if (!all_digits(k) || to_int(k) >= program_lines)
         return std::unexpected(fmt::format("program: bad line number '{}'", k));
     if (auto r = clm_.from_json(c); !r) return std::unexpected(r.error());
+    if (j.contains("hardware")) {
+      const auto& h = j.at("hardware");
+      // Whole numbers only (a float outside int would not convert): bad values are errors.
+      const auto whole = [](const nlohmann::json& v, std::int64_t lo, std::int64_t hi) -> std::optional<int> {
+        if (!v.is_number_integer()) return std::nullopt;
+        const auto x = v.get<std::int64_t>();
+        if (x < lo || x > hi) return std::nullopt;
+        return static_cast<int>(x);
+      };
+      if (h.contains("analog_mv")) {
+        const auto& mv = h.at("analog_mv");
+        if (!mv.is_array() || mv.size() != 4)
+          return std::unexpected("hardware: analog_mv needs 4 values (AE1..AE4, mV)");
+        for (std::size_t i = 0; i < 4; ++i) {
+          const auto v = whole(mv[i], -10000, 10000);
+          if (!v)
+            return std::unexpected(
+                fmt::format("hardware: analog input AE{} {} outside ±10000 mV", i + 1, mv[i].dump()));
+          clm_.set_analog_input(static_cast<int>(i) + 1, *v);
+        }
+      }
+      if (h.contains("test_speed_step")) {
+        const auto step = whole(h.at("test_speed_step"), 0, cc::Controller::test_speed_steps - 1);
+        if (!step)
+          return std::unexpected(
+              fmt::format("hardware: test speed step {} outside 0..31", h.at("test_speed_step").dump()));
+        clm_.set_test_speed_step(*step);
+      }
+    }
+    saved_hardware_ = {clm_.analog_input(1), clm_.analog_input(2), clm_.analog_input(3), clm_.analog_input(4),
+                       clm_.test_speed_step()};
+    saved_lengths_ = {clm_.length_counter(1), clm_.length_counter(2)};
   } catch (const nlohmann::json::exception& e) {
     return std::unexpected(fmt::format("state file malformed: {}", e.what()));
   }

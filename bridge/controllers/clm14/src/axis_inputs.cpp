@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: MIT
 // CLM1.4 per-axis input functions and outputs (manual §7.3, §7.4, §8.2; digest §5.4, §5.6,
 // §5.13): the B017 override inputs (binary, Gray code), Ax15 feed-angle monitoring and interrupt,
-// Ax30 open feed roll, the Ax32 outputs "target velocity reached" / "deceleration active".
+// Ax30 open feed roll, the Ax32 outputs "target velocity reached" / "deceleration active"; the
+// analog inputs AE1..AE4 (B017 averaging, V007..V010, override sources 1-4).
 #include <fmt/format.h>
 
 #include <array>
@@ -31,6 +32,13 @@ double Controller::input_override(int axis) const {
   if (a.override_permille != 1000 || a.override_master) return 1.0;  // VEO has priority over B017
   const std::uint8_t in = image_.byte(override_byte);
   switch (settings_.override_source[static_cast<std::size_t>(axis - 1)]) {
+    case 1:
+    case 2:
+    case 3:
+    case 4:  // AE1..AE4: F = 0 … 1 for 0 … 10 V (§5.6), from the B017 average
+      return analog_override(
+          analog_avg_[static_cast<std::size_t>(settings_.override_source[static_cast<std::size_t>(axis - 1)] - 1)]
+              .millivolts());
     case 5:
       return in / 255.0;  // binary on I1.01.0 (1) .. I1.01.7 (128): Vo = Vp × sum / 255
     case 6:
@@ -38,6 +46,20 @@ double Controller::input_override(int axis) const {
     default:
       return 1.0;
   }
+}
+
+void Controller::update_analog_in() {
+  for (std::size_t i = 0; i < 4; ++i) {
+    AnalogAverage& f = analog_avg_[i];
+    // Power-up or a new B017 averaging code: the history starts as a steady input [decided].
+    if (f.code() != settings_.analog_averaging) f.reset(settings_.analog_averaging, analog_mv_[i]);
+    f.push(analog_mv_[i]);
+    vars_[7 + i] = to_micro(f.millivolts() / 10000.0);  // V007..V010: normalised to ±1
+  }
+}
+
+double Controller::analog_average(int input) const noexcept {
+  return input >= 1 && input <= 4 ? analog_avg_[static_cast<std::size_t>(input - 1)].millivolts() : 0.0;
 }
 
 bool Controller::feed_blocked(int axis) const {

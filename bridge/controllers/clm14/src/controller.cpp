@@ -203,6 +203,7 @@ void Controller::cycle(TimePoint now) {
   update_axes_in(now);
   update_master_in();
   update_master2_in();
+  update_analog_in();
   update_mode(now);
   update_safety(now);
   step_wheels();
@@ -312,8 +313,14 @@ void Controller::enter_mode(Mode m, TimePoint now) {
     if (flying_cutoff() && error_ == 0) {
       // §7.12: the carriage must stand at its origin (error 36); task 1 then starts at once
       // (Start has no function), at 0000 [decided].
-      const double window = std::max(settings_.axes[0].reached_window, 0.01);
-      if (std::abs(clm_position(1)) > window)
+      // Homing option 5 (passive, §7.9): "Manual -> Auto is allowed while on the switch; the
+      // axis is homed when the synchronised carriage leaves it" - so a carriage not yet homed
+      // that stands on its home switch passes the origin check (step_homing homes it).
+      const auto& c = settings_.axes[0];
+      const bool passive_on_switch = c.homing_type == 4 && !options_.drive_homing && !axes_[0].homed &&
+                                     c.home_switch_input && image_.bit(*c.home_switch_input);
+      const double window = std::max(c.reached_window, 0.01);
+      if (!passive_on_switch && std::abs(clm_position(1)) > window)
         raise(static_cast<int>(ClmError::not_home_position),
               fmt::format("flying cutoff: the carriage is at {:.3f} IU, not at its origin", clm_position(1)));
       else {

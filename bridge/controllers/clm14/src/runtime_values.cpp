@@ -141,4 +141,14 @@ double RuntimeController::value(std::size_t h) const noexcept {
   return std::numeric_limits<double>::quiet_NaN();
 }
 
+std::expected<AnalogInputSpec, std::string> RuntimeController::resolve_analog(std::string_view name) const {
+  if (name.size() == 3 && name.substr(0, 2) == "AE" && name[2] >= '1' && name[2] <= '4')
+    return AnalogInputSpec{static_cast<std::size_t>(name[2] - '0'), -10.0, 10.0, "V"};
+  return std::unexpected(fmt::format("'{}' is not a CLM1.4 analog input (AE1..AE4, volts)", name));
+}
+
+void RuntimeController::set_analog(std::size_t handle, double value) noexcept {
+  model_.set_analog_input(static_cast<int>(handle), static_cast<int>(std::lround(value * 1000.0)));
+}
+
 }  // namespace hil::controllers::clm14

@@ -79,16 +79,14 @@ std::expected<Settings, ProgramError> make_settings(const ParameterLookup& looku
   if (!lookup("B017").empty()) {
     // [decided, profile] digit order: averaging, override source of axes 1..4, reserved.
     const auto b017 = r.fields("B017", 5);
+    s.analog_averaging = r.integer("B017", b017[0]);
+    if (r.failed.empty() && (s.analog_averaging < 0 || s.analog_averaging > 9))
+      r.failed = fmt::format("B017: analog averaging code {} (0..9)", s.analog_averaging);
     for (std::size_t ax = 0; ax < 4; ++ax) {
       s.override_source[ax] = r.integer("B017", b017[ax + 1]);
       if (r.failed.empty() && (s.override_source[ax] < 0 || s.override_source[ax] > 6))
         r.failed = fmt::format("B017: override source {} of axis {} (0 off, 1-4 analog, 5 binary, 6 Gray)",
                                s.override_source[ax], ax + 1);
-      if (r.failed.empty() && s.axes[ax].enabled && s.override_source[ax] >= 1 && s.override_source[ax] <= 4)
-        r.failed = fmt::format(
-            "B017: axis {} takes its override from analog input {}: the analog inputs are not "
-            "modelled (use 5 binary or 6 Gray code)",
-            ax + 1, s.override_source[ax]);
     }
   }
   const auto b018 = r.fields("B018", 2);

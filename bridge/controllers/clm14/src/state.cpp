@@ -4,6 +4,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include <cmath>
+
 #include "hil/controllers/clm14/controller.hpp"
 
 namespace hil::controllers::clm14 {
@@ -78,6 +80,9 @@ nlohmann::json Controller::to_json() const {
   std::array<bool, 4> sw{};
   for (std::size_t a = 0; a < 4; ++a) sw[a] = axes_[a].software_enabled;
   j["axis_enabled"] = sw;
+  // The flying cutoff's length counters (status 54) run on until !CLL1 / !CLL2 [decided: kept
+  // across a power loss like the other counters; the digest is silent].
+  j["length_counters"] = {material_length_, product_length_};
   return j;
 }
 
@@ -133,6 +138,13 @@ std::expected<void, std::string> Controller::from_json(const nlohmann::json& j) 
     if (j.contains("axis_enabled")) {
       const auto sw = j.at("axis_enabled").get<std::array<bool, 4>>();
       for (std::size_t a = 0; a < 4; ++a) axes_[a].software_enabled = sw[a];
+    }
+    material_length_ = product_length_ = 0.0;
+    if (j.contains("length_counters")) {
+      const auto lc = j.at("length_counters").get<std::array<double, 2>>();
+      if (!std::isfinite(lc[0]) || !std::isfinite(lc[1])) return std::unexpected("state: length counters malformed");
+      material_length_ = lc[0];
+      product_length_ = lc[1];
     }
   } catch (const std::exception& e) {
     return std::unexpected(fmt::format("state file malformed: {}", e.what()));

@@ -71,6 +71,10 @@ std::expected<std::size_t, std::string> Controller::resolve_value(std::string_vi
   return std::unexpected(fmt::format("'{}' is not a value of the {} controller (it shows: {})", name, device(), list));
 }
 
+std::expected<AnalogInputSpec, std::string> Controller::resolve_analog(std::string_view name) const {
+  return std::unexpected(fmt::format("'{}': the {} controller has no analog inputs", name, device()));
+}
+
 bool Controller::power_up_axes() noexcept {
   if (!axes_enabled_) {
     for (motion::Axis* a : axes_) (void)a->enable();

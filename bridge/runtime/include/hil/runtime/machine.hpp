@@ -117,6 +117,8 @@ class Machine {
   [[nodiscard]] std::optional<ConfigError> build_controller(const Scenario& scenario,
                                                             const controllers::ControllerRegistry* registry);
   [[nodiscard]] std::optional<ConfigError> attach_io(const Scenario& scenario, const Clock& clock);
+  /// The scenario's analog inputs (`io: - {analog: ...}`): one AnalogSchedule per input.
+  [[nodiscard]] std::optional<ConfigError> attach_analog(const Scenario& scenario);
   /// One `io_links:` entry: resolves its signals (inputs: input/data bits; outputs: output/marker
   /// bits), opens the device and attaches its source and sink to the controller's image.
   [[nodiscard]] std::optional<ConfigError> attach_io_link(const Scenario& scenario, const IoLink& link,

@@ -245,6 +245,18 @@ struct IoStimulus {
   SourceRef source;
 };
 
+/// One analog entry of `io:` (`{analog: NAME, value: V, at: T, ramp: D}`): from scenario time
+/// `at` the device's analog input NAME (the CLM1.4's AE1..AE4, in volts) ramps linearly to `value`
+/// over `ramp` (0 = a step) and holds it (hil::controllers::AnalogSchedule). Entries of one input
+/// come in increasing `at`.
+struct AnalogStimulus {
+  std::string input;   ///< the device's name of the input ("AE1")
+  double value = 0.0;  ///< in the input's unit (Controller::resolve_analog)
+  Duration at{};
+  Duration ramp{};
+  SourceRef source;
+};
+
 /// One I/O entry of `expect:` (`io: <signal>` with state / edges / first_edge).
 struct IoExpectation {
   std::string signal;
@@ -348,6 +360,7 @@ struct Scenario {
   std::vector<Expectation> expectations;
   std::optional<ControllerBlock> controller;
   std::vector<IoStimulus> io;
+  std::vector<AnalogStimulus> analog;  ///< `io:` entries with `analog:`
   std::vector<IoLink> io_links;
   std::vector<IoExpectation> io_expectations;
   std::vector<ControllerExpectation> controller_expectations;

@@ -37,6 +37,7 @@
 #include <system_error>
 #include <vector>
 
+#include "hil/controllers/analog_stimulus.hpp"
 #include "hil/controllers/device_error.hpp"
 #include "hil/controllers/io_address_s5.hpp"
 #include "hil/controllers/io_image.hpp"
@@ -158,6 +159,13 @@ class Controller {
   /// decimals of up to 15 significant digits); read after every controller step. NaN when the
   /// device cannot show it now. Cycle thread; never throws.
   [[nodiscard]] virtual double value(std::size_t handle) const noexcept { return trace_value(handle); }
+  /// An analog input of the device by name, for a scenario's `io: - {analog: NAME, ...}`
+  /// (docs/scenarios.md; the CLM1.4: AE1..AE4 in volts): its handle, range and unit, or what is
+  /// wrong with the name. Called once before the run. The default: the device has none.
+  [[nodiscard]] virtual std::expected<AnalogInputSpec, std::string> resolve_analog(std::string_view name) const;
+  /// Sets a resolve_analog() input to `value` (in its unit, within its range), as the hardware's
+  /// signal; the device samples it in its cycle. Cycle thread (called before on_cycle); never throws.
+  virtual void set_analog(std::size_t /*handle*/, double /*value*/) noexcept {}
   /// The PLC side of a device commanded through S5 data blocks (IP247, WF 725/726): data word
   /// `dw` of data block `db` as the PLC's FB or a DB transfer reads and writes it (a scenario's
   /// `plc:` steps, docs/scenarios.md). A write lands at once; the device acts on it (command bits,

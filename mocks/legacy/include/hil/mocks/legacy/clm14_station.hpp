@@ -71,9 +71,14 @@ class Clm14Station {
   /// Retrofit mode: the controller's axes are `ports` (axis 1..4, null = none), advanced once per
   /// NC cycle by `update` after the controller's step. Replaces the simulated drives.
   void use_axes(std::array<controllers::clm14::AxisPort*, 4> ports, std::function<void(const CycleTime&)> update);
+  /// Retrofit mode: master encoder `n` (1 or 2) is `port` (a machine axis' actual increments)
+  /// instead of the simulated measuring wheel (1) / none (2); null gives it back.
+  void use_master_encoder(int n, controllers::clm14::MasterEncoderPort* port);
+  /// Whether master encoder 1 is a machine axis (use_master_encoder).
+  [[nodiscard]] bool external_master_encoder() const noexcept { return external_me_[0] != nullptr; }
   /// The simulated measuring wheel (master encoder 1, when C002 > 0): the material runs at
-  /// `iu_per_s` (0 = stops). False when master encoder 1 is not used. Also in retrofit mode.
-  bool set_material_velocity(double iu_per_s) { return wheel_.set_velocity(iu_per_s); }
+  /// `iu_per_s` (0 = stops). False when master encoder 1 is not used or is a machine axis.
+  bool set_material_velocity(double iu_per_s) { return external_me_[0] == nullptr && wheel_.set_velocity(iu_per_s); }
   [[nodiscard]] controllers::clm14::Controller& controller() noexcept { return clm_; }
   [[nodiscard]] const controllers::clm14::Controller& controller() const noexcept { return clm_; }
   /// True when state changed since the last take_dirty() (for debounced persistence).
@@ -88,6 +93,9 @@ class Clm14Station {
   [[nodiscard]] std::string program_line(int n) const;
   [[nodiscard]] std::string parameter(std::string_view number) const;
 
+  /// The station's state file: parameters, the controller's battery-buffered state
+  /// (Controller::to_json, with the status 54 length counters) and the unit's hardware settings
+  /// the console made ("hardware": analog inputs AE1..AE4 in mV, the test mode's speed step).
   [[nodiscard]] nlohmann::json to_json() const;
   /// Restore from to_json(); unknown keys are ignored, bad entries reported.
   [[nodiscard]] std::expected<void, std::string> from_json(const nlohmann::json& j);
@@ -122,11 +130,16 @@ class Clm14Station {
   bool external_axes_ = false;
   std::array<controllers::clm14::AxisPort*, 4> external_ports_{};
   std::function<void(const CycleTime&)> external_update_;
+  std::array<controllers::clm14::MasterEncoderPort*, 2> external_me_{};
   TimePoint next_cycle_{};
   TimePoint last_save_{};
   bool started_ = false;
   std::vector<std::string> parameter_order_;
   bool dirty_ = false;
+  /// The unit's hardware settings last saved (analog inputs AE1..AE4 mV, test speed step) and the
+  /// length counters: a change is persisted (hardware at once, the counters about once a second).
+  std::array<int, 5> saved_hardware_{};
+  std::array<double, 2> saved_lengths_{};
 };
 
 }  // namespace hil::mocks::legacy

@@ -25,6 +25,7 @@
 #include <nlohmann/json_fwd.hpp>
 
 #include "hil/controllers/clm14/address.hpp"
+#include "hil/controllers/clm14/analog_input.hpp"
 #include "hil/controllers/clm14/axis_port.hpp"
 #include "hil/controllers/clm14/homing.hpp"
 #include "hil/controllers/clm14/instruction.hpp"
@@ -229,9 +230,13 @@ class Controller {
   [[nodiscard]] int test_speed_step() const noexcept { return test_step_; }
   static constexpr int test_speed_steps = 32;
   /// Analog inputs AE1..AE4 (X5/X7, ±10 V; status 49 / 45), in mV, clamped to ±10000. The
-  /// owner sets them like the hardware (emulator console, scenario stimuli); 0 until set.
+  /// owner sets them like the hardware (emulator console, scenario stimuli); 0 until set. The
+  /// model samples them once per NC cycle into the B017 moving average (analog_input.hpp), which
+  /// V007..V010 (±1) and the override sources 1..4 read.
   void set_analog_input(int input, int millivolts) noexcept;
   [[nodiscard]] int analog_input(int input) const noexcept;
+  /// The B017 average of AE`input` now, mV (what V007..V010 and the override see).
+  [[nodiscard]] double analog_average(int input) const noexcept;
   /// Whether the flying cutoff's cut is inhibited now (A133).
   [[nodiscard]] bool cut_inhibited() const noexcept { return cut_.inhibited; }
 
@@ -528,6 +533,8 @@ class Controller {
   void reset_wheel(int axis);
   /// SET V047 / V048 while not homed: the motor position becomes `v`, the axis position stays.
   bool set_motor_position(int axis, double v);
+  // axis_inputs.cpp: the analog inputs' B017 average, V007..V010
+  void update_analog_in();
   // master_encoder2.cpp
   void update_master2_in();
   [[nodiscard]] bool master2_available() const noexcept;
@@ -605,10 +612,11 @@ class Controller {
   std::array<double, 7> fun_ref_{};  ///< FUN channel references (measure at the last restart)
   Mlo mlo_{};
   Srp srp_{};
-  int test_step_ = 0;                       ///< test mode speed step (CTA keys)
-  std::array<int, 4> analog_mv_{};          ///< AE1..AE4, mV
-  std::optional<std::int64_t> manual_cut_;  ///< material point (counts) under the tool at the last manual cut
-  double material_length_ = 0.0;            ///< status 54, IU
+  int test_step_ = 0;                          ///< test mode speed step (CTA keys)
+  std::array<int, 4> analog_mv_{};             ///< AE1..AE4, mV
+  std::array<AnalogAverage, 4> analog_avg_{};  ///< B017 averaging of AE1..AE4
+  std::optional<std::int64_t> manual_cut_;     ///< material point (counts) under the tool at the last manual cut
+  double material_length_ = 0.0;               ///< status 54, IU
   double product_length_ = 0.0;
   int last_srm_axis_ = 0;
   bool inhibit_ = false;          ///< Inhibit Operation (Q0.01.5): a move was blocked this cycle

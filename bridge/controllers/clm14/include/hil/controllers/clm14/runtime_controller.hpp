@@ -48,6 +48,10 @@ class RuntimeController final : public hil::controllers::Controller {
   /// "length.material" / "length.product" (the status 54 length counters, IU).
   [[nodiscard]] std::expected<std::size_t, std::string> resolve_value(std::string_view name) const override;
   [[nodiscard]] double value(std::size_t handle) const noexcept override;
+  /// The analog inputs "AE1".."AE4" for `io: - {analog: AE1, value: V}`: volts, −10 .. +10;
+  /// set_analog rounds to the model's mV (Controller::set_analog_input).
+  [[nodiscard]] std::expected<AnalogInputSpec, std::string> resolve_analog(std::string_view name) const override;
+  void set_analog(std::size_t handle, double value) noexcept override;
   [[nodiscard]] clm14::Controller& model() noexcept { return model_; }
 
   RuntimeController(std::shared_ptr<const profiles::Profile> profile, std::map<std::string, std::string> parameters,

@@ -130,6 +130,8 @@ struct Settings {
   std::array<int, 7> output_clear{};  ///< B018 g per output byte Q1.00..Q1.06: 0 clear, 1 keep until cleared, 2 never
   /// B017 override source of axes 1..4: 0 off, 1-4 analog input 1-4, 5 binary I1.01.0-7, 6 Gray I1.01.4-7.
   std::array<int, 4> override_source{};
+  /// B017 first digit: the analog inputs' moving average over 2^(code + 3) NC cycles (analog_input.hpp).
+  int analog_averaging = 0;
 };
 
 /// Reads a parameter's stored text ("" when the set has none).
