@@ -76,10 +76,17 @@ class Wf:
         self.write(DW_MODE, (bits << 8) | submode)
         time.sleep(0.05)
 
-    def pulse(self, bit):
+    def pulse(self, bit, until=None):
+        """Set control bit `bit`, then clear it: after 50 ms, or once `until(status)` holds (at most
+        5 s), as an S5 program keeps a start bit until the module reacts. A bare 50 ms pulse can
+        fall between two module cycles of an emulator that a loaded machine holds back."""
         w = self.word(DW_CONTROL)
         self.write(DW_CONTROL, w | (1 << bit))
         time.sleep(0.05)
+        if until is not None:
+            deadline = time.time() + 5
+            while not until(self.status()) and time.time() < deadline:
+                time.sleep(0.02)
         self.write(DW_CONTROL, w & ~(1 << bit))
         time.sleep(0.05)
 
@@ -163,12 +170,12 @@ def main():
         wf.mode(TRAVERSING, SET_ACTUAL)
         wf.write(DW_ENABLE, 1)  # D 2.0 drive enable
         time.sleep(0.2)
-        wf.pulse(0)
+        wf.pulse(0, until=lambda s: s["syn"])
         s, _ = wf.wait(lambda s: s["syn"], 5)
         check("synchronized (D 3.6), actual 0", s["syn"] and s["actual"] == 0 and s["error"] == 0, s)
         wf.mode(TRAVERSING, AUTOMATIC)
         wf.write(DW_PROGRAM, 7)
-        wf.pulse(0)
+        wf.pulse(0, until=lambda s: s["program_active"] or s["actual"] != 0)
         s, samples = wf.wait(lambda s: not s["program_active"] and s["peh"] and s["actual"] == 5000)
         moving = sorted({x["actual"] for x in samples if 0 < x["actual"] < 50000 and x["actual"] not in (5000, 20000)})
         check("actual values read while the axis moves", len(moving) >= 5, moving[:10])
@@ -179,7 +186,7 @@ def main():
         wf.mode(TRAVERSING, MDI)
         wf.data_code(0x19, 200000)
         wf.data_code(0x1A, 600000)
-        wf.pulse(0)
+        wf.pulse(0, until=lambda s: not s["peh"] or s["error"] != 0)
         s, _ = wf.wait(lambda s: s["error"] != 0 and not s["program_active"], 40)
         time.sleep(0.3)
         s = wf.status()
@@ -202,7 +209,7 @@ def main():
         wf.write(DW_ENABLE, 1)  # drive enable again after a drive-off error
         time.sleep(0.2)
         wf.data_code(0x19, 10000)
-        wf.pulse(0)
+        wf.pulse(0, until=lambda s: not s["peh"] or s["actual"] == 10000)
         s, _ = wf.wait(lambda s: s["peh"] and s["actual"] == 10000, 30)
         check("back to 10 mm after the acknowledgement", s["error"] == 0, s)
     finally:

@@ -77,9 +77,19 @@ class Axis:
         time.sleep(0.05)
 
     def start(self):
+        """The start bit D 1.0, held until the module reacts (a program runs, an error, the axis
+        moves or is synchronised; at most 5 s), as an S5 program keeps it: a bare 50 ms pulse can
+        fall between two module cycles of an emulator that a loaded machine holds back."""
+        before = self.status()
         w = self.words(DW_CONTROL, 1)[0]
         self.write(DW_CONTROL, w | 1)
         time.sleep(0.05)
+        deadline = time.time() + 5
+        while time.time() < deadline:
+            s = self.status()
+            if s["program_active"] or s["error"] != 0 or s != before:
+                break
+            time.sleep(0.02)
         self.write(DW_CONTROL, w & ~1)
         time.sleep(0.05)
 
