@@ -232,6 +232,27 @@ TEST(ClmModes, RestartProgramWithRsv) {
   ASSERT_TRUE(r.run_until([&] { return r.get(bit("Q1.00.6")); }, 6s));
 }
 
+TEST(ClmModes, ByteWritesOfNcKeepTheLogicTasksOutputBits) {
+  Rig r;
+  r.clm.store_logic_line(0, "LD I1.00.0");
+  r.clm.store_logic_line(1, "SETC Q1.00.7");  // the LT owns Q1.00.7 but leaves it alone while I1.00.0 = 0
+  r.clm.store_logic_line(2, "END");
+  // CVT writes whole bytes Q1.00..Q1.07 (V600 = 0: all 00), APE single bits of Q1.01.
+  r.program({{0, "CVT V600 Q1.00 0 0"}, {1, "APE Q1.01 11111111"}, {2, "JMP 0000"}});
+  r.run_for(10ms);
+  r.set(bit("I1.00.0"), true);
+  r.run_for(10ms);
+  r.set(bit("I1.00.0"), false);
+  r.set(bit("Q1.00.3"), true);
+  ASSERT_TRUE(r.get(bit("Q1.00.7")));
+  r.start_auto();
+  r.run_for(20ms);
+  EXPECT_EQ(r.clm.error(), 0) << r.clm.error_message();
+  EXPECT_TRUE(r.get(bit("Q1.00.7"))) << "the LT's bit of the byte CVT cleared";
+  EXPECT_FALSE(r.get(bit("Q1.00.3"))) << "the other bits of that byte follow NC";
+  EXPECT_TRUE(r.get(bit("Q1.01.5")));
+}
+
 TEST(ClmModes, LogicTaskCompiledOnLeavingParameterMode) {
   Rig r;
   r.clm.store_logic_line(0, "LD I1.00.0");

@@ -523,14 +523,15 @@ void Controller::clear_nc_markers() {
 
 void Controller::write_bit(const BitAddress& a, bool v) {
   if (a.byte.area == Area::input) return;
-  if (a.byte.area == Area::output)
-    for (const auto& o : logic_.owned_outputs())
-      if (o == a) return;  // an output the logic task stores to is no longer driven by NC (§9.1)
+  // An output the logic task stores to is no longer driven by NC (§9.1).
+  if (((logic_.owned_mask(a.byte) >> a.bit) & 1U) != 0) return;
   image_.set_bit(a, v);
 }
 
 void Controller::write_byte(const ByteAddress& a, std::uint8_t v) {
-  for (std::uint8_t b = 0; b < 8; ++b) write_bit({a, b}, ((v >> b) & 1U) != 0);
+  if (a.area == Area::input) return;
+  const std::uint8_t keep = logic_.owned_mask(a);
+  image_.set_byte(a, static_cast<std::uint8_t>((image_.byte(a) & keep) | (v & ~keep)));
 }
 
 // ---- program run state --------------------------------------------------------------------------

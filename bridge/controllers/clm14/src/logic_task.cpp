@@ -163,8 +163,11 @@ std::expected<LogicProgram, ProgramError> LogicProgram::compile(const std::vecto
         return fail(line, fmt::format("operand {} is not allowed for {}", operand, key));
       in = compiled(in.op, *b);
       if (is_store(in.op) && std::find(p.owned_.begin(), p.owned_.end(), *b) == p.owned_.end() &&
-          b->byte.area == Area::output)
+          b->byte.area == Area::output) {
         p.owned_.push_back(*b);
+        auto& m = p.owned_mask_[Image::offset(b->byte) - Image::offset({Area::output, 0, 0})];
+        m = static_cast<std::uint8_t>(m | (1U << b->bit));
+      }
     } else if (!operand.empty()) {
       return fail(line, fmt::format("{} takes no operand", key));
     }

@@ -6,6 +6,7 @@
 // error 38 with the line; `END` at line 0000 disables the task. Operands: load from
 // M0/M1/M4/M5/M6/Q0/Q1/Q2/I0/I1/I2, store to M5, M6, Q1, Q2.02-Q2.05. Pure.
 
+#include <array>
 #include <cstdint>
 #include <expected>
 #include <string>
@@ -68,11 +69,16 @@ class LogicProgram {
   [[nodiscard]] bool empty() const noexcept { return code_.empty(); }
   /// Output bits the logic task stores to: the NC tasks may no longer drive them (§9.1).
   [[nodiscard]] const std::vector<BitAddress>& owned_outputs() const noexcept { return owned_; }
+  /// The same as a bit mask of output byte `a` (0 for inputs and markers).
+  [[nodiscard]] std::uint8_t owned_mask(const ByteAddress& a) const noexcept {
+    return a.area == Area::output ? owned_mask_[Image::offset(a) - Image::offset({Area::output, 0, 0})] : 0;
+  }
   [[nodiscard]] std::size_t size() const noexcept { return code_.size(); }
 
  private:
   std::vector<LogicInstruction> code_;
   std::vector<BitAddress> owned_;
+  std::array<std::uint8_t, 3 * io_bytes> owned_mask_{};
 };
 
 }  // namespace hil::controllers::clm14
