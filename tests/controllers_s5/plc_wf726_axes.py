@@ -21,7 +21,8 @@ import time
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 try:
-    from s5_plc_link import Link, dd, s32
+    from s5_plc_link import Link, s32
+    from wf_plc import AUTOMATIC, DW_PROGRAM, PROGRAM_IO, TRAVERSING, WfAxis, db_text, text_db
 except ImportError:
     print("SKIP: python3-serial is not installed (apt-get install python3-serial)")
     sys.exit(77)
@@ -31,94 +32,11 @@ MACHINES = sys.argv[3:5] if sys.argv[2] == "--machine" else None
 MD_A, MD_B = (None, None) if MACHINES else (sys.argv[2], sys.argv[3])
 failures = []
 
-# DB axis words (docs/wf725.md, "The DB axis")
-DW_MODE, DW_CONTROL, DW_ENABLE, DW_STATUS, DW_ERROR, DW_PROGRAM = 0, 1, 2, 3, 4, 5
-DW_CODE, DW_EXEC, DD_P1, DW_DSTAT, DD_ACTUAL, DW_FLAGS, DW_IOERR = 11, 12, 13, 17, 20, 24, 40
-TRAVERSING, PROGRAM_IO = 0x01, 0x02  # DL 0 bits
-SET_ACTUAL, AUTOMATIC = 3, 6  # DR 0 submodes
-
 
 def check(name, ok, detail=""):
     print(f"{'ok  ' if ok else 'FAIL'} {name}" + ("" if ok else f": {detail}"))
     if not ok:
         failures.append(f"{name}: {detail}")
-
-
-def text_db(text):
-    raw = text.encode("ascii")
-    n = len(raw)
-    if n % 2:
-        raw += b"\0"
-    return [n] + [(raw[i] << 8) | raw[i + 1] for i in range(0, len(raw), 2)]
-
-
-def db_text(words):
-    raw = b"".join(bytes([w >> 8, w & 0xFF]) for w in words[1:])
-    return raw[:words[0]].decode("ascii")
-
-
-class Axis:
-    """One axis of the module through its DB axis."""
-
-    def __init__(self, link, db):
-        self.link, self.db = link, db
-
-    def words(self, dw, n):
-        err, w = self.link.fetch(self.db, dw, n)
-        assert err == 0, f"FETCH DB{self.db} DW{dw}: {err:#x}"
-        return w
-
-    def write(self, dw, *words):
-        err = self.link.send(self.db, dw, list(words))
-        assert err == 0, f"SEND DB{self.db} DW{dw}: {err:#x}"
-
-    def mode(self, bits, submode):
-        self.write(DW_MODE, (bits << 8) | submode)
-        time.sleep(0.05)
-
-    def start(self):
-        """The start bit D 1.0, held until the module reacts (a program runs, an error, the axis
-        moves or is synchronised; at most 5 s), as an S5 program keeps it: a bare 50 ms pulse can
-        fall between two module cycles of an emulator that a loaded machine holds back."""
-        before = self.status()
-        w = self.words(DW_CONTROL, 1)[0]
-        self.write(DW_CONTROL, w | 1)
-        time.sleep(0.05)
-        deadline = time.time() + 5
-        while time.time() < deadline:
-            s = self.status()
-            if s["program_active"] or s["error"] != 0 or s != before:
-                break
-            time.sleep(0.02)
-        self.write(DW_CONTROL, w & ~1)
-        time.sleep(0.05)
-
-    def data_code(self, code, p1=0, p2=0):
-        """Data code with its parameters (rising edge of D 12.0): (done, refused, DW 40)."""
-        self.write(DW_CODE, code)
-        self.write(DD_P1, *dd(p1), *dd(p2))
-        self.write(DW_EXEC, 1)
-        deadline = time.time() + 2
-        while True:
-            w = self.words(DW_DSTAT, 1)
-            if w[0] & 3 or time.time() > deadline:
-                break
-            time.sleep(0.02)
-        io = self.words(DW_IOERR, 1)[0]
-        self.write(DW_EXEC, 0)
-        time.sleep(0.03)
-        return (w[0] & 1) != 0, (w[0] & 2) != 0, io
-
-    def status(self):
-        w = self.words(0, 25)
-        return {"peh": bool(w[DW_STATUS] & 1), "syn": bool(w[DW_STATUS] & 0x40), "error": w[DW_ERROR] & 0xFF,
-                "actual": s32(w[DD_ACTUAL], w[DD_ACTUAL + 1]), "program_active": bool(w[DW_FLAGS] & 2)}
-
-    def synchronize(self):
-        self.mode(TRAVERSING, SET_ACTUAL)
-        self.write(DW_ENABLE, 1)  # D 2.0 drive enable
-        time.sleep(0.1)
-        self.start()
 
 
 def wait(axes, cond, timeout=30):
@@ -172,7 +90,7 @@ def stop(p):
 def first_run(state):
     p, link = emulator(state)
     try:
-        a, b, c = Axis(link, 10), Axis(link, 11), Axis(link, 12)
+        a, b, c = WfAxis(link, 10), WfAxis(link, 11), WfAxis(link, 12)
         for ax in (a, b, c):
             err, w = link.fetch(ax.db, 0, 48)
             check(f"DB{ax.db} is a DB axis (48 words)", err == 0 and len(w) == 48, hex(err))
@@ -186,7 +104,7 @@ def first_run(state):
         # Program input on axis B; the memory is the module's.
         check("programs into user DB20", link.send(20, 0, text_db(PROGRAMS)) == 0)
         b.mode(PROGRAM_IO, 0)
-        done, refused, io = b.data_code(0x44, 20)
+        done, refused, _, io = b.data_code(0x44, 20)
         check("programs 7, 9, 5 read in through axis B (44)", done and not refused and io == 0, (done, refused, hex(io)))
         # Axes A and C run program 7 together.
         for ax in (a, c):
@@ -211,13 +129,13 @@ def first_run(state):
         a.write(DW_PROGRAM, 5)
         a.start()
         wait([a], lambda s: s[0]["program_active"], 5)
-        done, refused, io = b.data_code(0x43, 5)
+        done, refused, _, io = b.data_code(0x43, 5)
         check("delete program 5 while A runs it: 105", refused and io == 0x0105, (done, refused, hex(io)))
-        done, refused, io = b.data_code(0x44, 20)
+        done, refused, _, io = b.data_code(0x44, 20)
         check("read in program 5 while A runs it: 105", refused and io == 0x0105, (done, refused, hex(io)))
         s, _ = wait([a], lambda s: not s[0]["program_active"] and s[0]["peh"], 10)
         check("program 5 ran to its end on A (30 mm)", s[0]["actual"] == 30000 and s[0]["error"] == 0, s)
-        done, refused, io = b.data_code(0x43, 7)
+        done, refused, _, io = b.data_code(0x43, 7)
         check("program 7 deleted through axis B (43)", done and not refused and io == 0, (done, refused, hex(io)))
         time.sleep(0.5)  # the line is quiet: the emulator saves its state file
     finally:
@@ -234,15 +152,15 @@ def second_run(state):
     check("no temporary file left beside the state file (atomic save)", not left, left)
     p, link = emulator(state)
     try:
-        a, c = Axis(link, 10), Axis(link, 12)
+        a, c = WfAxis(link, 10), WfAxis(link, 12)
         c.mode(PROGRAM_IO, 0)
-        done, refused, io = c.data_code(0x45, 9, 30)
+        done, refused, _, io = c.data_code(0x45, 9, 30)
         err, n = link.fetch(30, 0, 1)
         err, words = link.fetch(30, 0, 1 + (n[0] + 1) // 2) if err == 0 else (err, [0])
         out = db_text(words) if err == 0 else ""
         check("after the restart program 9 is in the memory (45 into DB30)",
               done and not refused and out.startswith("%9 B RAM") and "X1000" in out.replace(" ", ""), (io, out))
-        done, refused, io = c.data_code(0x45, 7, 31)
+        done, refused, _, io = c.data_code(0x45, 7, 31)
         check("the deleted program 7 stays deleted: 127", refused and io == 0x0127, (done, refused, hex(io)))
         a.synchronize()
         wait([a], lambda s: s[0]["syn"], 5)
@@ -258,7 +176,7 @@ def second_run(state):
 def machine_run():
     p, link = emulator("none")
     try:
-        a, b = Axis(link, 10), Axis(link, 11)
+        a, b = WfAxis(link, 10), WfAxis(link, 11)
         md13 = []
         for dx in (1, 2):
             err, md = link.fetch(dx, 24, 2, "X")
@@ -268,7 +186,7 @@ def machine_run():
         check("DX 3 does not exist (two axes): 08", err == 0x08, hex(err))
         check("programs into user DB20", link.send(20, 0, text_db(PROGRAMS)) == 0)
         b.mode(PROGRAM_IO, 0)
-        done, refused, io = b.data_code(0x44, 20)
+        done, refused, _, io = b.data_code(0x44, 20)
         check("programs read in through axis B (44)", done and not refused and io == 0, (done, refused, hex(io)))
         a.synchronize()
         wait([a], lambda s: s[0]["syn"], 5)
