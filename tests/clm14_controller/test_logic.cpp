@@ -85,7 +85,8 @@ TEST(ClmLogic, BracketsSetResetAndNegatedStore) {
   im.set_bit(b("I1.00.4"), true);
   p.run(im);
   EXPECT_FALSE(im.bit(b("M6.20.0")));
-  EXPECT_EQ(p.owned_outputs().size(), 2u);
+  EXPECT_EQ(p.owned_mask({Area::output, 1, 0}), 0x03) << "the LT owns Q1.00.0 and Q1.00.1, nothing else";
+  EXPECT_EQ(p.owned_mask({Area::marker, 6, 20}), 0) << "markers are not owned outputs";
 }
 
 TEST(ClmLogic, RisingEdgeExampleOfTheManual) {

@@ -25,9 +25,9 @@ constexpr std::array<Name, 25> op_names{{
     {"END", LogicOp::end},
 }};
 
-bool is_store(LogicOp op) {
-  return op == LogicOp::st || op == LogicOp::stn || op == LogicOp::set || op == LogicOp::res || op == LogicOp::setc ||
-         op == LogicOp::resc || op == LogicOp::setcn || op == LogicOp::rescn;
+/// The store family st..rescn (contiguous in LogicOp): writes its operand, keeps the accumulator.
+constexpr bool is_store(LogicOp op) {
+  return op >= LogicOp::st && op <= LogicOp::rescn;
 }
 bool is_open(LogicOp op) {
   return op >= LogicOp::and_open && op <= LogicOp::xorn_open;
@@ -162,11 +162,9 @@ std::expected<LogicProgram, ProgramError> LogicProgram::compile(const std::vecto
       if (is_store(in.op) ? !storable(*b) : !loadable(*b))
         return fail(line, fmt::format("operand {} is not allowed for {}", operand, key));
       in = compiled(in.op, *b);
-      if (is_store(in.op) && std::find(p.owned_.begin(), p.owned_.end(), *b) == p.owned_.end() &&
-          b->byte.area == Area::output) {
-        p.owned_.push_back(*b);
-        auto& m = p.owned_mask_[Image::offset(b->byte) - Image::offset({Area::output, 0, 0})];
-        m = static_cast<std::uint8_t>(m | (1U << b->bit));
+      if (is_store(in.op) && b->byte.area == Area::output) {
+        auto& m = p.owned_mask_[Image::offset(b->byte)];
+        m = static_cast<std::uint8_t>(m | in.mask);
       }
     } else if (!operand.empty()) {
       return fail(line, fmt::format("{} takes no operand", key));
@@ -190,7 +188,7 @@ void LogicProgram::run(Image& image) const noexcept {
   std::array<std::pair<bool, LogicOp>, 64> stack{};
   std::size_t sp = 0;
   for (const auto& in : code_) {
-    if (in.op >= LogicOp::and_open) [[unlikely]] {
+    if (in.op >= LogicOp::and_open) [[unlikely]] {  // a bracket (NOP and END are never compiled)
       if (in.op == LogicOp::close) {
         if (sp > 0) {
           const auto [outer, op] = stack[--sp];
@@ -205,7 +203,7 @@ void LogicProgram::run(Image& image) const noexcept {
     const unsigned v = (b & in.mask) != 0 ? 1U : 0U;
     const bool acc0 = ((in.acc_table >> v) & 1U) != 0;
     const bool acc1 = ((in.acc_table >> (2U + v)) & 1U) != 0;
-    if (in.op >= LogicOp::st && in.op <= LogicOp::rescn) {
+    if (is_store(in.op)) {
       const bool bit = ((in.bit_table >> ((acc ? 2U : 0U) + v)) & 1U) != 0;
       b = static_cast<std::uint8_t>((b & ~in.mask) | (bit ? in.mask : 0U));
     }

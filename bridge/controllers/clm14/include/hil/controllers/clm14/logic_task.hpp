@@ -67,18 +67,14 @@ class LogicProgram {
   /// One pass over the program on `image` (reads and writes it in place).
   void run(Image& image) const noexcept;
   [[nodiscard]] bool empty() const noexcept { return code_.empty(); }
-  /// Output bits the logic task stores to: the NC tasks may no longer drive them (§9.1).
-  [[nodiscard]] const std::vector<BitAddress>& owned_outputs() const noexcept { return owned_; }
-  /// The same as a bit mask of output byte `a` (0 for inputs and markers).
-  [[nodiscard]] std::uint8_t owned_mask(const ByteAddress& a) const noexcept {
-    return a.area == Area::output ? owned_mask_[Image::offset(a) - Image::offset({Area::output, 0, 0})] : 0;
-  }
+  /// The output bits of byte `a` the logic task stores to, as a mask: the NC tasks may no longer
+  /// drive them (§9.1). 0 for inputs and markers.
+  [[nodiscard]] std::uint8_t owned_mask(const ByteAddress& a) const noexcept { return owned_mask_[Image::offset(a)]; }
   [[nodiscard]] std::size_t size() const noexcept { return code_.size(); }
 
  private:
   std::vector<LogicInstruction> code_;
-  std::vector<BitAddress> owned_;
-  std::array<std::uint8_t, 3 * io_bytes> owned_mask_{};
+  std::array<std::uint8_t, Image::size> owned_mask_{};  ///< by Image::offset; outputs only
 };
 
 }  // namespace hil::controllers::clm14
