@@ -66,7 +66,8 @@ class SplitDrive : public ::testing::Test {
     return md;
   }
 
-  void make(Side& s, char letter, const std::map<int, std::string>& md, const mocks::PlantConfig& plant) {
+  void make(Side& s, char letter, const std::map<int, std::string>& md, const mocks::PlantConfig& plant,
+            const std::string& programs = {}) {
     std::string text;
     for (const auto& [n, v] : md) text += "MD " + std::to_string(n) + " = " + v + "\n";
     const auto file = dir / (std::string("md-") + letter + ".txt");
@@ -76,6 +77,10 @@ class SplitDrive : public ::testing::Test {
     spec.file = (dir / "scenario.yaml").string();
     spec.line = 3;
     spec.parameters = file;
+    if (!programs.empty()) {
+      spec.programs = {dir / "progs.wf"};
+      std::ofstream(spec.programs.front()) << programs;
+    }
     spec.options["axis"] = std::string(1, letter);
     spec.options["db"] = std::to_string(10 + (letter - 'A'));
     ControllerRegistry r;
@@ -103,8 +108,9 @@ class SplitDrive : public ::testing::Test {
   }
 
   /// Builds A (MD 27 = 3) and B, couples them as the module does.
-  void start(std::map<int, std::string> md_b = base_md(), mocks::PlantConfig plant_b = stiff()) {
-    make(a, 'A', md_a(), stiff());
+  void start(std::map<int, std::string> md_b = base_md(), mocks::PlantConfig plant_b = stiff(),
+             const std::string& programs = {}) {
+    make(a, 'A', md_a(), stiff(), programs);
     make(b, 'B', md_b, plant_b);
     Wf725Controller* axes[] = {a.ctl.get(), b.ctl.get()};
     const auto coupled = wf725_couple_split_drive(axes);
@@ -227,6 +233,33 @@ TEST_F(SplitDrive, ACoupledMdiMoveKeepsBothAxesTogether) {
   EXPECT_LT(a.actual(), 80'000 - 5'000);
   EXPECT_NEAR(b.actual(), a.actual(), 2);
   EXPECT_EQ(a.error(), 0);
+}
+
+TEST_F(SplitDrive, AnAutomaticProgramWithFlyingBlockChangesMovesTheGantry) {
+  mocks::PlantConfig softer = stiff();
+  softer.kv_per_s = 150.0;
+  softer.velocity_feedforward = 0.9;
+  start(base_md(), softer,
+        "%7\nN1 G90 X 20 000 F 300 000\nN2 G90 X 40 000 F 600 000\nN3 G90 X 5 000 F 300 000 M0\n"
+        "N4 G91 X 1 000 F 100 000\n");
+  gantry_ready();
+  select(a, db::Submode::automatic);
+  a.ctl->write_db_word(db::dw_program, 7);
+  pulse(a, db::bit_start);
+  ASSERT_TRUE(run_until([&] { return a.bit(db::dw_flags, 0) && a.bit(db::dw_status, db::bit_peh) && at_rest(b); }))
+      << "M0: waits for the start";
+  EXPECT_NEAR(a.actual(), 5'000, 1) << "in the PEH window MD 33";
+  EXPECT_NEAR(b.actual(), 5'000, 2);
+  EXPECT_EQ(a.ctl->block_changes_um().size(), 1U) << "N1 -> N2 flying (same direction), N2 -> N3 reverses";
+  pulse(a, db::bit_start);
+  ASSERT_TRUE(run_until([&] { return !a.bit(db::dw_flags, 1) && a.bit(db::dw_status, db::bit_peh) && at_rest(b); }));
+  EXPECT_EQ(a.actual(), 6'000);
+  EXPECT_NEAR(b.actual(), 6'000, 2);
+  EXPECT_EQ(a.error(), 0);
+  EXPECT_EQ(b.error(), 0);
+  // 100 mm/s: B's lag v (1 - ff) / Kv = 67 µm, under MD 29 = 100 µm.
+  EXPECT_GT(a.ctl->split_drive()->max_difference_um, 40.0);
+  EXPECT_LT(a.ctl->split_drive()->max_difference_um, 100.0);
 }
 
 TEST_F(SplitDrive, ASlowPartnerRaises25OnBothAndTheMotionStops) {
