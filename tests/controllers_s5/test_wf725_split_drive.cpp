@@ -430,6 +430,16 @@ TEST_F(SplitDrive, Md27IsReadAtPowerUpAndCouplingErrorsNameTheCause) {
   const auto r = wf725_couple_split_drive(axes);
   ASSERT_FALSE(r);
   EXPECT_NE(r.error().find("no axis C"), std::string::npos) << r.error();
+  // Roller feed (MD 42 = 1 clears the actual value at every start) cannot be a split drive.
+  auto roller = base_md();
+  roller[42] = "1";
+  Side d, e;
+  make(d, 'A', md_a(), stiff());
+  make(e, 'B', roller, stiff());
+  const auto r2 = d.ctl->couple_split_drive(*e.ctl);
+  ASSERT_FALSE(r2);
+  EXPECT_NE(r2.error().find("roller feed"), std::string::npos) << r2.error();
+  EXPECT_EQ(d.ctl->split_drive(), nullptr) << "nothing coupled";
   EXPECT_EQ(wf725_split_partner(3), 'B');
   EXPECT_EQ(wf725_split_partner(5), 'C');
   EXPECT_EQ(wf725_split_partner(6), '\0');

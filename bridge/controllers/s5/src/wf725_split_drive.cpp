@@ -64,6 +64,11 @@ std::expected<void, std::string> Wf725Controller::couple_split_drive(Wf725Contro
         "split drive A+{}: both axes must be closed loop (MD 4 = 1/2; MD 29 exists in closed loop only)", partner));
   if (md_.rotary() || slave.md_.rotary())
     return std::unexpected(fmt::format("split drive A+{}: both axes must be linear (MD 18 < 2)", partner));
+  if (md_.integer(42) == 1 || slave.md_.integer(42) == 1)
+    return std::unexpected(fmt::format(
+        "split drive A+{}: no roller feed (MD 42 = 1 clears the actual value at every start; the split drive "
+        "compares the actual values)",
+        partner));
   if (split_ || split_master_ != nullptr || slave.split_ || slave.split_master_ != nullptr)
     return std::unexpected(fmt::format("split drive A+{}: an axis is coupled already", partner));
   if (axis_count() == 0 || slave.axis_count() == 0)
@@ -111,6 +116,7 @@ void Wf725Controller::split_drive_period(const CycleTime& cycle) noexcept {
       (void)(master_ok ? sa.stop() : sa.quick_stop());
     }
     sd.following = false;
+    sd.shift_requested = false;  // a shift asked for while engaged is not run later
     sd.shift.clear();
     sd.trim_mm = 0.0;
     return;
