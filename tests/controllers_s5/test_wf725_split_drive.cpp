@@ -235,6 +235,22 @@ TEST_F(SplitDrive, ACoupledMdiMoveKeepsBothAxesTogether) {
   EXPECT_EQ(a.error(), 0);
 }
 
+TEST_F(SplitDrive, ASubmodeSelectedTogetherWithTheStartCouplesFromTheFirstPeriod) {
+  start();
+  gantry_ready();
+  select(a, db::Submode::none);
+  (void)data_code(a, db::code::mdi_position, 20'000);
+  (void)data_code(a, db::code::mdi_feed, 300'000);
+  // The PLC writes the submode MDI and the start bit in one go.
+  a.ctl->write_db_word(db::dw_mode, static_cast<std::uint16_t>(0x0100 | static_cast<unsigned>(db::Submode::mdi)));
+  a.set_bit(db::dw_control, db::bit_start, true);
+  max_seen_um = 0.0;
+  ASSERT_TRUE(run_until([&] { return a.bit(db::dw_status, db::bit_peh) && at_rest(b) && a.actual() == 20'000; }));
+  EXPECT_NEAR(b.actual(), 20'000, 1);
+  EXPECT_LT(max_seen_um, 2.0) << "identical drives, one set-point from the first period";
+  EXPECT_EQ(a.error(), 0);
+}
+
 TEST_F(SplitDrive, AnAutomaticProgramWithFlyingBlockChangesMovesTheGantry) {
   mocks::PlantConfig softer = stiff();
   softer.kv_per_s = 150.0;
