@@ -1,0 +1,258 @@
+// SPDX-License-Identifier: MIT
+// Combined programs across the axes of a WF 726 (docs/wf725.md, "Combined programs"): the
+// interpolation pairs on input (174, 181), blocks of another axis one after the other, G17-G19
+// pairs that start and end together at the path feed, the slave checks 69/6B, a slave error as
+// 6A, RESET of the master, D2, 7A, and the M functions that stay the master's.
+#include <cmath>
+
+#include "wf726_module_fixture.hpp"
+
+namespace hil::controllers::s5::test {
+namespace {
+
+using M = Wf726ModuleFixture;
+
+Wf725SyntaxError parse_error(std::string_view text) {
+  auto p = parse_wf725_programs(text);
+  return p ? Wf725SyntaxError{} : p.error();
+}
+
+TEST(Wf726Interpolation, PairsAreCheckedOnInputWithTheirBlock) {
+  EXPECT_TRUE(parse_wf725_programs("%1\nN1 A G17 G90 X 30 000 F 60 000\nN2 B X 40 000\nN3 X 0\n"));
+  EXPECT_TRUE(parse_wf725_programs("%1\nN1 C G18 X 1 F 100\nN2 A G18 X 2\n"));  // either order, G repeated
+  EXPECT_TRUE(parse_wf725_programs("%1\n/N1 B G19 X 1 F 100\n/N2 C X 2\n"));
+  const auto expect = [](std::string_view text, int code, int program, int block, int line) {
+    const auto e = parse_error(text);
+    EXPECT_EQ(e.code, code) << text << ": " << e.message;
+    EXPECT_EQ(e.program, program) << text;
+    EXPECT_EQ(e.block, block) << text;
+    EXPECT_EQ(e.line, line) << text;
+    EXPECT_FALSE(e.message.empty());
+  };
+  // 174: the assignment of letters and G is not kept.
+  expect("%1\nN1 A G18 X 1 F 100\nN2 B X 2\n", 174, 1, 2, 3);      // B is not in A+C
+  expect("%1\nN1 G17 X 1 F 100\nN2 B X 2\n", 174, 1, 1, 2);        // the opener has no letter
+  expect("%3\nN1 A G17 X 1 F 100\nN2 A X 2\n", 174, 3, 2, 3);      // one block per axis
+  expect("%1\nN1 A G17 X 1 F 100\nN2 B G18 X 2\n", 174, 1, 2, 3);  // another G of the group
+  expect("%1\nN1 A G17 X 1 F 100\nN2 B F 100\n", 174, 1, 2, 3);    // no position
+  expect("%1\nN1 A G17 X 1 F 100\n/N2 B X 2\n", 174, 1, 2, 3);     // one of them skippable
+  expect("%1\nN1 A G17 G92 X 1 F 100\nN2 B X 2\n", 174, 1, 1, 2);  // G92 in a pair
+  // 181: the pair is not entered in sequence / in ascending block numbers.
+  expect("%1\nN1 X 5 F 100\nN7 A G17 X 1 F 100\n", 181, 1, 7, 3);  // no partner
+  expect("%1\nN1 A G17 X 1 F 100\n%2\nN1 X 1 F 100\n", 181, 1, 1, 2);
+  expect("%1\nN5 A G17 X 1 F 100\nN3 B X 2\n", 181, 1, 3, 3);
+  expect("%1\nN1 A G17 X 1 F 100\nN2 L5 P1\n", 181, 1, 2, 3);
+  // Nothing of a faulty text: the good program before the bad one is not returned either.
+  EXPECT_FALSE(parse_wf725_programs("%1\nN1 X 1 F 100\n%2\nN1 A G19 X 1 F 100\nN2 B X 2\n"));
+  // The canonical text keeps letters and pairs.
+  const auto p = parse_wf725_programs("%4 AB\nN1 A G17 G91 X 30 000 F 60 000 M21\nN2 B X -4\nN3 C X 7\n");
+  ASSERT_TRUE(p);
+  const auto back = parse_wf725_programs(make_wf725_program_text(p->front()));
+  ASSERT_TRUE(back);
+  EXPECT_EQ(back->front(), p->front());
+  EXPECT_TRUE(wf725_pair_partner(p->front(), 1));
+  EXPECT_FALSE(wf725_pair_partner(p->front(), 0));
+  EXPECT_FALSE(wf725_pair_partner(p->front(), 2));
+}
+
+TEST_F(M, BlocksOfAnotherAxisRunOneAfterTheOther) {
+  start("AB", "%5\nN1 G90 X 10 000 F 60 000\nN2 B X 20 000\nN3 X 0\nN4 B G91 X -5 000 F 30 000\n");
+  ready('B', db::Submode::none);
+  ready('A', db::Submode::automatic);
+  start_program('A', 5);
+  bool overlap = false, b_moved = false, b_shows_program = false;
+  ASSERT_TRUE(run_until([&] {
+    overlap = overlap || (moving('A') && moving('B'));
+    b_moved = b_moved || moving('B');
+    b_shows_program = b_shows_program || (word('B', db::dw_block) >> 8) == 5;
+    return !program_active('A');
+  }));
+  EXPECT_FALSE(overlap) << "consecutive blocks of different axes run one after the other";
+  EXPECT_TRUE(b_moved);
+  EXPECT_TRUE(b_shows_program) << "the slave shows the master's program in DL 22";
+  EXPECT_EQ(error('A'), 0);
+  EXPECT_EQ(error('B'), 0);
+  run(milliseconds(100));
+  EXPECT_NEAR(actual('A'), 0, 2);
+  EXPECT_NEAR(actual('B'), 15'000, 2);  // N4: G91 from 20 mm
+  EXPECT_EQ(c('B').master(), nullptr);
+  EXPECT_EQ(word('B', db::dw_block), 0);
+}
+
+// Path of the pair: A 30 mm, B 40 mm, 50 mm at F 600 mm/min = 10 mm/s: A 6 mm/s, B 8 mm/s.
+struct PairRun {
+  long start_a = -1, start_b = -1, end_a = -1, end_b = -1;
+  double peak_a = 0, peak_b = 0;
+};
+
+PairRun run_pair(M& t) {
+  PairRun r;
+  long cycle = 0;
+  EXPECT_TRUE(t.run_until([&] {
+    ++cycle;
+    const double va = std::abs(t.ax('A').status().command_velocity), vb = std::abs(t.ax('B').status().command_velocity);
+    r.peak_a = std::max(r.peak_a, va);
+    r.peak_b = std::max(r.peak_b, vb);
+    if (va > 0 && r.start_a < 0) r.start_a = cycle;
+    if (vb > 0 && r.start_b < 0) r.start_b = cycle;
+    if (va > 0) r.end_a = cycle;
+    if (vb > 0) r.end_b = cycle;
+    return !t.program_active('A');
+  }));
+  return r;
+}
+
+TEST_F(M, G17PairStartsAndEndsTogetherAtThePathFeed) {
+  start("AB", "%6\nN1 A G17 G90 X 30 000 F 60 000\nN2 B X 40 000\n");
+  ready('B', db::Submode::none);
+  ready('A', db::Submode::automatic);
+  start_program('A', 6);
+  const auto r = run_pair(*this);
+  EXPECT_EQ(r.start_a, r.start_b) << "both axes start in the same cycle";
+  EXPECT_EQ(r.end_a, r.end_b) << "both axes arrive in the same cycle";
+  EXPECT_NEAR(r.peak_a, 6.0, 0.01);  // mm/s
+  EXPECT_NEAR(r.peak_b, 8.0, 0.01);
+  // 50 mm at 10 mm/s, plus the ramps of a few ms
+  EXPECT_NEAR(static_cast<double>((r.end_a - r.start_a) * every), 5000.0, 30.0);
+  run(milliseconds(100));
+  EXPECT_NEAR(actual('A'), 30'000, 2);
+  EXPECT_NEAR(actual('B'), 40'000, 2);
+  EXPECT_EQ(error('A'), 0);
+  EXPECT_EQ(error('B'), 0);
+}
+
+TEST_F(M, PairFeedIsReducedToTheSlowerAxisMd3AndRampsStayTogether) {
+  auto md_b = base_md();
+  md_b[3] = "300";  // B: 5 mm/s at most; B would need 8 mm/s at F 600 mm/min
+  md_b[1] = "50";   // and a tenth of A's ramp
+  md_b[2] = "50";
+  start("AB", "%6\nN1 B G17 G91 X 40 000 F 60 000\nN2 A X 30 000\n", {{'B', md_b}});
+  ready('B', db::Submode::none);
+  ready('A', db::Submode::automatic);
+  start_program('A', 6);
+  const auto r = run_pair(*this);
+  EXPECT_EQ(r.start_a, r.start_b);
+  EXPECT_EQ(r.end_a, r.end_b);
+  EXPECT_NEAR(r.peak_b, 5.0, 0.01);
+  EXPECT_NEAR(r.peak_a, 3.75, 0.01);  // the path keeps its direction: 30/40 of B's speed
+  run(milliseconds(100));
+  EXPECT_NEAR(actual('A'), 30'000, 2);
+  EXPECT_NEAR(actual('B'), 40'000, 2);
+}
+
+TEST_F(M, SlaveNotInSubmode0Is69ThereAnd6BInTheMasterAndNothingMoves) {
+  start("AB", "%7\nN1 B X 10 000 F 60 000\n");
+  ready('B', db::Submode::mdi);
+  ready('A', db::Submode::automatic);
+  start_program('A', 7);
+  EXPECT_EQ(error('A'), 0x6B);
+  EXPECT_EQ(error('B'), 0x69);
+  EXPECT_FALSE(program_active('A'));
+  run(milliseconds(300));
+  EXPECT_FALSE(moving('B'));
+  EXPECT_EQ(actual('B'), 0);
+  // Submode "0" on B, 800C on A: the program runs.
+  traverse('B', db::Submode::none);
+  acknowledge('A');
+  start_program('A', 7);
+  ASSERT_TRUE(run_until([&] { return !program_active('A'); }));
+  run(milliseconds(100));
+  EXPECT_EQ(error('A'), 0);
+  EXPECT_EQ(error('B'), 0);  // 69 is self-acknowledging: the slave's next block cleared it
+  EXPECT_NEAR(actual('B'), 10'000, 2);
+}
+
+TEST_F(M, AnAxisTheModuleLacksIs6B) {
+  start("AB", "%8\nN1 C X 10 000 F 60 000\n");
+  ready('B', db::Submode::none);
+  ready('A', db::Submode::automatic);
+  start_program('A', 8);
+  EXPECT_EQ(error('A'), 0x6B);
+  EXPECT_EQ(error('B'), 0);
+}
+
+TEST_F(M, SlaveErrorDuringThePairIs6AInTheMasterAndStopsEveryAxis) {
+  start("AB", "%6\nN1 A G17 G90 X 30 000 F 60 000\nN2 B X 40 000\n");
+  ready('B', db::Submode::none);
+  ready('A', db::Submode::automatic);
+  start_program('A', 6);
+  run(std::chrono::seconds(2));
+  ASSERT_TRUE(moving('A'));
+  set_bit('B', db::dw_enable, db::bit_drive_enable, false);  // B's drive enable drops: 13 there
+  run(milliseconds(500));
+  EXPECT_EQ(error('B'), 0x13);
+  EXPECT_EQ(error('A'), 0x6A);
+  EXPECT_FALSE(program_active('A'));
+  EXPECT_FALSE(moving('A'));
+  EXPECT_LT(actual('A'), 20'000);
+  EXPECT_EQ(c('B').master(), nullptr);
+}
+
+TEST_F(M, ResetOfTheMasterEndsTheProgramOnEveryAxis) {
+  start("AB", "%6\nN1 A G17 G90 X 30 000 F 60 000\nN2 B X 40 000\nN3 X 0\n");
+  ready('B', db::Submode::none);
+  ready('A', db::Submode::automatic);
+  start_program('A', 6);
+  run(std::chrono::seconds(2));
+  ASSERT_TRUE(moving('B'));
+  pulse('A', db::bit_reset);
+  run(milliseconds(500));
+  EXPECT_FALSE(moving('A'));
+  EXPECT_FALSE(moving('B'));
+  EXPECT_FALSE(program_active('A'));
+  EXPECT_EQ(c('B').master(), nullptr);
+  EXPECT_LT(actual('B'), 30'000);
+  EXPECT_EQ(error('A'), 0);
+  EXPECT_EQ(error('B'), 0);
+  // B takes its own jobs again (MDI is not refused as busy).
+  EXPECT_TRUE(c('B').traversing());
+}
+
+TEST_F(M, InterpolationWithAJerkLimitIsD2) {
+  auto md_b = base_md();
+  md_b[38] = "1000";
+  start("AB", "%6\nN1 A G17 X 30 000 F 60 000\nN2 B X 40 000\n", {{'B', md_b}});
+  ready('B', db::Submode::none);
+  ready('A', db::Submode::automatic);
+  start_program('A', 6);
+  run(milliseconds(200));
+  EXPECT_EQ(error('A'), 0xD2);
+  EXPECT_FALSE(program_active('A'));
+  EXPECT_EQ(actual('A'), 0);
+  EXPECT_EQ(actual('B'), 0);
+}
+
+TEST_F(M, InterpolationOnAWf725Is7A) {
+  auto md = base_md();
+  for (const int n : {27, 29, 38, 39, 46, 47}) md.erase(n);  // no such MD on a WF 725
+  md[15] = "1";
+  start("AB", "%6\nN1 A G17 X 30 000 F 60 000\nN2 B X 40 000\n", {{'A', md}, {'B', md}}, "WF725A");
+  ready('B', db::Submode::none);
+  ready('A', db::Submode::automatic);
+  start_program('A', 6);
+  run(milliseconds(200));
+  EXPECT_EQ(error('A'), 0x7A);
+  EXPECT_EQ(actual('B'), 0);
+}
+
+TEST_F(M, MFunctionsOfASlaveBlockAreTheMastersAfterItsMotion) {
+  start("AB", "%9\nN1 B X 10 000 F 60 000 M21\nN2 X 5 000\n");
+  ready('B', db::Submode::none);
+  ready('A', db::Submode::automatic);
+  start_program('A', 9);
+  ASSERT_TRUE(run_until([&] { return bit('A', db::dw_status, db::bit_m_strobe); }));
+  EXPECT_EQ(word('A', db::dw_status) >> 8, 21);
+  EXPECT_NEAR(actual('B'), 10'000, 2) << "the M function comes after the slave's motion";
+  EXPECT_FALSE(moving('A')) << "the master waits for the acknowledgement";
+  set_bit('A', db::dw_enable, db::bit_m_ack, true);
+  run(milliseconds(24));
+  set_bit('A', db::dw_enable, db::bit_m_ack, false);
+  ASSERT_TRUE(run_until([&] { return !program_active('A'); }));
+  run(milliseconds(100));
+  EXPECT_NEAR(actual('A'), 5'000, 2);
+  EXPECT_EQ(c('A').m_history(), std::vector<int>{21});
+  EXPECT_TRUE(c('B').m_history().empty());
+}
+
+}  // namespace
+}  // namespace hil::controllers::s5::test
