@@ -5,6 +5,7 @@
 // 6A, RESET of the master, D2, 7A, and the M functions that stay the master's.
 #include <cmath>
 
+#include "hil/controllers/s5/wf726_module_controller.hpp"
 #include "wf726_module_fixture.hpp"
 
 namespace hil::controllers::s5::test {
@@ -252,6 +253,52 @@ TEST_F(M, MFunctionsOfASlaveBlockAreTheMastersAfterItsMotion) {
   EXPECT_NEAR(actual('A'), 5'000, 2);
   EXPECT_EQ(c('A').m_history(), std::vector<int>{21});
   EXPECT_TRUE(c('B').m_history().empty());
+}
+
+}  // namespace
+}  // namespace hil::controllers::s5::test
+
+namespace hil::controllers::s5::test {
+namespace {
+
+using W726Setup = Wf725Fixture;
+
+TEST_F(W726Setup, AxisBAndCInOneControllerBlockFormOneModule) {
+  std::string text;
+  for (const auto& [n, v] : base_md()) text += "MD " + std::to_string(n) + " = " + v + "\n";
+  spec.parameters = write("a.txt", text);
+  spec.options["axis_b"] = "b.txt";  // relative to the scenario
+  spec.options["axis_c"] = write("c.txt", text).string();
+  spec.options["db_c"] = "20";
+  (void)write("b.txt", text);
+  spec.programs = {write("p.wf", "%3 AC\nN1 A G18 X 5 F 600\nN2 C X 7\n")};
+  ControllerRegistry r;
+  register_wf725(r);
+  auto c = r.create(spec);
+  ASSERT_TRUE(c) << c.error().describe();
+  auto& m = static_cast<Wf726ModuleController&>(**c);
+  ASSERT_EQ(m.axis_specs().size(), 3U);
+  EXPECT_EQ(m.axis_specs()[1].name, "B");
+  EXPECT_EQ(m.module().size(), 3U);
+  EXPECT_EQ(m.module_axis(2).interface_db().number, 20);
+  EXPECT_EQ(m.module_axis(1).interface_db().number, 11);
+  EXPECT_NE(m.module_axis(2).programs().find(3), nullptr) << "one program memory";
+  // The DB axes of B and C in the image: the name and the S5 address are the same bit.
+  const auto start_c = m.resolve_bit("start_C");
+  ASSERT_TRUE(start_c);
+  const auto addr = m.resolve_bit("DB20 D 1.0");
+  ASSERT_TRUE(addr) << addr.error();
+  EXPECT_EQ(*start_c, *addr);
+  EXPECT_TRUE(m.resolve_bit("x7_e1"));
+  EXPECT_TRUE(m.resolve_bit("limit_plus_B"));
+  EXPECT_FALSE(m.resolve_bit("DB12 D 1.0"));
+  ASSERT_TRUE(m.write_data_word(30, 0, 7));  // a user data block, shared by the axes
+  EXPECT_EQ(*m.module_axis(2).read_data_word(30, 0), 7);
+  // Two axes on one DB axis number are refused.
+  spec.options["db_c"] = "11";
+  auto bad = r.create(spec);
+  ASSERT_FALSE(bad);
+  EXPECT_NE(bad.error().describe().find("DB11"), std::string::npos) << bad.error().describe();
 }
 
 }  // namespace
