@@ -163,6 +163,20 @@ TEST_F(M, SlaveNotInSubmode0Is69ThereAnd6BInTheMasterAndNothingMoves) {
   EXPECT_NEAR(actual('B'), 10'000, 2);
 }
 
+TEST_F(M, ASlaveThatLeftSubmode0BeforeItsBlockIs69And6BThere) {
+  start("AB", "%7\nN1 X 10 000 F 60 000\nN2 B X 10 000\n");
+  ready('B', db::Submode::none);
+  ready('A', db::Submode::automatic);
+  start_program('A', 7);
+  ASSERT_TRUE(program_active('A'));
+  traverse('B', db::Submode::mdi);  // while A runs N1
+  ASSERT_TRUE(run_until([&] { return !program_active('A'); }));
+  EXPECT_EQ(error('A'), 0x6B);
+  EXPECT_EQ(error('B'), 0x69);
+  EXPECT_NEAR(actual('A'), 10'000, 2);
+  EXPECT_EQ(actual('B'), 0);
+}
+
 TEST_F(M, AnAxisTheModuleLacksIs6B) {
   start("AB", "%8\nN1 C X 10 000 F 60 000\n");
   ready('B', db::Submode::none);

@@ -118,6 +118,14 @@ bool Wf725Controller::begin_combined(TimePoint now) {
     const char l = blocks[i]->axis;
     axes[i] = l == 0 || l == opt_.axis ? this : (module_ != nullptr ? module_->axis(l) : nullptr);
     if (axes[i] == nullptr) return fail(0x6B, fmt::format("the module has no axis {}", l));
+    // Checked again at each block: a buffer or a subprogram reaches a slave the start did not see.
+    if (axes[i] != this && !axes[i]->slave_ready()) {
+      axes[i]->raise_wf(0x69, now,
+                        fmt::format("axis {} runs program {} N{}: this slave axis must be in traversing "
+                                    "with submode \"0\" and no job",
+                                    opt_.axis, program, blocks[i]->number));
+      return fail(0x6B, fmt::format("slave axis {} is not in submode \"0\"", l));
+    }
   }
   if (pair) {
     const int g = b.group(4);
