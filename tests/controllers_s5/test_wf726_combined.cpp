@@ -177,6 +177,39 @@ TEST_F(M, ASlaveThatLeftSubmode0BeforeItsBlockIs69And6BThere) {
   EXPECT_EQ(actual('B'), 0);
 }
 
+TEST_F(M, ASlaveOnItsPreLimitIs96ThereAnd6AInTheMaster) {
+  start("AB", "%6\nN1 A G17 G90 X 30 000 F 60 000\nN2 B X 120 000\n");  // B's MD 13: 96.417 mm
+  ready('B', db::Submode::none);
+  ready('A', db::Submode::automatic);
+  start_program('A', 6);
+  ASSERT_TRUE(run_until([&] { return !program_active('A'); }));
+  run(milliseconds(100));
+  EXPECT_EQ(error('B'), 0x96);
+  EXPECT_EQ(error('A'), 0x6A);
+  EXPECT_EQ(actual('B'), 96'417) << "stopped exactly on the pre-limit";
+}
+
+TEST_F(M, SingleStepOntoThePartnerRunsThePairAndASkippedPairIsSkippedWhole) {
+  start("AB", "%6\n/N1 A G17 G90 X 30 000 F 60 000\n/N2 B X 40 000\nN3 X 5 000 F 60 000\n");
+  ready('B', db::Submode::none);
+  ready('A', db::Submode::single_step);
+  c('A').write_db_word(db::dw_enable, static_cast<std::uint16_t>(word('A', db::dw_enable) | (2U << 8)));  // DL 2 = N2
+  start_program('A', 6);
+  ASSERT_TRUE(run_until([&] { return !program_active('A'); }));
+  run(milliseconds(100));
+  EXPECT_NEAR(actual('A'), 30'000, 2);
+  EXPECT_NEAR(actual('B'), 40'000, 2);
+  // Automatic cycle with "skip block": the pair N1/N2 is skipped, N3 runs.
+  traverse('A', db::Submode::automatic);
+  set_bit('A', db::dw_control, db::bit_skip, true);
+  start_program('A', 6);
+  ASSERT_TRUE(run_until([&] { return !program_active('A'); }));
+  run(milliseconds(100));
+  EXPECT_EQ(error('A'), 0);
+  EXPECT_NEAR(actual('A'), 5'000, 2);
+  EXPECT_NEAR(actual('B'), 40'000, 2);
+}
+
 TEST_F(M, AnAxisTheModuleLacksIs6B) {
   start("AB", "%8\nN1 C X 10 000 F 60 000\n");
   ready('B', db::Submode::none);
@@ -308,6 +341,64 @@ TEST_F(W726Setup, AxisBAndCInOneControllerBlockFormOneModule) {
   EXPECT_FALSE(m.resolve_bit("DB12 D 1.0"));
   ASSERT_TRUE(m.write_data_word(30, 0, 7));  // a user data block, shared by the axes
   EXPECT_EQ(*m.module_axis(2).read_data_word(30, 0), 7);
+  // On two machine axes: the PLC's words reach each axis, its errors show on its machine axis.
+  mocks::SimDriveConfig d;
+  d.plant.kv_per_s = 200.0;
+  d.plant.velocity_lag_s = 0.0;
+  d.plant.velocity_feedforward = 1.0;
+  std::vector<std::unique_ptr<motion::Axis>> axes;
+  std::vector<motion::Axis*> ptrs;
+  for (const auto& a : m.axis_specs()) {
+    d.name = "sim:" + a.name;
+    axes.push_back(std::make_unique<motion::Axis>(a.config, std::make_unique<mocks::SimDrive>(d)));
+    ptrs.push_back(axes.back().get());
+  }
+  ASSERT_TRUE(m.bind_axes(ptrs));
+  TimePoint t{};
+  const auto cycles = [&](int n) {
+    for (int i = 0; i < n; ++i) {
+      for (int k = 0; k < 6; ++k) {
+        t += milliseconds(1);
+        for (auto& a : axes) a->update(CycleTime{t, milliseconds(1)});
+      }
+      (void)m.step(CycleTime{t, m.cycle_period()});
+    }
+  };
+  for (const int db : {10, 11, 20}) {
+    ASSERT_TRUE(m.write_data_word(db, db::dw_mode, 0x0100 | static_cast<unsigned>(db::Submode::set_actual)));
+    ASSERT_TRUE(m.write_data_word(db, db::dw_enable, 1));
+  }
+  cycles(10);
+  for (const int db : {10, 11, 20}) ASSERT_TRUE(m.write_data_word(db, db::dw_control, 1));
+  cycles(3);
+  for (const int db : {10, 11, 20}) ASSERT_TRUE(m.write_data_word(db, db::dw_control, 0));
+  cycles(3);
+  EXPECT_TRUE((*m.read_data_word(20, db::dw_status) >> db::bit_syn) & 1U) << "C synchronized through DB20";
+  EXPECT_TRUE(m.io().get(*m.resolve_bit("drive_enable_C")));
+  // C in automatic (not "0"): program 3 on A gives 69 on C and 6B on A, on their machine axes.
+  ASSERT_TRUE(m.write_data_word(10, db::dw_mode, 0x0100 | static_cast<unsigned>(db::Submode::automatic)));
+  ASSERT_TRUE(m.write_data_word(20, db::dw_mode, 0x0100 | static_cast<unsigned>(db::Submode::automatic)));
+  ASSERT_TRUE(m.write_data_word(10, db::dw_program, 3));
+  cycles(3);
+  ASSERT_TRUE(m.write_data_word(10, db::dw_control, 1));
+  cycles(3);
+  EXPECT_EQ(*m.read_data_word(10, db::dw_error) & 0xFF, 0x6B);
+  EXPECT_EQ(*m.read_data_word(20, db::dw_error) & 0xFF, 0x69);
+  const auto shown = [&](int index, int code) {
+    return std::ranges::any_of(m.errors().active(),
+                               [&](const DeviceError& e) { return e.axis == index && e.code == code; });
+  };
+  EXPECT_TRUE(shown(0, 0x6B));
+  EXPECT_TRUE(shown(2, 0x69));
+  EXPECT_TRUE(m.io().get(*m.resolve_bit("error_A")));
+  EXPECT_TRUE(m.io().get(*m.resolve_bit("device_error")));
+  // 800C in DB10 clears 6B on A: gone from its machine axis too.
+  ASSERT_TRUE(m.write_data_word(10, db::dw_control, 0));
+  ASSERT_TRUE(m.write_data_word(10, db::dw_data_code, db::code::acknowledge));
+  ASSERT_TRUE(m.write_data_word(10, db::dw_data_execute, 1));
+  cycles(3);
+  EXPECT_FALSE(shown(0, 0x6B));
+  EXPECT_TRUE(shown(2, 0x69));
   // Two axes on one DB axis number are refused.
   spec.options["db_c"] = "11";
   auto bad = r.create(spec);
