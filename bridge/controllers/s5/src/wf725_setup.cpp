@@ -114,8 +114,10 @@ std::expected<std::unique_ptr<Wf725Controller>, ConfigError> create_axis(const C
       auto progs = parse_wf725_programs(ss.str(), *syntax);
       if (!progs) {
         const auto& e = progs.error();
-        return std::unexpected(ConfigError{path.string(), e.line, 0, fmt::format("program {} N{}", e.program, e.block),
-                                           fmt::format("WF error {} (memory administration): {}", e.code, e.message)});
+        return std::unexpected(
+            ConfigError{path.string(), e.line, 0, fmt::format("program {} N{}", e.program, e.block),
+                        fmt::format("WF error {} ({}): {}", e.code,
+                                    e.code < 200 ? "program input" : "memory administration", e.message)});
       }
       for (auto& p : *progs) {
         const int n = p.number;
