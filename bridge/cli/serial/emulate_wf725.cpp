@@ -278,7 +278,9 @@ void register_wf725_emulator(Context& ctx) {
     for (auto& m : machines) {
       auto* ctl = dynamic_cast<s5c::Wf725Controller*>(m->machine->controller());
       if (ctl == nullptr)
-        return fail("the machine file's wf725-726 controller is not the module model (give it db: N or programs:)");
+        return fail(
+            "the machine file's wf725-726 controller is not one axis of the module model (give it db: N or "
+            "programs:; one machine file per axis: axis_b/axis_c are for scenarios)");
       if (ctl->interface_db().number == s5c::wf725_md_image_db)
         return fail("db: 1 is the MD image of the emulator: give the DB axis another number (2..255)");
       for (const auto* c : ctls) {

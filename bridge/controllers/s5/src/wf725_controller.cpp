@@ -292,6 +292,8 @@ void Wf725Controller::handle_drive(TimePoint now) {
 }
 
 void Wf725Controller::abort_job() {
+  release_slaves(true);  // a combined program ends on every axis it moves
+  master_ = nullptr;
   auto& ax = axis(0);
   const auto s = ax.status().state;
   if (open_loop()) {
@@ -311,7 +313,8 @@ void Wf725Controller::abort_job() {
   g99_wait_ = false;
 }
 
-bool Wf725Controller::go(double target_mm, std::int64_t feed, TimePoint now, motion::Direction dir) {
+bool Wf725Controller::go(double target_mm, std::int64_t feed, TimePoint now, motion::Direction dir,
+                         double acceleration) {
   if (feed <= 0) {
     raise_wf(0x73, now, "no feed for the motion");
     return false;
@@ -334,6 +337,7 @@ bool Wf725Controller::go(double target_mm, std::int64_t feed, TimePoint now, mot
   motion::Limits lim = ax.config().limits;
   // Feeds above MD 3 are reduced to MD 3 (§4.3 MD 3); 10^-2 mm/min -> mm/s.
   lim.velocity = std::min(lim.velocity, static_cast<double>(feed) / 100.0 / 60.0);
+  if (acceleration > 0.0) lim.acceleration = std::min(lim.acceleration, acceleration);
   const double axis_target =
       md_.rotary() ? std::fmod(std::fmod(t, ax.config().modulo) + ax.config().modulo, ax.config().modulo) : to_axis(t);
   double goal = axis_target;
@@ -544,6 +548,8 @@ void Wf725Controller::run_job(const CycleTime& cycle) {
     case Job::program:
       program_cycle(cycle);
       return;
+    case Job::slave:
+      return;  // the master's combined program watches the motion (wf725_combined.cpp)
     case Job::reference:
       break;
   }

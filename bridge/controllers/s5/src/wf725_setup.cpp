@@ -9,6 +9,7 @@
 
 #include "hil/controllers/parameter_controller.hpp"
 #include "hil/controllers/s5/wf725_controller.hpp"
+#include "hil/controllers/s5/wf726_module_controller.hpp"
 
 namespace hil::controllers::s5 {
 namespace {
@@ -27,13 +28,17 @@ std::optional<double> number(std::string_view s) {
 bool wf725_wants_module(const ControllerSpec& spec) noexcept {
   if (!spec.programs.empty()) return true;
   for (const char* key : {"db", "module", "reference_speeds", "jog_feed", "difference_cycles", "open_loop_speed",
-                          "open_loop_acceleration", "split_monitoring"})
+                          "open_loop_acceleration", "axis_b", "axis_c", "db_b", "db_c",
+                          "split_monitoring"})
     if (spec.options.contains(key)) return true;
   return false;
 }
 
-void register_wf725(ControllerRegistry& registry) {
-  registry.add("wf725-726", [](const ControllerSpec& spec) -> std::expected<std::unique_ptr<Controller>, ConfigError> {
+namespace {
+
+/// One axis from a single-axis `controller:` block.
+std::expected<std::unique_ptr<Wf725Controller>, ConfigError> create_axis(const ControllerSpec& spec) {
+  {
     const auto fail = [&](std::string key, std::string message) {
       return std::unexpected(ConfigError{spec.file, spec.line, 0, "controller." + key, std::move(message)});
     };
@@ -86,7 +91,7 @@ void register_wf725(ControllerRegistry& registry) {
       } else {
         return fail(key, fmt::format("unknown controller key '{}' (known: device, parameters, programs, cycle, axis, "
                                      "module, db, reference_speeds, jog_feed, difference_cycles, open_loop_speed, "
-                                     "open_loop_acceleration, split_monitoring)",
+                                     "open_loop_acceleration, axis_b, axis_c, db_b, db_c, split_monitoring)",
                                      key));
       }
     }
@@ -114,8 +119,10 @@ void register_wf725(ControllerRegistry& registry) {
       auto progs = parse_wf725_programs(ss.str(), *syntax);
       if (!progs) {
         const auto& e = progs.error();
-        return std::unexpected(ConfigError{path.string(), e.line, 0, fmt::format("program {} N{}", e.program, e.block),
-                                           fmt::format("WF error {} (memory administration): {}", e.code, e.message)});
+        return std::unexpected(
+            ConfigError{path.string(), e.line, 0, fmt::format("program {} N{}", e.program, e.block),
+                        fmt::format("WF error {} ({}): {}", e.code,
+                                    e.code < 200 ? "program input" : "memory administration", e.message)});
       }
       for (auto& p : *progs) {
         const int n = p.number;
@@ -129,6 +136,20 @@ void register_wf725(ControllerRegistry& registry) {
     }
     (void)file;
     return c;
+  }
+}
+
+}  // namespace
+
+void register_wf725(ControllerRegistry& registry) {
+  registry.add("wf725-726", [](const ControllerSpec& spec) -> std::expected<std::unique_ptr<Controller>, ConfigError> {
+    // Several axes of one module (docs/wf725.md, "Several axes in a scenario").
+    if (spec.options.contains("axis_b") || spec.options.contains("axis_c") || spec.options.contains("db_b") ||
+        spec.options.contains("db_c"))
+      return make_wf726_module_controller(spec, create_axis);
+    auto c = create_axis(spec);
+    if (!c) return std::unexpected(c.error());
+    return std::unique_ptr<Controller>(std::move(*c));
   });
 }
 

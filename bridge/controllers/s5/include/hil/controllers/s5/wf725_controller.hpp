@@ -45,6 +45,8 @@
 
 namespace hil::controllers::s5 {
 
+class Wf726Module;
+
 struct Wf725Options {
   char axis = 'A';
   std::uint16_t db = 10;
@@ -98,6 +100,15 @@ class Wf725Controller final : public Controller {
     store_user_ = store_->add_user([this](int n) { return runs_stored_program(n); });
   }
 
+  // ---- the module's axes (wf725_combined.cpp; docs/wf725.md "Combined programs") -------------
+  /// The axis letter (A, B, C).
+  [[nodiscard]] char axis_letter() const noexcept { return opt_.axis; }
+  /// Called by Wf726Module::add (nullptr: the axis leaves its module). Between cycles only.
+  void join_module(Wf726Module* module) noexcept { module_ = module; }
+  [[nodiscard]] Wf726Module* module() const noexcept { return module_; }
+  /// The master axis whose combined program moves this axis now (nullptr: none).
+  [[nodiscard]] const Wf725Controller* master() const noexcept { return master_; }
+
   // ---- the PLC's view: the DB axis as plain words (S5InterfaceDb) ----------------------------
   [[nodiscard]] std::uint16_t read_db_word(std::uint16_t w) const noexcept { return db_.read_word(w); }
   void write_db_word(std::uint16_t w, std::uint16_t v) noexcept { db_.write_word(w, v); }
@@ -142,7 +153,6 @@ class Wf725Controller final : public Controller {
   /// Split-drive difference now: slave actual - master actual - commanded shift, µm (machine
   /// coordinates); nullopt when the axis is not coupled.
   [[nodiscard]] std::optional<double> split_difference_um() const noexcept;
-  [[nodiscard]] char axis_letter() const noexcept { return opt_.axis; }
 
   // ---- observation (tests, summary) ------------------------------------------------------------
   /// Actual value as the module shows it (program coordinates), µm (10^-3 degree).
@@ -181,7 +191,7 @@ class Wf725Controller final : public Controller {
                                                               const motion::AxisStatus& status) const noexcept override;
 
  private:
-  enum class Job : std::uint8_t { none, jog, reference, move, program, clamping };
+  enum class Job : std::uint8_t { none, jog, reference, move, program, clamping, slave };
   enum class RefPhase : std::uint8_t { rapid, reduced, slow };
   enum class Step : std::uint8_t {
     fetch,
@@ -192,7 +202,8 @@ class Wf725Controller final : public Controller {
     wait_start,
     wait_enable,
     continuous,
-    stopping
+    stopping,
+    combined
   };
   enum class MState : std::uint8_t { idle, strobe, wait_release, timed };
   struct Frame {
@@ -264,7 +275,9 @@ class Wf725Controller final : public Controller {
   }
   /// Moves to machine position `target_mm` at `feed` (10^-2 mm/min), clamped to the armed
   /// pre-limits. False when the axis refused (error raised).
-  bool go(double target_mm, std::int64_t feed, TimePoint now, motion::Direction dir = motion::Direction::shortest);
+  /// `acceleration` > 0: the ramp of this move in mm/s^2 (an interpolation pair), else the axis'.
+  bool go(double target_mm, std::int64_t feed, TimePoint now, motion::Direction dir = motion::Direction::shortest,
+          double acceleration = 0.0);
   bool go_velocity(int direction, std::int64_t feed, TimePoint now);
   [[nodiscard]] bool armed() const noexcept { return synced_ || !md_.incremental(); }
   [[nodiscard]] double machine_mm() const noexcept;          ///< actual, machine coordinates
@@ -305,6 +318,27 @@ class Wf725Controller final : public Controller {
   void end_program();
   void output_m(int m, TimePoint now);
   void m_cycle(TimePoint now);
+
+  // combined programs (wf725_combined.cpp)
+  /// At the start of program `p` (master): every other axis its blocks name (subprograms
+  /// included) exists on the module and is in traversing with submode "0" and no job: else 69 in
+  /// that axis, 6B here (or 6B alone for an axis the module lacks); false then.
+  bool check_slaves(const Wf725Program& p, TimePoint now);
+  /// Whether the current block is combined: another axis' letter (1) or an interpolation pair (2).
+  [[nodiscard]] int combined_kind(const Wf725Block& b) const noexcept;
+  /// Starts the current combined block (or pair); false when it failed (error raised, job ended).
+  bool begin_combined(TimePoint now);
+  /// Step::combined: waits for the axes of the combined block; false while it runs or failed.
+  bool combined_cycle(TimePoint now);
+  /// Stops (`abort`) or releases the slaves this axis commands.
+  void release_slaves(bool abort) noexcept;
+  /// Slave side: whether the axis can take a block of a master's combined program.
+  [[nodiscard]] bool slave_ready() const noexcept;
+  /// Slave side: the machine target of block `b` in this axis' coordinates.
+  [[nodiscard]] double combined_target(const Wf725Block& b, bool absolute) const noexcept;
+  /// Slave side: moves to `target_mm` for `master` (Job::slave); false when the axis refused
+  /// (its error raised here).
+  bool slave_move(Wf725Controller& master, double target_mm, std::int64_t feed, double acceleration, TimePoint now);
 
   Wf725MachineData md_;
   Wf725Options opt_;
@@ -402,6 +436,14 @@ class Wf725Controller final : public Controller {
   TimePoint m_until_{};
   std::vector<int> m_history_;
   std::vector<double> block_changes_um_;
+
+  // combined programs
+  Wf726Module* module_ = nullptr;
+  Wf725Controller* master_ = nullptr;                ///< slave: the master moving this axis
+  std::array<Wf725Controller*, 2> combined_axes_{};  ///< master: the axes of the running combined block
+  int combined_blocks_ = 0;                          ///< master: blocks the running combined step takes (1, 2)
+  bool combined_done_ = false;                       ///< master: the motion of the combined step ended
+  std::vector<int> combined_m_;                      ///< master: M functions output after the combined motion
 };
 
 /// Registers `wf725-726` in `registry` (the module model; replaces a factory of that name).
