@@ -243,6 +243,7 @@ void Wf725Controller::on_cycle(const CycleTime& cycle) noexcept {
       check_limits(now);
     }
   }
+  split_cycle(now);  // split drive MD 27/29 (wf725_split_drive.cpp)
   m_cycle(now);
   write_status();
   db_.end_cycle();
@@ -403,7 +404,7 @@ void Wf725Controller::handle_start(TimePoint now) {
           raise_wf(0x13, now, "jog without drive enable D 2.0");
         } else if (jog_feed_ == 0) {
           raise_wf(0x72, now, "set-up speed (data code 1C) is 0");
-        } else if (!errors().blocks_motion(0) && go_velocity(dir, jog_feed_, now)) {
+        } else if (!errors().blocks_motion(0) && split_start(now) && go_velocity(dir, jog_feed_, now)) {
           job_ = Job::jog;
         }
         jog_dir_ = dir;
@@ -432,6 +433,7 @@ void Wf725Controller::handle_start(TimePoint now) {
     raise_wf(0x71, now, "MD 2 = 0");
     return;
   }
+  if (!split_start(now)) return;  // split drive: the slave, MD 1/2/38/39, MD 29 (no-op without)
   auto& ax = axis(0);
   const bool roller = md_.integer(42) == 1 && md_.closed_loop() && md_.incremental();
   switch (submode_) {

@@ -28,7 +28,8 @@ std::optional<double> number(std::string_view s) {
 bool wf725_wants_module(const ControllerSpec& spec) noexcept {
   if (!spec.programs.empty()) return true;
   for (const char* key : {"db", "module", "reference_speeds", "jog_feed", "difference_cycles", "open_loop_speed",
-                          "open_loop_acceleration", "axis_b", "axis_c", "db_b", "db_c"})
+                          "open_loop_acceleration", "axis_b", "axis_c", "db_b", "db_c",
+                          "split_monitoring"})
     if (spec.options.contains(key)) return true;
   return false;
 }
@@ -79,6 +80,10 @@ std::expected<std::unique_ptr<Wf725Controller>, ConfigError> create_axis(const C
                                ? "open_loop_speed: the open-loop drive's speed at 10 V (level 100) in mm/min, > 0"
                                : "open_loop_acceleration: the open-loop drive's own acceleration in mm/s^2, > 0");
         (key == "open_loop_speed" ? opt.drive.speed_at_10v_mm_min : opt.drive.acceleration) = *v;
+      } else if (key == "split_monitoring") {
+        if (value != "bit" && value != "always")
+          return fail(key, "split_monitoring: bit (the MD 29 comparison runs while D 2.3 of axis A is set) or always");
+        opt.split_monitoring_always = value == "always";
       } else if (key == "jog_feed") {
         const auto v = number(value);
         if (!v) return fail(key, "jog_feed: the set-up speed in mm/min (data code 1C)");
@@ -86,7 +91,7 @@ std::expected<std::unique_ptr<Wf725Controller>, ConfigError> create_axis(const C
       } else {
         return fail(key, fmt::format("unknown controller key '{}' (known: device, parameters, programs, cycle, axis, "
                                      "module, db, reference_speeds, jog_feed, difference_cycles, open_loop_speed, "
-                                     "open_loop_acceleration, axis_b, axis_c, db_b, db_c)",
+                                     "open_loop_acceleration, axis_b, axis_c, db_b, db_c, split_monitoring)",
                                      key));
       }
     }

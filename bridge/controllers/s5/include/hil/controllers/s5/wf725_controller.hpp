@@ -41,6 +41,7 @@
 #include "hil/controllers/s5/wf725_machine_data.hpp"
 #include "hil/controllers/s5/wf725_open_loop.hpp"
 #include "hil/controllers/s5/wf725_program_store.hpp"
+#include "hil/controllers/s5/wf725_split_drive.hpp"
 
 namespace hil::controllers::s5 {
 
@@ -54,6 +55,7 @@ struct Wf725Options {
   char variant = 'A';                      ///< module variant: A incremental, B parallel absolute, C SSI (WF 726)
   int difference_cycles = 4;               ///< error 33 after this many jumps > MD 34 in a row (manual: 4 or 5)
   Wf725OpenLoopDrive drive;                ///< open loop: the drive behind X3 (open_loop_speed/_acceleration)
+  bool split_monitoring_always = false;    ///< split drive: compare MD 29 without the enable bit D 2.3
 };
 
 /// The S5 user data blocks beside the module: the PLC's DBs that the "Software Schale" FB copies
@@ -79,7 +81,10 @@ class Wf725Controller final : public Controller {
  public:
   Wf725Controller(LoadedParameters parameters, Wf725MachineData md, ControllerAxis axis, Duration cycle,
                   Wf725Options options);
-  ~Wf725Controller() override { store_->remove_user(store_user_); }
+  ~Wf725Controller() override {
+    split_detach();
+    store_->remove_user(store_user_);
+  }
   Wf725Controller(const Wf725Controller&) = delete;
   Wf725Controller& operator=(const Wf725Controller&) = delete;
 
@@ -133,6 +138,21 @@ class Wf725Controller final : public Controller {
   [[nodiscard]] bool machine_data_mode() const noexcept {
     return mode_bits_ == (1U << (wf_db::bit_mode_machine_data - 8));
   }
+
+  // ---- split drive (gantry) MD 27/29: wf725_split_drive.cpp, docs/wf725.md "Split drive" -----
+  /// Makes `slave` (this module's axis B or C, the one MD 27 of this axis A names) follow this
+  /// axis in the split-drive submodes. Error text (nothing coupled) when this is not axis A with
+  /// MD 27 = 3 / 5 naming `slave`'s letter, either axis is open loop or rotary, or one is coupled.
+  /// Construction time (before the first cycle); both must outlive each other's cycles.
+  [[nodiscard]] std::expected<void, std::string> couple_split_drive(Wf725Controller& slave);
+  /// Every run period, before this axis' update and after the master's: a coupled slave takes
+  /// the master's set-point (plus the programmed shift); on any other axis nothing happens.
+  void split_drive_period(const CycleTime& cycle) noexcept;
+  /// The coupling this axis is master of (nullptr: none).
+  [[nodiscard]] const Wf725SplitDrive* split_drive() const noexcept { return split_.get(); }
+  /// Split-drive difference now: slave actual - master actual - commanded shift, µm (machine
+  /// coordinates); nullopt when the axis is not coupled.
+  [[nodiscard]] std::optional<double> split_difference_um() const noexcept;
 
   // ---- observation (tests, summary) ------------------------------------------------------------
   /// Actual value as the module shows it (program coordinates), µm (10^-3 degree).
@@ -236,6 +256,18 @@ class Wf725Controller final : public Controller {
   void write_status();
 
   void abort_job();
+  // split drive (wf725_split_drive.cpp)
+  /// At a start in a split submode: the slave in submode "0" (69/6B), ready (6A), MD 1/2/38/39 equal
+  /// (6D), the axes together within MD 29 (25). False when the start is refused (error raised).
+  bool split_start(TimePoint now);
+  /// The master's cycle: engagement, the slave's errors (6A, 69/6B); the slave's cycle: split_compare.
+  void split_cycle(TimePoint now);
+  /// The slave's cycle: the MD 29 comparison (25 on both, the motion terminated), data code 30's value.
+  void split_compare(TimePoint now);
+  /// Data codes 30 (difference) / 31 (programmed shift): false when not a split-drive code.
+  bool split_data_code(std::uint16_t code, std::int32_t p1, std::int32_t p2, TimePoint now, std::int32_t& result);
+  [[nodiscard]] bool split_monitoring() const noexcept;
+  void split_detach() noexcept;
   /// Whether this axis runs the stored program `number` (main or subprogram; not a buffer).
   [[nodiscard]] bool runs_stored_program(int number) const noexcept {
     const Wf725Program* p = store_->find(number);
@@ -339,6 +371,8 @@ class Wf725Controller final : public Controller {
   bool peh_ = false;
   bool positioning_ = false;  ///< a motion started since the PEH window was last reached
   std::vector<int> pending_md_;
+  std::unique_ptr<Wf725SplitDrive> split_;   ///< master side of a split drive
+  Wf725Controller* split_master_ = nullptr;  ///< slave side: the master (axis A)
 
   // jobs
   Job job_ = Job::none;
