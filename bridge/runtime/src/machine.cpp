@@ -113,6 +113,8 @@ void Machine::cycle(const CycleTime& cycle) noexcept {
   couplings_.begin_cycle(cycle);
   for (std::size_t i = 0; i < axes_.size(); ++i) {
     couplings_.before_axis(i, axes_, cycle);
+    if (i < controller_axis_.size() && controller_axis_[i] >= 0)
+      controller_->before_axis_update(static_cast<std::size_t>(controller_axis_[i]), cycle);
     axes_[i].axis->update(cycle);
   }
   for (auto& f : factories_) f.factory->end_cycle(cycle);

@@ -148,10 +148,12 @@ std::expected<motion::AxisConfig, ConfigError> Machine::controller_axis_config(c
 
 std::optional<ConfigError> Machine::bind_controller(const Scenario& scenario) {
   std::vector<motion::Axis*> axes;
+  controller_axis_.assign(axes_.size(), -1);
   for (const auto& ca : controller_->axis_specs()) {
     MachineAxis* a = find(ca.name);
     if (a == nullptr)
       return ConfigError{scenario.file, scenario.controller->source.line, 0, "controller", "axis missing"};
+    controller_axis_[static_cast<std::size_t>(a - axes_.data())] = static_cast<int>(axes.size());
     axes.push_back(a->axis.get());
   }
   if (auto r = controller_->bind_axes(axes); !r) {

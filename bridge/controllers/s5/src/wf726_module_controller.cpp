@@ -8,6 +8,7 @@
 #include <charconv>
 
 #include "hil/controllers/parameter_file.hpp"
+#include "hil/controllers/s5/wf725_split_drive.hpp"
 
 namespace hil::controllers::s5 {
 namespace {
@@ -85,7 +86,9 @@ std::expected<void, std::string> Wf726ModuleController::check_axes() {
     if (auto r = axes_[k]->bind_axes(std::span<motion::Axis* const>(&p, 1)); !r)
       return std::unexpected(fmt::format("axis {}: {}", axes_[k]->axis_letter(), r.error()));
   }
-  return {};
+  std::vector<Wf725Controller*> axes;
+  for (auto& a : axes_) axes.push_back(a.get());
+  return wf725_couple_split_drive(axes);
 }
 
 void Wf726ModuleController::on_cycle(const CycleTime& cycle) noexcept {

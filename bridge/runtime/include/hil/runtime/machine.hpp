@@ -164,6 +164,7 @@ class Machine {
   std::unique_ptr<controllers::Controller> controller_;  ///< declared after the axes: destroyed first
   std::vector<std::pair<std::string, controllers::BitAddress>> io_signals_;
   std::uint64_t controller_every_ = 1;  ///< run cycles per controller cycle
+  std::vector<int> controller_axis_;    ///< machine axis -> the controller's axis index (-1: none)
   std::uint64_t cycle_count_ = 0;
   Duration last_stimulus_{};
 };

@@ -135,6 +135,11 @@ class Controller {
   /// every later step()). Error text when the count differs.
   std::expected<void, std::string> bind_axes(std::span<motion::Axis* const> axes);
   [[nodiscard]] std::size_t axis_count() const noexcept { return axes_.size(); }
+  /// Called by the runtime every run period just before it updates the controller's axis `axis`
+  /// (index into axis_specs()), in the machine's axis order, like a coupling's slave: a device
+  /// that commands one axis from another's set-point of the same period (the WF 726 split drive)
+  /// does it here. The default does nothing. Must not throw or block.
+  virtual void before_axis_update(std::size_t /*axis*/, const CycleTime& /*cycle*/) noexcept {}
 
   /// A bit of the image by name or by the device's own address text ("I0.00.3", "E 4.1"). The
   /// default looks names up only; devices override it to add their codec.

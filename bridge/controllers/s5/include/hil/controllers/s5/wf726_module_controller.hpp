@@ -39,6 +39,12 @@ class Wf726ModuleController final : public Controller {
   std::expected<void, std::string> write_data_word(int db, int dw, std::uint16_t value) override;
   [[nodiscard]] std::span<const S5DataBlock> data_blocks() const noexcept override { return blocks_; }
 
+  /// The split drive (MD 27 of axis A, docs/wf725.md "Split drive"): the partner takes axis A's
+  /// set-point of the same run period when its machine axis comes after A's.
+  void before_axis_update(std::size_t k, const CycleTime& cycle) noexcept override {
+    axes_[k]->split_drive_period(cycle);
+  }
+
   /// Axis k of the module (0 = the first, A).
   [[nodiscard]] Wf725Controller& module_axis(std::size_t k) noexcept { return *axes_[k]; }
   [[nodiscard]] const Wf726Module& module() const noexcept { return module_; }
