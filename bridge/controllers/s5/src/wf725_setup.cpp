@@ -4,6 +4,7 @@
 #include <fmt/format.h>
 
 #include <charconv>
+#include <cmath>
 #include <fstream>
 #include <sstream>
 
@@ -27,7 +28,7 @@ std::optional<double> number(std::string_view s) {
 bool wf725_wants_module(const ControllerSpec& spec) noexcept {
   if (!spec.programs.empty()) return true;
   for (const char* key : {"db", "module", "reference_speeds", "jog_feed", "difference_cycles", "open_loop_speed",
-                          "open_loop_acceleration"})
+                          "open_loop_acceleration", "drift"})
     if (spec.options.contains(key)) return true;
   return false;
 }
@@ -75,6 +76,15 @@ void register_wf725(ControllerRegistry& registry) {
                                ? "open_loop_speed: the open-loop drive's speed at 10 V (level 100) in mm/min, > 0"
                                : "open_loop_acceleration: the open-loop drive's own acceleration in mm/s^2, > 0");
         (key == "open_loop_speed" ? opt.drive.speed_at_10v_mm_min : opt.drive.acceleration) = *v;
+      } else if (key == "drift") {
+        // The drive's input offset on X3 in mV, signed (docs/wf725.md "Drift"): within the DAC's +-10 V.
+        double v = 0;
+        const auto r = std::from_chars(value.data(), value.data() + value.size(), v);
+        if (r.ec != std::errc{} || r.ptr != value.data() + value.size() || !std::isfinite(v) || std::abs(v) > 10000.0)
+          return fail(key, fmt::format("drift: '{}' is not the drive's offset voltage in mV, -10000..10000 (the speed "
+                                       "at zero command is drift / MD 23 x MD 3)",
+                                       value));
+        opt.drift_mv = v;
       } else if (key == "jog_feed") {
         const auto v = number(value);
         if (!v) return fail(key, "jog_feed: the set-up speed in mm/min (data code 1C)");
@@ -82,7 +92,7 @@ void register_wf725(ControllerRegistry& registry) {
       } else {
         return fail(key, fmt::format("unknown controller key '{}' (known: device, parameters, programs, cycle, axis, "
                                      "module, db, reference_speeds, jog_feed, difference_cycles, open_loop_speed, "
-                                     "open_loop_acceleration)",
+                                     "open_loop_acceleration, drift)",
                                      key));
       }
     }
@@ -98,6 +108,10 @@ void register_wf725(ControllerRegistry& registry) {
     std::erase_if(axis.warnings, [](const std::string& w) { return w.starts_with("MD 12/14"); });
     const Duration cycle = spec.cycle ? *spec.cycle : mapped->cycle;
     auto md = wf725_machine_data(*loaded, settings);
+    if (opt.drift_mv != 0.0 && !md.closed_loop())
+      return fail("drift",
+                  "drift: the drift model is closed loop only (MD 4 = 1/2: the K_v loop holds it; MD 35 compensates "
+                  "it); this MD list is open loop (MD 4 = 3/4)");
     const std::string file = loaded->file.string();
     auto syntax = wf725_program_syntax(*loaded->profile);
     if (!syntax) return fail("device", syntax.error());

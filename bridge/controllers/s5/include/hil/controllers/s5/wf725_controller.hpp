@@ -52,6 +52,7 @@ struct Wf725Options {
   char variant = 'A';                      ///< module variant: A incremental, B parallel absolute, C SSI (WF 726)
   int difference_cycles = 4;               ///< error 33 after this many jumps > MD 34 in a row (manual: 4 or 5)
   Wf725OpenLoopDrive drive;                ///< open loop: the drive behind X3 (open_loop_speed/_acceleration)
+  double drift_mv = 0.0;                   ///< closed loop: the drive's input offset on X3, mV (key `drift`)
 };
 
 /// The S5 user data blocks beside the module: the PLC's DBs that the "Software Schale" FB copies
@@ -151,6 +152,9 @@ class Wf725Controller final : public Controller {
   /// Open loop: the speed level output now (0..99; DL 4 in BCD, X3 = level x 100 mV).
   [[nodiscard]] int speed_level() const noexcept { return ol_.level; }
   [[nodiscard]] bool open_loop() const noexcept { return !md_.closed_loop(); }
+  /// Closed loop: the set-point offset the drift and MD 35 give the axis, µm (docs/wf725.md "Drift"):
+  /// drift / K_v - MD 35 (limited); at rest the following error reads its negative.
+  [[nodiscard]] double drift_offset_um() const noexcept;
   /// MDs written in mode MD I/O that shape the axis: they apply at the next power-up.
   [[nodiscard]] const std::vector<int>& pending_md() const noexcept { return pending_md_; }
 
@@ -201,6 +205,11 @@ class Wf725Controller final : public Controller {
   void voltage_cycle(TimePoint now);
   /// The command voltage on X3 now, mV (closed loop: feed / MD 3 x MD 23; open loop: level x 100).
   [[nodiscard]] double command_mv() const noexcept;
+  /// The drift of the drive and its compensation MD 35 as the axis' set-point offset, every cycle
+  /// (wf725_controller_drift.cpp).
+  void drift_cycle();
+  /// Data code 10 in submode RUN: the standstill following error into MD 35; the new MD 35 (µm).
+  [[nodiscard]] std::int32_t compensate_drift(TimePoint now);
   /// Data codes 47/4A: writes a page of numbers into DW 30..38.
   void write_list(const std::vector<int>& numbers, int page);
   /// Data codes 44/45: program input from / output to a user data block (Software Schale).
