@@ -13,7 +13,8 @@
 // Options (controller block keys): `axis` (A, B, C: the axis name and letter, default A),
 // `module` (WF725A, WF725B, WF726A, WF726B, WF726C; default WF726A), `db` (DB number of the DB
 // axis, default 10), `reference_speeds` ("rapid,reduced,slow" in mm/min, preset of data codes
-// 8/9/A), `jog_feed` (mm/min, preset of data code 1C).
+// 8/9/A), `jog_feed` (mm/min, preset of data code 1C), `drift` (mV, closed loop: the drive's input
+// offset on X3, compensated by MD 35 / data code 10 in submode RUN; wf725_controller_drift.cpp).
 //
 // I/O image: inputs byte 0 bits 0..5 = X7 E1..E6 (`x7_e1`..`x7_e6`); byte 1 bit 0/1
 // `limit_minus_<axis>` / `limit_plus_<axis>` (the hard range-limit switch inputs, errors 15/16);
