@@ -22,6 +22,7 @@
 #include "hil/controllers/parameter_file.hpp"
 #include "hil/controllers/s5/ip247_follower.hpp"
 #include "hil/controllers/s5/ip247_module_endpoint.hpp"
+#include "hil/controllers/s5/ip247_rack.hpp"
 #include "hil/core/clock.hpp"
 #include "hil/core/text_file.hpp"
 #include "hil/mocks/legacy/clm14_line.hpp"
@@ -534,14 +535,7 @@ void register_emulators(Context& ctx) {
         ctx.exit_code = 2;
       };
       // The rack: one module per --tile (none: one module on tile 0), each on its own line.
-      std::vector<int> rack = tiles->empty() ? std::vector<int>{0} : *tiles;
-      for (std::size_t i = 0; i < rack.size(); ++i) {
-        if (rack[i] % 4 != 0)
-          return fail(fmt::format("--tile {}: the SSNR base is a multiple of 4 (0, 4, 8, ... 252)", rack[i]));
-        for (std::size_t j = 0; j < i; ++j)
-          if (rack[j] == rack[i])
-            return fail(fmt::format("--tile {} twice: the modules of a rack have their own SSNR ranges", rack[i]));
-      }
+      const std::vector<int> rack = tiles->empty() ? std::vector<int>{0} : *tiles;
       if (!machines->empty() && machines->size() != rack.size())
         return fail(
             fmt::format("--machine given {} times for {} module(s): give one machine file per module, in "
@@ -574,101 +568,87 @@ void register_emulators(Context& ctx) {
         if (k == "limit-start") s.limit_start_at = a;
         if (k == "limit-end") s.limit_end_at = a;
       }
-      // Per module: its policy (a running module: 3 axes on the IP247 step planner, DX1..3 = axis
-      // interface DBs, DB n = MD and VP images), its retrofit, its endpoint, its state file. The
-      // PLC's DBs of the data jobs (DX 5..255) are one PLC's: shared by the modules of the rack.
-      struct Module {
-        std::unique_ptr<Ip247Retrofit> retrofit;  // outlives the endpoint that calls its hooks
-        s5::Ip247ModulePolicy* policy = nullptr;
-        std::unique_ptr<lg::S5BlockEndpoint> endpoint;
-        std::filesystem::path state;
-        int tile = 0;
-      };
-      auto plc_dbs = std::make_shared<s5::S5Blocks>();
-      std::vector<Module> modules(rack.size());
-      for (std::size_t i = 0; i < rack.size(); ++i) {
-        auto& m = modules[i];
-        m.tile = rack[i];
-        auto p = std::make_unique<s5::Ip247ModulePolicy>(opts[i]);
-        m.policy = p.get();
-        if (rack.size() > 1) m.policy->use_plc_blocks(plc_dbs.get());
+      // Per module (s5::Ip247Rack): its policy (a running module: 3 axes on the IP247 step planner,
+      // DX1..3 = axis interface DBs, DB n = MD and VP images), its endpoint, its state file; the PLC's
+      // DBs of the data jobs (DX 5..255) are one PLC's, shared by the modules. Here: the retrofits.
+      auto made = s5::Ip247Rack::make(opts);
+      if (!made) return fail(fmt::format("--tile: {}", made.error()));
+      s5::Ip247Rack modules = std::move(*made);
+      std::vector<std::unique_ptr<Ip247Retrofit>> retrofits(modules.size());  // outlive the endpoints' hooks
+      std::vector<std::filesystem::path> states(modules.size());
+      for (std::size_t i = 0; i < modules.size(); ++i) {
         if (!machines->empty()) {
           auto r = make_ip247_retrofit((*machines)[i], ctx.transports);
           if (!r) return fail(fmt::format("--machine: {}", r.error()));
-          m.retrofit = std::move(*r);
-          m.policy->set_hooks(ip247_retrofit_hooks(*m.retrofit, *m.policy, opts[i].cycle));
+          retrofits[i] = std::move(*r);
+          modules.policy(i).set_hooks(ip247_retrofit_hooks(*retrofits[i], modules.policy(i), opts[i].cycle));
         }
-        m.endpoint = std::make_unique<lg::S5BlockEndpoint>(std::move(p));
-        // One module: the device's state file as before; several: one file per module, named by
-        // its SSNR base ("ip247-tile4.json"), so a module keeps its images whatever the order.
         EmulateOptions so_m = *so;
-        if (rack.size() > 1 && so->state_file != "none") {
-          const std::filesystem::path base =
-              so->state_file.empty() ? default_state_path(dev) : std::filesystem::path(so->state_file);
+        if (modules.size() > 1 && so->state_file != "none")
           so_m.state_file =
-              (base.parent_path() / fmt::format("{}-tile{}{}", base.stem().string(), m.tile, base.extension().string()))
+              modules
+                  .state_path(so->state_file.empty() ? default_state_path(dev) : std::filesystem::path(so->state_file),
+                              i)
                   .string();
-        }
         const auto locked = resolve_state(so_m, dev);
         if (!locked) return fail(locked.error());
-        m.state = *locked;
-        if (auto text = read_file(m.state))
-          if (auto r = m.endpoint->load_state(*text); !r) fmt::print(stderr, "warning: {}\n", r.error());
-        m.policy->adopt(m.endpoint->store());  // battery-backed MD and programs
+        states[i] = *locked;
+        if (auto text = read_file(states[i]))
+          if (auto r = modules.load(i, *text); !r) fmt::print(stderr, "warning: {}\n", r.error());
       }
       std::vector<ServedLine> lines;
-      for (auto& m : modules) lines.push_back(ServedLine{m.endpoint.get(), m.state});
+      for (std::size_t i = 0; i < modules.size(); ++i) lines.push_back(ServedLine{&modules.endpoint(i), states[i]});
       const bool several = modules.size() > 1;
       ctx.exit_code = serve_lines(
-          lines, *so, [&modules, several](std::span<lg::Endpoint* const>, const std::string& c) -> std::string {
+          lines, *so,
+          [&modules, &retrofits, several](std::span<lg::Endpoint* const>, const std::string& c) -> std::string {
             std::string out;
-            const auto prefix = [&](const Module& m, std::size_t i) {
-              return several ? fmt::format("module {} (tile {}) ", i + 1, m.tile) : std::string();
+            const auto prefix = [&](std::size_t i) {
+              return several ? fmt::format("module {} (tile {}) ", i + 1, modules.tile(i)) : std::string();
             };
             if (c == "axes") {
               for (std::size_t i = 0; i < modules.size(); ++i)
                 for (int n = 1; n <= 3; ++n) {
-                  const auto& a = modules[i].policy->axis(n);
-                  out += fmt::format("{}axis {}: BA{} actual {} remaining {} M{} attributes {:02X} error {}\n",
-                                     prefix(modules[i], i), n, a.ba(), a.actual(), a.remaining(), a.m_output(),
-                                     a.attributes(), a.error());
+                  const auto& a = modules.policy(i).axis(n);
+                  out +=
+                      fmt::format("{}axis {}: BA{} actual {} remaining {} M{} attributes {:02X} error {}\n", prefix(i),
+                                  n, a.ba(), a.actual(), a.remaining(), a.m_output(), a.attributes(), a.error());
                 }
               return out;
             }
-            if (c == "machine" && modules.front().retrofit) {  // the retrofit's machine axes (increments = pulses)
+            if (c == "machine" && retrofits.front()) {  // the retrofits' machine axes (increments = pulses)
               for (std::size_t i = 0; i < modules.size(); ++i)
-                for (const auto& a : modules[i].retrofit->machine->axes()) {
+                for (const auto& a : retrofits[i]->machine->axes()) {
                   const auto& st = a.axis->status();
-                  out += fmt::format("{}machine axis {}: position {} inc state {}{}\n", prefix(modules[i], i),
-                                     a.spec->name, st.position_inc, hil::motion::to_string(st.state),
+                  out += fmt::format("{}machine axis {}: position {} inc state {}{}\n", prefix(i), a.spec->name,
+                                     st.position_inc, hil::motion::to_string(st.state),
                                      st.fault ? " fault " + st.fault.describe() : "");
                 }
               return out;
             }
             if (c == "rejection") {
               for (std::size_t i = 0; i < modules.size(); ++i) {
-                const auto& r = modules[i].policy->last_rejection();
-                out += fmt::format("{}{}{}", out.empty() ? "" : "\n", several ? prefix(modules[i], i) : "",
-                                   r.empty() ? std::string("none") : r);
+                const auto& r = modules.policy(i).last_rejection();
+                out += fmt::format("{}{}{}", out.empty() ? "" : "\n", prefix(i), r.empty() ? std::string("none") : r);
               }
               return out;
             }
             if (c == "dbs") {
               for (std::size_t i = 0; i < modules.size(); ++i)
-                for (const auto& [n, w] : modules[i].endpoint->store())
-                  out += fmt::format("{}DB{} {} words\n", prefix(modules[i], i), n, w.size());
+                for (const auto& [n, w] : modules.endpoint(i).store())
+                  out += fmt::format("{}DB{} {} words\n", prefix(i), n, w.size());
               return out.empty() ? std::string("no DBs") : out;
             }
             if (c == "error") {
               for (std::size_t i = 0; i < modules.size(); ++i) {
-                const auto& e = modules[i].endpoint->last_error();
-                out += fmt::format("{}{}{}", out.empty() ? "" : "\n", several ? prefix(modules[i], i) : "",
-                                   e.empty() ? std::string("no error") : e);
+                const auto& e = modules.endpoint(i).last_error();
+                out +=
+                    fmt::format("{}{}{}", out.empty() ? "" : "\n", prefix(i), e.empty() ? std::string("no error") : e);
               }
               return out;
             }
-            return modules.front().retrofit ? "error: unknown command (dbs, error, axes, machine, rejection, quit)"
-                                            : "error: unknown command (dbs, error, axes, rejection, quit)";
+            return retrofits.front() ? "error: unknown command (dbs, error, axes, machine, rejection, quit)"
+                                     : "error: unknown command (dbs, error, axes, rejection, quit)";
           });
     });
   }
