@@ -148,34 +148,71 @@ TEST_F(Wf725Drift, DataCode10IsLimitedTo255ResolutionSteps) {
   EXPECT_NEAR(lag_um(*axis), 45.0, 1.0) << "the rest of the drift stays visible";
 }
 
-TEST_F(Wf725Drift, DriftIsClosedLoopOnlyAndAVoltage) {
-  const auto create = [&](const std::map<int, std::string>& md, const char* drift) {
+TEST_F(Wf725Drift, TheKeyIsAVoltage) {
+  const auto create = [&](const char* drift) {
     spec.options["drift"] = drift;
     std::string text;
-    for (const auto& [n, v] : md) text += "MD " + std::to_string(n) + " = " + v + "\n";
+    for (const auto& [n, v] : base_md()) text += "MD " + std::to_string(n) + " = " + v + "\n";
     spec.parameters = write("md.txt", text);
     ControllerRegistry r;
     register_wf725(r);
     return r.create(spec);
   };
-  // An open-loop axis (MD 4 = 3, the open-loop tests' list): no K_v loop, no MD 35.
-  const std::map<int, std::string> ak = {
-      {49, "1"},   {4, "3"},     {1, "0"},       {2, "0"},       {6, "0"},       {7, "1"},       {8, "0"},
-      {9, "1"},    {10, "4000"}, {11, "-24537"}, {12, "-42728"}, {13, "150000"}, {14, "200000"}, {15, "1"},
-      {16, "0"},   {17, "0"},    {18, "0"},      {19, "1"},      {20, "0"},      {21, "4"},      {28, "0"},
-      {30, "150"}, {31, "0"},    {32, "30"},     {33, "30"},     {34, "10000"},  {40, "0"},      {41, "0"},
-      {42, "87"},  {43, "52"},   {44, "5"},      {45, "50000"},  {46, "25000"},  {47, "5000"},   {48, "60"},
-      {27, "0"},   {50, "0"}};
-  auto c = create(ak, "40");
-  ASSERT_FALSE(c);
-  EXPECT_NE(c.error().describe().find("closed loop only"), std::string::npos) << c.error().describe();
-  ASSERT_TRUE(create(ak, "0")) << "drift 0 is no drift";
   for (const char* bad : {"12000", "x", "40mV", "-10001"}) {
-    auto b = create(base_md(), bad);
+    auto b = create(bad);
     ASSERT_FALSE(b) << bad;
     EXPECT_NE(b.error().describe().find("offset voltage in mV"), std::string::npos) << b.error().describe();
   }
-  ASSERT_TRUE(create(base_md(), "-10000"));
+  ASSERT_TRUE(create("-10000"));
+  ASSERT_TRUE(create("0.5"));
+}
+
+/// The open-loop axis of test_wf725_open_loop.cpp (MD 4 = 3, MD 33 = 30 µm, MD 30 = 150 ms).
+std::map<int, std::string> ak_md() {
+  return {{49, "1"},   {4, "3"},     {1, "0"},       {2, "0"},       {6, "0"},       {7, "1"},       {8, "0"},
+          {9, "1"},    {10, "4000"}, {11, "-24537"}, {12, "-42728"}, {13, "150000"}, {14, "200000"}, {15, "1"},
+          {16, "0"},   {17, "0"},    {18, "0"},      {19, "1"},      {20, "0"},      {21, "4"},      {28, "0"},
+          {30, "150"}, {31, "0"},    {32, "30"},     {33, "30"},     {34, "10000"},  {40, "0"},      {41, "0"},
+          {42, "87"},  {43, "52"},   {44, "5"},      {45, "50000"},  {46, "25000"},  {47, "5000"},   {48, "60"},
+          {27, "0"},   {50, "0"}};
+}
+
+TEST_F(Wf725Drift, OpenLoopTheDriveCreepsAndLeavesThePehWindow) {
+  // Open loop has no position loop: 50 mV of the drive's 10 V = 10 000 mm/min is 50 mm/min at speed
+  // level 0, as long as the drive is powered (docs/wf725.md "Drift").
+  spec.options["drift"] = "50";
+  start(ak_md());
+  ASSERT_TRUE(ctl->open_loop());
+  synchronize();
+  const auto a0 = actual();
+  run(milliseconds(1200));
+  EXPECT_NEAR(actual() - a0, 1000, 20) << "50 mm/min for 1.2 s: 1 mm at speed level 0";
+  EXPECT_EQ(ctl->speed_level(), 0);
+  traverse(db::Submode::run);
+  (void)data_code(db::code::drift);
+  EXPECT_EQ(io_error(), 0x0113) << "no MD 35 in open loop";
+  // A positioning reaches PEH (speed 0 at MD 48, inside MD 33), then the creep carries the axis out
+  // of the window: 21 (drive off), and the drive stands (no creep unpowered).
+  traverse(db::Submode::mdi);
+  (void)data_code(db::code::mdi_feed, 20);
+  (void)data_code(db::code::mdi_position, 10000);
+  start_pulse();
+  ASSERT_TRUE(run_until([&] { return bit(db::dw_status, db::bit_peh) && ctl->speed_level() == 0; }));
+  ASSERT_TRUE(run_until([&] { return error() != 0; }, std::chrono::seconds(1)));
+  EXPECT_EQ(error(), 0x21);
+  EXPECT_GT(actual() - 10000, 30) << "left the window MD 33 = 30 µm";
+  run(milliseconds(100));
+  const auto stopped = axis->status().position;
+  run(milliseconds(500));
+  EXPECT_NEAR(axis->status().position, stopped, 1e-3) << "unpowered, the drive does not creep";
+  EXPECT_EQ(ctl->drift_offset_um(), 0.0);
+  // Re-enabled after 800C: no jump, the creep starts again from where the axis stands.
+  (void)data_code(db::code::acknowledge);
+  ASSERT_TRUE(run_until([&] { return axis->status().drive_state == DriveState::operation_enabled; }));
+  const double back = axis->status().position;
+  EXPECT_NEAR(back, stopped, 0.006) << "at most one controller cycle of creep, no jump";
+  run(milliseconds(600));
+  EXPECT_NEAR(axis->status().position - back, 0.5, 0.01) << "50 mm/min again";
 }
 
 }  // namespace

@@ -216,7 +216,7 @@ void Wf725Controller::on_cycle(const CycleTime& cycle) noexcept {
     (void)acknowledge(Acknowledgement::reset);
   }
   handle_mode(now);
-  drift_cycle();
+  drift_cycle(now);
   encoder_cycle(now);
   voltage_cycle(now);
   handle_drive(now);

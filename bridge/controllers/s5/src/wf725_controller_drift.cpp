@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: MIT
 // WF 725/726 drift and its compensation (digest §4.3 MD 35, §6.1 submode RUN, §6.4 data code 10;
-// docs/wf725.md "Drift"). The drive behind X3 has an input offset (controller key `drift`, mV):
-// at zero command it runs at v_d = drift / MD 23 x MD 3, so the WF's proportional loop K_v (MD 22)
-// holds the axis at a standstill following error of -v_d / K_v. MD 35 is the module's
+// docs/wf725.md "Drift"). Open loop (AK) has no K_v loop and no MD 35: the drive creeps. The drive behind X3 has an
+// input offset (controller key `drift`, mV): at zero command it runs at v_d = drift / MD 23 x MD 3, so the WF's
+// proportional loop K_v (MD 22) holds the axis at a standstill following error of -v_d / K_v. MD 35 is the module's
 // compensation, "-(standstill following error)", added to the command so that the error reads
 // about 0; limited to +-255 resolution steps so that a drive fault is not masked. In a P loop a
 // velocity offset v is a position offset v / K_v, so both reach the axis as its set-point offset
@@ -34,7 +34,7 @@ std::int64_t md35_limit_um(const Wf725MachineData& md) noexcept {
 }  // namespace
 
 double Wf725Controller::drift_offset_um() const noexcept {
-  if (!md_.closed_loop()) return 0.0;
+  if (!md_.closed_loop()) return creep_mm_ / um;
   const double md3 = static_cast<double>(md_.get(3)), md22 = static_cast<double>(md_.get(22));
   const double md23 = static_cast<double>(md_.get(23));
   // v_d / K_v in µm: (drift / MD 23 x MD 3 [mm/min]) / (MD 22 [(m/min)/mm] x 1000 [(mm/min)/mm]) x 1000.
@@ -45,7 +45,20 @@ double Wf725Controller::drift_offset_um() const noexcept {
   return drift_um - md35;
 }
 
-void Wf725Controller::drift_cycle() {
+void Wf725Controller::drift_cycle(TimePoint now) {
+  if (!md_.closed_loop()) {
+    // Open loop: no position loop holds the drift: the powered drive creeps at drift / 10 V x its
+    // speed at 10 V (level x 100 mV is the same scale), also at speed level 0. Unpowered it stands,
+    // and the set-point takes the actual over when it comes back: the creep starts again from 0.
+    const bool powered = axis(0).status().drive_state == DriveState::operation_enabled;
+    if (!powered || opt_.drift_mv == 0.0) {
+      creep_mm_ = 0.0;
+    } else if (drift_at_ != TimePoint{}) {
+      const double v_mm_s = opt_.drift_mv / 10000.0 * opt_.drive.speed_at_10v_mm_min / 60.0;
+      creep_mm_ += v_mm_s * to_seconds(now - drift_at_);
+    }
+    drift_at_ = now;
+  }
   const double offset_mm = drift_offset_um() * um;
   auto& ax = axis(0);
   if (ax.setpoint_offset() != offset_mm) (void)ax.set_setpoint_offset(offset_mm);
@@ -78,7 +91,7 @@ std::int32_t Wf725Controller::compensate_drift(TimePoint now) {
   const auto steps = std::llround((static_cast<double>(current) - error_um) / static_cast<double>(a));
   const std::int64_t md35 = std::clamp<std::int64_t>(steps * a, -limit, limit);
   md_.set(35, static_cast<long double>(md35));
-  drift_cycle();
+  drift_cycle(now);
   return static_cast<std::int32_t>(md35);
 }
 

@@ -81,9 +81,10 @@ void register_wf725(ControllerRegistry& registry) {
         double v = 0;
         const auto r = std::from_chars(value.data(), value.data() + value.size(), v);
         if (r.ec != std::errc{} || r.ptr != value.data() + value.size() || !std::isfinite(v) || std::abs(v) > 10000.0)
-          return fail(key, fmt::format("drift: '{}' is not the drive's offset voltage in mV, -10000..10000 (the speed "
-                                       "at zero command is drift / MD 23 x MD 3)",
-                                       value));
+          return fail(key,
+                      fmt::format("drift: '{}' is not the drive's offset voltage in mV, -10000..10000 (the speed "
+                                  "at zero command: drift / MD 23 x MD 3; open loop drift / 10 V x open_loop_speed)",
+                                  value));
         opt.drift_mv = v;
       } else if (key == "jog_feed") {
         const auto v = number(value);
@@ -108,10 +109,6 @@ void register_wf725(ControllerRegistry& registry) {
     std::erase_if(axis.warnings, [](const std::string& w) { return w.starts_with("MD 12/14"); });
     const Duration cycle = spec.cycle ? *spec.cycle : mapped->cycle;
     auto md = wf725_machine_data(*loaded, settings);
-    if (opt.drift_mv != 0.0 && !md.closed_loop())
-      return fail("drift",
-                  "drift: the drift model is closed loop only (MD 4 = 1/2: the K_v loop holds it; MD 35 compensates "
-                  "it); this MD list is open loop (MD 4 = 3/4)");
     const std::string file = loaded->file.string();
     auto syntax = wf725_program_syntax(*loaded->profile);
     if (!syntax) return fail("device", syntax.error());
