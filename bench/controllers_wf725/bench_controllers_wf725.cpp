@@ -2,7 +2,8 @@
 // bench_controllers_wf725: WF 725/726 program interpretation per block (the text parser that
 // checks a program on input), and per controller cycle of an axis running a program in automatic
 // cycle on the simulated drive (the controller's step alone, and the module cycle with its axis
-// updates at 1 ms), with the blocks executed per simulated second.
+// updates at 1 ms), with the blocks executed per simulated second; a WF 726 with two axes running a
+// combined program (blocks of the slave, G17 pairs by linear interpolation).
 // Run: bench_controllers_wf725 --benchmark_format=json
 #include <chrono>
 #include <filesystem>
@@ -13,6 +14,7 @@
 #include <benchmark/benchmark.h>
 
 #include "hil/controllers/s5/wf725_controller.hpp"
+#include "hil/controllers/s5/wf726_module.hpp"
 #include "hil/mocks/sim_drive.hpp"
 
 namespace s5 = hil::controllers::s5;
@@ -58,7 +60,9 @@ struct Axis {
   int last_block = 0;
   std::int64_t blocks = 0;
 
-  explicit Axis(const char* md = md_text, const char* program = program_text) {
+  explicit Axis(const char* md = md_text, const char* program = program_text, char letter = 'A',
+                s5::Wf726Module* module = nullptr) {
+    dir += std::string(1, letter);
     fs::create_directories(dir);
     std::ofstream(dir / "md.txt") << md;
     std::ofstream(dir / "p.wf") << program;
@@ -67,6 +71,8 @@ struct Axis {
     spec.parameters = dir / "md.txt";
     spec.programs = {dir / "p.wf"};
     spec.file = (dir / "bench.yaml").string();
+    spec.options["axis"] = std::string(1, letter);
+    spec.options["db"] = std::to_string(10 + (letter - 'A'));
     hil::controllers::ControllerRegistry r;
     s5::register_wf725(r);
     auto c = r.create(spec);
@@ -81,13 +87,15 @@ struct Axis {
     hil::motion::Axis* p = axis.get();
     if (!ctl->bind_axes(std::span<hil::motion::Axis* const>(&p, 1))) throw std::runtime_error("bind");
     every = static_cast<int>(ctl->cycle_period() / milliseconds(1));
-    // Traversing, set actual value, drive enable, start; then automatic, program 1.
+    if (module != nullptr && !module->add(*ctl)) throw std::runtime_error("module");
+    // Traversing, set actual value, drive enable, start; then automatic, program 1 (a slave: "0").
     ctl->write_db_word(db::dw_mode, 0x0100 | static_cast<unsigned>(db::Submode::set_actual));
     ctl->write_db_word(db::dw_enable, 1);
     cycles(10);
     pulse_start();
-    ctl->write_db_word(db::dw_mode, 0x0100 | static_cast<unsigned>(db::Submode::automatic));
-    ctl->write_db_word(db::dw_program, 1);
+    ctl->write_db_word(db::dw_mode,
+                       0x0100 | static_cast<unsigned>(letter == 'A' ? db::Submode::automatic : db::Submode::none));
+    ctl->write_db_word(db::dw_program, letter == 'A' ? 1 : 0);
     cycles(3);
   }
   ~Axis() { fs::remove_all(dir); }
@@ -105,7 +113,7 @@ struct Axis {
     if (block != last_block && (block & 0xFF) != 0) ++blocks;
     last_block = block;
     // Program end: start it again (the start bit's edge over two cycles).
-    if ((ctl->read_db_word(db::dw_flags) & 2) == 0) {
+    if ((ctl->read_db_word(db::dw_flags) & 2) == 0 && ctl->read_db_word(db::dw_program) != 0) {
       const auto w = ctl->read_db_word(db::dw_control);
       ctl->write_db_word(db::dw_control, static_cast<std::uint16_t>(w ^ 1U));
     }
@@ -165,5 +173,40 @@ void BM_Wf725OpenLoopModuleCycle(benchmark::State& state) {
   state.SetItemsProcessed(state.iterations());
 }
 BENCHMARK(BM_Wf725OpenLoopModuleCycle);
+
+// A combined program on A: a block of B, a G17 pair out and a G17 pair back.
+const char* const combined_text =
+    "%1\nN1 G90 X 2 000 F 300 000\nN2 B X 1 000\nN3 A G17 X 4 000\nN4 B X 3 000\nN5 A G17 X 0\nN6 B X 0\n";
+
+/// A WF 726 with axes A and B (one Wf726Module) running a combined program on A: both controllers'
+/// steps and both axes' 1 ms updates per module cycle; errors would stop it.
+void BM_Wf726CombinedModuleCycle(benchmark::State& state) {
+  s5::Wf726Module module;
+  // The slave first (in submode "0" before the master's first start); the module's program memory
+  // is the first axis', so B's program file holds the combined program.
+  Axis b(md_text, combined_text, 'B', &module);
+  Axis a(md_text, combined_text, 'A', &module);
+  std::int64_t blocks = 0;
+  for (auto _ : state) {
+    for (int i = 0; i < b.every; ++i) {
+      b.now += milliseconds(1);
+      b.axis->update(hil::CycleTime{b.now, milliseconds(1)});
+    }
+    benchmark::DoNotOptimize(a.cycle());
+    (void)b.ctl->step(hil::CycleTime{b.now, b.ctl->cycle_period()});
+  }
+  blocks = a.blocks;
+  state.counters["blocks_per_sim_s"] =
+      benchmark::Counter(static_cast<double>(blocks) / (static_cast<double>(state.iterations()) * a.every * 1e-3));
+  if ((a.ctl->read_db_word(db::dw_status) & (1U << db::bit_error)) != 0 ||
+      (b.ctl->read_db_word(db::dw_status) & (1U << db::bit_error)) != 0)
+    state.SkipWithError(("an error stopped the combined program: A " +
+                         std::to_string(a.ctl->read_db_word(db::dw_error) & 0xFF) + ", B " +
+                         std::to_string(b.ctl->read_db_word(db::dw_error) & 0xFF))
+                            .c_str());
+  if (blocks == 0) state.SkipWithError("no block ran");
+  state.SetItemsProcessed(state.iterations());
+}
+BENCHMARK(BM_Wf726CombinedModuleCycle);
 
 }  // namespace

@@ -7,6 +7,8 @@
 #    at the same time (live actual values of both), a program valid for B only gives 90 on C;
 #  * the memory is the module's: while A runs program 5, deleting it (43) or reading it in again
 #    (44) through axis B is refused with 105 and changes nothing;
+#  * a combined program started on A moves B (the slave): 69 in B and 6B in A while B is not in
+#    submode "0"; then, with B in "0", its G17 pair moves A and B together to their targets;
 #  * restart with the same state file: the program memory is back (data code 45 reads it out).
 #   plc_wf726_axes.py HILBRIDGE MD-A MD-B
 #   plc_wf726_axes.py HILBRIDGE --machine FILE-A FILE-B   one machine file per axis (retrofit mode):
@@ -60,6 +62,9 @@ N3 G90 X 5 000 F 300 000
 N1 G91 X 1 000 F 100 000
 %5 A
 N1 G90 X 30 000 F 60 000
+%30 AB
+N1 A G17 G90 X 20 000 F 60 000
+N2 B X 15 000
 """
 
 
@@ -135,11 +140,39 @@ def first_run(state):
         check("read in program 5 while A runs it: 105", refused and io == 0x0105, (done, refused, hex(io)))
         s, _ = wait([a], lambda s: not s[0]["program_active"] and s[0]["peh"], 10)
         check("program 5 ran to its end on A (30 mm)", s[0]["actual"] == 30000 and s[0]["error"] == 0, s)
+        combined(a, b)
         done, refused, _, io = b.data_code(0x43, 7)
         check("program 7 deleted through axis B (43)", done and not refused and io == 0, (done, refused, hex(io)))
         time.sleep(0.5)  # the line is quiet: the emulator saves its state file
     finally:
         stop(p)
+
+
+def combined(a, b):
+    """Combined program 30 on A (the master): its G17 pair moves A (30 -> 20 mm) and B (0 -> 15 mm)."""
+    b.synchronize()
+    wait([b], lambda s: s[0]["syn"], 5)
+    b.mode(TRAVERSING, AUTOMATIC)
+    a.write(DW_PROGRAM, 30)
+    a.start()
+    s, _ = wait([a, b], lambda s: s[0]["error"] != 0 and s[1]["error"] != 0, 5)
+    check("combined program with B not in submode 0: 6B in A, 69 in B, nothing moves",
+          s[0]["error"] == 0x6B and s[1]["error"] == 0x69 and not s[0]["program_active"] and s[1]["actual"] == 0, s)
+    b.mode(TRAVERSING, 0)
+    a.data_code(0x800C)  # acknowledge 6B
+    a.start()
+    s, samples = wait([a, b], lambda s: not s[0]["program_active"] and s[0]["peh"] and s[1]["peh"]
+                      and s[0]["actual"] == 20000 and s[1]["actual"] == 15000, 10)
+    both = [x for x in samples if 20000 < x[0]["actual"] < 30000 and 0 < x[1]["actual"] < 15000]
+    check("the G17 pair moves A and B at the same time (actual values of both in one poll)", len(both) >= 3,
+          len(both))
+    check("program 30 ends with A at 20 mm and B at 15 mm, no error",
+          s[0]["error"] == 0 and s[1]["error"] == 0, s)
+    # Along the line: A's distance travelled over B's stays 10:15 while they move.
+    # (two FETCHes, not one instant: a loaded machine puts some ms between them, hence the margin)
+    ratios = [(30000 - x[0]["actual"]) / x[1]["actual"] for x in both if x[1]["actual"] > 4000]
+    check("linear interpolation: A travels 2/3 of B's distance at every poll",
+          ratios and all(abs(r - 2 / 3) < 0.2 for r in ratios), ratios)
 
 
 def second_run(state):

@@ -42,6 +42,15 @@ TEST_F(W, ProgramInputAndOutputByDataCodes) {
   data_code(db::code::program_in, 21);
   EXPECT_EQ(io_error(), 0x0236);  // G04 without time value
   EXPECT_EQ(ctl->programs().find(8), nullptr);
+  // Interpolation pairs are checked on input too: 174 / 181 (program I/O) in DW 40, nothing stored.
+  put_db(*ctl, 25, text_words("%10\nN1 X 1 F 100\n%11\nN1 A G18 X 1 F 100\nN2 B X 2\n"));
+  data_code(db::code::program_in, 25);
+  EXPECT_EQ(io_error(), 0x0174);
+  EXPECT_EQ(ctl->programs().find(10), nullptr);
+  put_db(*ctl, 25, text_words("%10\nN1 X 1 F 100\n%11\nN4 A G17 X 1 F 100\nN2 B X 2\n"));
+  data_code(db::code::program_in, 25);
+  EXPECT_EQ(io_error(), 0x0181);
+  EXPECT_EQ(ctl->programs().find(10), nullptr);
   data_code(db::code::program_in, 33);
   EXPECT_EQ(io_error(), 0x0401);  // no such user DB
   // Output into DB 22 reads back as the same program.

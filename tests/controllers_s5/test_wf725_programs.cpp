@@ -412,7 +412,7 @@ TEST_F(WfProgram, ProgramRuleErrors) {
         "%4\nN1 T0\n"
         "%5\nN1 G53\n"
         "%6\nN1 L7 P1\n%7\nN1 L8 P1\n%8\nN1 L9 P1\n%9\nN1 G91 X 1 F 1000\n"
-        "%11\nN1 G91 X 10 F 1000 T2\nN2 G17 X 5\n");
+        "%11\nN1 G91 X 10 F 1000 T2\nN2 A G17 X 5\nN3 B X 5\n");
   synchronize();
   traverse(db::Submode::automatic);
   set_bit(db::dw_control, db::bit_skip, true);
@@ -429,7 +429,7 @@ TEST_F(WfProgram, ProgramRuleErrors) {
   expect(4, 0x87);
   expect(5, 0x89);
   expect(6, 0x91);   // L7 -> L8 -> L9: a third subprogram level
-  expect(11, 0x86);  // interpolation of axis pairs: not on one axis
+  expect(11, 0x6B);  // a G17 pair moves axis B, which a lone axis' module does not have
 }
 
 }  // namespace

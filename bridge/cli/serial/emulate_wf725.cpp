@@ -5,6 +5,8 @@
 // (--machine) on a machine file's real-transport drive.
 #include <fmt/format.h>
 
+#include <algorithm>
+
 #include <filesystem>
 #include <sstream>
 
@@ -276,7 +278,9 @@ void register_wf725_emulator(Context& ctx) {
     for (auto& m : machines) {
       auto* ctl = dynamic_cast<s5c::Wf725Controller*>(m->machine->controller());
       if (ctl == nullptr)
-        return fail("the machine file's wf725-726 controller is not the module model (give it db: N or programs:)");
+        return fail(
+            "the machine file's wf725-726 controller is not one axis of the module model (give it db: N or "
+            "programs:; one machine file per axis: axis_b/axis_c are for scenarios)");
       if (ctl->interface_db().number == s5c::wf725_md_image_db)
         return fail("db: 1 is the MD image of the emulator: give the DB axis another number (2..255)");
       for (const auto* c : ctls) {
@@ -296,12 +300,20 @@ void register_wf725_emulator(Context& ctx) {
         if (const int e = ctls.front()->store_program(p))
           return fail(fmt::format("axis {}: program {} does not fit the module's memory (WF message {})",
                                   ctls[i]->axis_specs()[0].name, p.number, e));
+    // Split drive (MD 27 of axis A, docs/wf725.md "Split drive"): the partner follows axis A. Each
+    // period axis A's machine cycles first; every axis takes its split-drive set-point before its
+    // update.
+    if (auto coupled = s5c::wf725_couple_split_drive(ctls); !coupled) return fail(coupled.error());
+    std::vector<std::pair<MachineFile*, s5c::Wf725Controller*>> order;
+    for (std::size_t i = 0; i < machines.size(); ++i) order.emplace_back(machines[i].get(), ctls[i]);
+    std::stable_partition(order.begin(), order.end(), [](const auto& p) { return p.second->axis_letter() == 'A'; });
     std::vector<MachineFile*> ms;
     for (auto& m : machines) ms.push_back(m.get());
     auto policy =
-        std::make_unique<s5c::Wf725ModulePolicy>(ctls, machines.front()->scenario.period, [ms](const CycleTime& c) {
-          for (auto* m : ms) {
+        std::make_unique<s5c::Wf725ModulePolicy>(ctls, machines.front()->scenario.period, [order](const CycleTime& c) {
+          for (const auto& [m, ctl] : order) {
             m->io.poll();
+            ctl->split_drive_period(c);
             m->machine->cycle(c);
           }
         });

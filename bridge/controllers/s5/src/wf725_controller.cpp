@@ -244,6 +244,7 @@ void Wf725Controller::on_cycle(const CycleTime& cycle) noexcept {
       check_limits(now);
     }
   }
+  split_cycle(now);  // split drive MD 27/29 (wf725_split_drive.cpp)
   m_cycle(now);
   write_status();
   db_.end_cycle();
@@ -292,6 +293,8 @@ void Wf725Controller::handle_drive(TimePoint now) {
 }
 
 void Wf725Controller::abort_job() {
+  release_slaves(true);  // a combined program ends on every axis it moves
+  master_ = nullptr;
   auto& ax = axis(0);
   const auto s = ax.status().state;
   if (open_loop()) {
@@ -311,7 +314,8 @@ void Wf725Controller::abort_job() {
   g99_wait_ = false;
 }
 
-bool Wf725Controller::go(double target_mm, std::int64_t feed, TimePoint now, motion::Direction dir) {
+bool Wf725Controller::go(double target_mm, std::int64_t feed, TimePoint now, motion::Direction dir,
+                         double acceleration) {
   if (feed <= 0) {
     raise_wf(0x73, now, "no feed for the motion");
     return false;
@@ -334,6 +338,7 @@ bool Wf725Controller::go(double target_mm, std::int64_t feed, TimePoint now, mot
   motion::Limits lim = ax.config().limits;
   // Feeds above MD 3 are reduced to MD 3 (§4.3 MD 3); 10^-2 mm/min -> mm/s.
   lim.velocity = std::min(lim.velocity, static_cast<double>(feed) / 100.0 / 60.0);
+  if (acceleration > 0.0) lim.acceleration = std::min(lim.acceleration, acceleration);
   const double axis_target =
       md_.rotary() ? std::fmod(std::fmod(t, ax.config().modulo) + ax.config().modulo, ax.config().modulo) : to_axis(t);
   double goal = axis_target;
@@ -400,7 +405,7 @@ void Wf725Controller::handle_start(TimePoint now) {
           raise_wf(0x13, now, "jog without drive enable D 2.0");
         } else if (jog_feed_ == 0) {
           raise_wf(0x72, now, "set-up speed (data code 1C) is 0");
-        } else if (!errors().blocks_motion(0) && go_velocity(dir, jog_feed_, now)) {
+        } else if (!errors().blocks_motion(0) && split_start(now) && go_velocity(dir, jog_feed_, now)) {
           job_ = Job::jog;
         }
         jog_dir_ = dir;
@@ -429,6 +434,7 @@ void Wf725Controller::handle_start(TimePoint now) {
     raise_wf(0x71, now, "MD 2 = 0");
     return;
   }
+  if (!split_start(now)) return;  // split drive: the slave, MD 1/2/38/39, MD 29 (no-op without)
   auto& ax = axis(0);
   const bool roller = md_.integer(42) == 1 && md_.closed_loop() && md_.incremental();
   switch (submode_) {
@@ -544,6 +550,8 @@ void Wf725Controller::run_job(const CycleTime& cycle) {
     case Job::program:
       program_cycle(cycle);
       return;
+    case Job::slave:
+      return;  // the master's combined program watches the motion (wf725_combined.cpp)
     case Job::reference:
       break;
   }

@@ -60,7 +60,8 @@ void Wf725Controller::buffer_reload(int buffer, int db, TimePoint now) {
   auto parsed = parse_wf725_programs(text, syntax_);
   if (!parsed) {
     const auto& e = parsed.error();
-    return raise_io(e.code, now, fmt::format("DB{} N{}: {}", db, e.block, e.message), "memory_admin");
+    return raise_io(e.code, now, fmt::format("DB{} N{}: {}", db, e.block, e.message),
+                    e.code < 200 ? "program_io" : "memory_admin");
   }
   if (parsed->size() != 1)
     return raise_io(220, now, fmt::format("DB{}: blocks only, no program header", db), "memory_admin");

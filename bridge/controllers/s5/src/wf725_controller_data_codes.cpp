@@ -24,6 +24,11 @@ void Wf725Controller::handle_data_code(TimePoint now) {
     for (const auto& [cat, code] : drop) (void)clear_error(*cat, code, 0);
   }
   std::int32_t result = 0;
+  if (split_data_code(c, p1, p2, now, result)) {  // 30/31: split drive (wf725_split_drive.cpp)
+    db_.write_dd(dd_data_result, result);
+    db_.set_bit(dw_data_status, 0, true);
+    return;
+  }
   switch (c) {
     case 0:
       raise_io(112, now);

@@ -84,7 +84,7 @@ void Wf725Controller::program_input(int db, TimePoint now) {
     const auto& e = progs.error();
     return raise_io(e.code, now,
                     fmt::format("DB{} line {}, program {} N{}: {}", db, e.line, e.program, e.block, e.message),
-                    "memory_admin");
+                    e.code < 200 ? "program_io" : "memory_admin");
   }
   // All or nothing: a program the memory refuses leaves the memory as it was.
   // The trial is a copy; the memory itself is changed in place (an axis of the module may run

@@ -27,6 +27,7 @@ bool Wf725Controller::start_program(TimePoint now, bool single) {
   if (p->blocks.empty()) return raise_wf(0x82, now, fmt::format("program {}", number)), false;
   if (static_cast<int>(p->blocks.size()) > store_->limits().blocks_per_program)
     return raise_wf(0x68, now, fmt::format("program {} has {} blocks", number, p->blocks.size())), false;
+  if (!check_slaves(*p, now)) return false;
   std::size_t index = 0;
   if (submode_ == Submode::single_step) {
     const int bn = db_.dl(dw_enable);
@@ -34,6 +35,7 @@ bool Wf725Controller::start_program(TimePoint now, bool single) {
     const auto* b = p->find(bn);
     if (b == nullptr) return raise_wf(0x67, now, fmt::format("N{} in program {}", bn, number)), false;
     index = static_cast<std::size_t>(b - p->blocks.data());
+    if (wf725_pair_partner(*p, index)) --index;  // a pair runs from its first block
   }
   if (md_.integer(42) == 1 && md_.closed_loop() && md_.incremental())
     offset_mm_ = -axis(0).status().command_position;  // roller feed: actual value 0 at every start
@@ -111,8 +113,10 @@ bool Wf725Controller::begin_block(TimePoint now) {
   };
   auto& f = stack_.back();
   if (b->skippable && db_.bit(dw_control, bit_skip)) {
-    if (f.index + 1 == f.program->blocks.size()) return fail(0x88);
-    if (!advance()) {
+    // An interpolation pair is skipped as a whole (both its blocks are skippable).
+    const bool pair = combined_kind(*b) == 2;
+    if (f.index + (pair ? 2 : 1) == f.program->blocks.size()) return fail(0x88);
+    if (!advance() || (pair && !advance())) {
       end_program();
       return false;
     }
@@ -129,6 +133,7 @@ bool Wf725Controller::begin_block(TimePoint now) {
     step_ = Step::fetch;
     return true;
   }
+  if (combined_kind(*b) != 0) return begin_combined(now);  // another axis' block, a G17-G19 pair
   const bool any_g = b->group(1) >= 0 || b->group(2) >= 0 || b->group(3) >= 0 || b->group(4) >= 0;
   if (!any_g && !b->x && !b->f && !b->m && !b->tool) return fail(0x61);
   if (b->group(1) == 90) absolute_ = true;
@@ -138,10 +143,6 @@ bool Wf725Controller::begin_block(TimePoint now) {
   const int g2 = b->group(2), g3 = b->group(3), g4 = b->group(4);
   if (open_loop() && g4 >= 0)
     return fail(0x7A, fmt::format("G{}: the 4th G group is not allowed in open loop (MD 4 = {})", g4, md_.integer(4)));
-  if (g4 >= 17 && g4 <= 19) {
-    const bool jerk = md_.get(38) != 0 || md_.get(39) != 0;
-    return fail(jerk ? 0xD2 : 0x86, "interpolation of axis pairs needs the combined module (not modelled)");
-  }
   change_group_ = (g4 >= 23 && g4 <= 29) ? 46 : (g4 >= 73 && g4 <= 79) ? 47 : 0;
   if (b->tool && g3 != 54) {
     if (*b->tool == 0) {
@@ -282,7 +283,7 @@ bool Wf725Controller::flying_change(const CycleTime& cycle) {
       limit_side_ != 0)
     return false;
   const Wf725Block* n = peek_next();
-  if (n == nullptr || !n->x || n->call || n->group(3) >= 0) return false;
+  if (n == nullptr || !n->x || n->call || n->group(3) >= 0 || combined_kind(*n) != 0) return false;
   if (n->group(2) == 4 || n->group(2) == 68 || n->group(2) == 69) return false;
   if (n->skippable && db_.bit(dw_control, bit_skip)) return false;
   const auto& st = axis(0).status();
@@ -403,6 +404,9 @@ void Wf725Controller::program_cycle(const CycleTime& cycle) {
         if (!motion_done()) return;
         step_ = Step::wait_start;
         return;
+      case Step::combined:
+        if (!combined_cycle(now)) return;
+        continue;
     }
   }
 }

@@ -67,6 +67,7 @@ bool wf725_md_shapes_axis(int n) noexcept {
     case 24:
     case 25:
     case 26:
+    case 27:  // split drive: the coupling is made at power-up (wf725_couple_split_drive)
     case 30:
     case 31:
     case 33:

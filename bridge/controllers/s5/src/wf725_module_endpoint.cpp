@@ -4,6 +4,8 @@
 
 #include <fmt/format.h>
 
+#include <stdexcept>
+
 namespace hil::controllers::s5 {
 
 using serial::s5::Rk512Error;
@@ -11,8 +13,10 @@ using serial::s5::Rk512Error;
 Wf725ModulePolicy::Wf725ModulePolicy(std::vector<Wf725Controller*> axes, Duration period,
                                      std::function<void(const CycleTime&)> cycle)
     : axes_(std::move(axes)), period_(period), cycle_(std::move(cycle)) {
-  // One program memory per module (digest §6.2: the limits are the module's).
-  for (std::size_t i = 1; i < axes_.size(); ++i) axes_[i]->use_program_store(axes_.front()->program_store());
+  // One module: one program memory (digest §6.2: the limits are the module's), combined programs.
+  for (auto* a : axes_) {
+    if (auto r = module_.add(*a); !r) throw std::invalid_argument("wf725 module: " + r.error());
+  }
   if (!axes_.empty()) saved_revision_ = axes_.front()->programs().revision();
 }
 

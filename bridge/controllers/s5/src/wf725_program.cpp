@@ -234,10 +234,68 @@ std::expected<Wf725ProgramSyntax, std::string> wf725_program_syntax(const profil
   return s;
 }
 
+std::string_view wf725_pair_axes(int g) noexcept {
+  return g == 17 ? "AB" : g == 18 ? "AC" : g == 19 ? "BC" : "";
+}
+
+namespace {
+
+/// The interpolation rules of a block entered after `prev` (digest §5.3, 174/181; docs/wf725.md,
+/// "Combined programs"): a block with G17/G18/G19 opens a pair, the next block of the program
+/// is its partner. `open` is the opener waiting for its partner (nullptr: none).
+std::optional<Wf725SyntaxError> check_interpolation(const Wf725Block& b, const Wf725Block* open, int program,
+                                                    int line) {
+  const auto fail = [&](int code, std::string message) {
+    return Wf725SyntaxError{code, program, b.number, line, std::move(message)};
+  };
+  const int g = open != nullptr ? open->group(4) : b.group(4);
+  const std::string_view pair = wf725_pair_axes(g);
+  if (open == nullptr && pair.empty()) return std::nullopt;
+  if (b.call)
+    return fail(181, fmt::format("the partner block of the G{} pair (N{}) must follow it: a call L cannot be part of "
+                                 "an interpolation pair",
+                                 g, open != nullptr ? open->number : b.number));
+  if (open != nullptr && b.group(4) >= 0 && b.group(4) != g)
+    return fail(174, fmt::format("N{} completes the G{} pair of N{}: G{:02} is not allowed there (the same G{} or "
+                                 "none)",
+                                 b.number, g, open->number, b.group(4), g));
+  if (b.axis == 0 || pair.find(b.axis) == std::string_view::npos)
+    return fail(174,
+                fmt::format("G{} interpolates the axes {} and {}: each block of the pair carries one of their "
+                            "letters (N{} has {})",
+                            g, pair[0], pair[1], b.number, b.axis == 0 ? std::string("none") : std::string(1, b.axis)));
+  if (open != nullptr && b.axis == open->axis)
+    return fail(174, fmt::format("G{} pair N{}/N{}: both blocks name axis {}; one block per axis of {}{}", g,
+                                 open->number, b.number, b.axis, pair[0], pair[1]));
+  if (!b.x) return fail(174, fmt::format("N{}: a block of a G{} pair needs its position X", b.number, g));
+  if (b.group(2) >= 0 || b.group(3) >= 0)
+    return fail(174, fmt::format("N{}: a block of a G{} pair takes no G function of group 2 or 3 (G04, G68, G69, "
+                                 "G99, G53, G54, G92, G93)",
+                                 b.number, g));
+  if (open != nullptr && open->skippable != b.skippable)
+    return fail(174,
+                fmt::format("G{} pair N{}/N{}: both blocks or neither are skippable ('/')", g, open->number, b.number));
+  return std::nullopt;
+}
+
+}  // namespace
+
 std::expected<std::vector<Wf725Program>, Wf725SyntaxError> parse_wf725_programs(std::string_view text,
                                                                                 const Wf725ProgramSyntax& syntax) {
   std::vector<Wf725Program> out;
   int line = 0;
+  // The opener of an interpolation pair waiting for its partner (index into out.back().blocks), its line.
+  constexpr std::size_t none = static_cast<std::size_t>(-1);
+  std::size_t open = none;
+  int open_line = 0;
+  const auto unpaired = [&]() {
+    const auto& prog = out.back();
+    const auto& b = prog.blocks[open];
+    return Wf725SyntaxError{181, prog.number, b.number, open_line,
+                            fmt::format("N{} opens a G{} interpolation pair: its partner block (the other axis of "
+                                        "the pair) must follow it directly",
+                                        b.number, b.group(4))};
+  };
   std::size_t pos = 0;
   while (pos <= text.size()) {
     const std::size_t nl = text.find('\n', pos);
@@ -247,6 +305,7 @@ std::expected<std::vector<Wf725Program>, Wf725SyntaxError> parse_wf725_programs(
     const std::string_view s = strip(raw);
     if (s.empty()) continue;
     if (s.front() == '%') {
+      if (open != none) return std::unexpected(unpaired());
       auto h = parse_header(s, line);
       if (!h) return std::unexpected(h.error());
       for (const auto& q : out)
@@ -262,12 +321,25 @@ std::expected<std::vector<Wf725Program>, Wf725SyntaxError> parse_wf725_programs(
     auto& prog = out.back();
     auto b = parse_block(s, line, prog.number, syntax);
     if (!b) return std::unexpected(b.error());
-    if (!prog.blocks.empty() && b->number <= prog.blocks.back().number)
-      return std::unexpected(Wf725SyntaxError{220, prog.number, b->number, line,
+    if (!prog.blocks.empty() && b->number <= prog.blocks.back().number) {
+      // Interpolation blocks are converted on entry, in ascending block numbers (181).
+      const bool interpolation = open != none || !wf725_pair_axes(b->group(4)).empty();
+      return std::unexpected(Wf725SyntaxError{interpolation ? 181 : 220, prog.number, b->number, line,
                                               fmt::format("block N{} after N{}: block numbers ascend within a program",
                                                           b->number, prog.blocks.back().number)});
+    }
+    if (auto e = check_interpolation(*b, open != none ? &prog.blocks[open] : nullptr, prog.number, line))
+      return std::unexpected(std::move(*e));
+    const bool opens = open == none && !wf725_pair_axes(b->group(4)).empty();
     prog.blocks.push_back(std::move(*b));
+    if (opens) {
+      open = prog.blocks.size() - 1;
+      open_line = line;
+    } else {
+      open = none;
+    }
   }
+  if (open != none) return std::unexpected(unpaired());
   if (out.empty())
     return std::unexpected(Wf725SyntaxError{230, 0, 0, line, "no program: the text has no %<number> header"});
   return out;

@@ -10,6 +10,7 @@
 
 #include "hil/controllers/parameter_controller.hpp"
 #include "hil/controllers/s5/wf725_controller.hpp"
+#include "hil/controllers/s5/wf726_module_controller.hpp"
 
 namespace hil::controllers::s5 {
 namespace {
@@ -28,13 +29,17 @@ std::optional<double> number(std::string_view s) {
 bool wf725_wants_module(const ControllerSpec& spec) noexcept {
   if (!spec.programs.empty()) return true;
   for (const char* key : {"db", "module", "reference_speeds", "jog_feed", "difference_cycles", "open_loop_speed",
-                          "open_loop_acceleration", "drift"})
+                          "open_loop_acceleration", "axis_b", "axis_c", "db_b", "db_c",
+                          "split_monitoring", "drift"})
     if (spec.options.contains(key)) return true;
   return false;
 }
 
-void register_wf725(ControllerRegistry& registry) {
-  registry.add("wf725-726", [](const ControllerSpec& spec) -> std::expected<std::unique_ptr<Controller>, ConfigError> {
+namespace {
+
+/// One axis from a single-axis `controller:` block.
+std::expected<std::unique_ptr<Wf725Controller>, ConfigError> create_axis(const ControllerSpec& spec) {
+  {
     const auto fail = [&](std::string key, std::string message) {
       return std::unexpected(ConfigError{spec.file, spec.line, 0, "controller." + key, std::move(message)});
     };
@@ -76,6 +81,10 @@ void register_wf725(ControllerRegistry& registry) {
                                ? "open_loop_speed: the open-loop drive's speed at 10 V (level 100) in mm/min, > 0"
                                : "open_loop_acceleration: the open-loop drive's own acceleration in mm/s^2, > 0");
         (key == "open_loop_speed" ? opt.drive.speed_at_10v_mm_min : opt.drive.acceleration) = *v;
+      } else if (key == "split_monitoring") {
+        if (value != "bit" && value != "always")
+          return fail(key, "split_monitoring: bit (the MD 29 comparison runs while D 2.3 of axis A is set) or always");
+        opt.split_monitoring_always = value == "always";
       } else if (key == "drift") {
         // The drive's input offset on X3 in mV, signed (docs/wf725.md "Drift"): within the DAC's +-10 V.
         double v = 0;
@@ -93,7 +102,7 @@ void register_wf725(ControllerRegistry& registry) {
       } else {
         return fail(key, fmt::format("unknown controller key '{}' (known: device, parameters, programs, cycle, axis, "
                                      "module, db, reference_speeds, jog_feed, difference_cycles, open_loop_speed, "
-                                     "open_loop_acceleration, drift)",
+                                     "open_loop_acceleration, axis_b, axis_c, db_b, db_c, split_monitoring, drift)",
                                      key));
       }
     }
@@ -121,8 +130,10 @@ void register_wf725(ControllerRegistry& registry) {
       auto progs = parse_wf725_programs(ss.str(), *syntax);
       if (!progs) {
         const auto& e = progs.error();
-        return std::unexpected(ConfigError{path.string(), e.line, 0, fmt::format("program {} N{}", e.program, e.block),
-                                           fmt::format("WF error {} (memory administration): {}", e.code, e.message)});
+        return std::unexpected(
+            ConfigError{path.string(), e.line, 0, fmt::format("program {} N{}", e.program, e.block),
+                        fmt::format("WF error {} ({}): {}", e.code,
+                                    e.code < 200 ? "program input" : "memory administration", e.message)});
       }
       for (auto& p : *progs) {
         const int n = p.number;
@@ -136,6 +147,20 @@ void register_wf725(ControllerRegistry& registry) {
     }
     (void)file;
     return c;
+  }
+}
+
+}  // namespace
+
+void register_wf725(ControllerRegistry& registry) {
+  registry.add("wf725-726", [](const ControllerSpec& spec) -> std::expected<std::unique_ptr<Controller>, ConfigError> {
+    // Several axes of one module (docs/wf725.md, "Several axes in a scenario").
+    if (spec.options.contains("axis_b") || spec.options.contains("axis_c") || spec.options.contains("db_b") ||
+        spec.options.contains("db_c"))
+      return make_wf726_module_controller(spec, create_axis);
+    auto c = create_axis(spec);
+    if (!c) return std::unexpected(c.error());
+    return std::unique_ptr<Controller>(std::move(*c));
   });
 }
 

@@ -43,8 +43,11 @@
 #include "hil/controllers/s5/wf725_machine_data.hpp"
 #include "hil/controllers/s5/wf725_open_loop.hpp"
 #include "hil/controllers/s5/wf725_program_store.hpp"
+#include "hil/controllers/s5/wf725_split_drive.hpp"
 
 namespace hil::controllers::s5 {
+
+class Wf726Module;
 
 struct Wf725Options {
   char axis = 'A';
@@ -54,6 +57,7 @@ struct Wf725Options {
   char variant = 'A';                      ///< module variant: A incremental, B parallel absolute, C SSI (WF 726)
   int difference_cycles = 4;               ///< error 33 after this many jumps > MD 34 in a row (manual: 4 or 5)
   Wf725OpenLoopDrive drive;                ///< open loop: the drive behind X3 (open_loop_speed/_acceleration)
+  bool split_monitoring_always = false;    ///< split drive: compare MD 29 without the enable bit D 2.3
   double drift_mv = 0.0;                   ///< the drive's input offset on X3, mV (key `drift`)
 };
 
@@ -80,7 +84,10 @@ class Wf725Controller final : public Controller {
  public:
   Wf725Controller(LoadedParameters parameters, Wf725MachineData md, ControllerAxis axis, Duration cycle,
                   Wf725Options options);
-  ~Wf725Controller() override { store_->remove_user(store_user_); }
+  ~Wf725Controller() override {
+    split_detach();
+    store_->remove_user(store_user_);
+  }
   Wf725Controller(const Wf725Controller&) = delete;
   Wf725Controller& operator=(const Wf725Controller&) = delete;
 
@@ -95,6 +102,15 @@ class Wf725Controller final : public Controller {
     store_ = std::move(store);
     store_user_ = store_->add_user([this](int n) { return runs_stored_program(n); });
   }
+
+  // ---- the module's axes (wf725_combined.cpp; docs/wf725.md "Combined programs") -------------
+  /// The axis letter (A, B, C).
+  [[nodiscard]] char axis_letter() const noexcept { return opt_.axis; }
+  /// Called by Wf726Module::add (nullptr: the axis leaves its module). Between cycles only.
+  void join_module(Wf726Module* module) noexcept { module_ = module; }
+  [[nodiscard]] Wf726Module* module() const noexcept { return module_; }
+  /// The master axis whose combined program moves this axis now (nullptr: none).
+  [[nodiscard]] const Wf725Controller* master() const noexcept { return master_; }
 
   // ---- the PLC's view: the DB axis as plain words (S5InterfaceDb) ----------------------------
   [[nodiscard]] std::uint16_t read_db_word(std::uint16_t w) const noexcept { return db_.read_word(w); }
@@ -125,6 +141,21 @@ class Wf725Controller final : public Controller {
   [[nodiscard]] bool machine_data_mode() const noexcept {
     return mode_bits_ == (1U << (wf_db::bit_mode_machine_data - 8));
   }
+
+  // ---- split drive (gantry) MD 27/29: wf725_split_drive.cpp, docs/wf725.md "Split drive" -----
+  /// Makes `slave` (this module's axis B or C, the one MD 27 of this axis A names) follow this
+  /// axis in the split-drive submodes. Error text (nothing coupled) when this is not axis A with
+  /// MD 27 = 3 / 5 naming `slave`'s letter, either axis is open loop or rotary, or one is coupled.
+  /// Construction time (before the first cycle); both must outlive each other's cycles.
+  [[nodiscard]] std::expected<void, std::string> couple_split_drive(Wf725Controller& slave);
+  /// Every run period, before this axis' update and after the master's: a coupled slave takes
+  /// the master's set-point (plus the programmed shift); on any other axis nothing happens.
+  void split_drive_period(const CycleTime& cycle) noexcept;
+  /// The coupling this axis is master of (nullptr: none).
+  [[nodiscard]] const Wf725SplitDrive* split_drive() const noexcept { return split_.get(); }
+  /// Split-drive difference now: slave actual - master actual - commanded shift, µm (machine
+  /// coordinates); nullopt when the axis is not coupled.
+  [[nodiscard]] std::optional<double> split_difference_um() const noexcept;
 
   // ---- observation (tests, summary) ------------------------------------------------------------
   /// Actual value as the module shows it (program coordinates), µm (10^-3 degree).
@@ -167,7 +198,7 @@ class Wf725Controller final : public Controller {
                                                               const motion::AxisStatus& status) const noexcept override;
 
  private:
-  enum class Job : std::uint8_t { none, jog, reference, move, program, clamping };
+  enum class Job : std::uint8_t { none, jog, reference, move, program, clamping, slave };
   enum class RefPhase : std::uint8_t { rapid, reduced, slow };
   enum class Step : std::uint8_t {
     fetch,
@@ -178,7 +209,8 @@ class Wf725Controller final : public Controller {
     wait_start,
     wait_enable,
     continuous,
-    stopping
+    stopping,
+    combined
   };
   enum class MState : std::uint8_t { idle, strobe, wait_release, timed };
   struct Frame {
@@ -236,6 +268,18 @@ class Wf725Controller final : public Controller {
   void write_status();
 
   void abort_job();
+  // split drive (wf725_split_drive.cpp)
+  /// At a start in a split submode: the slave in submode "0" (69/6B), ready (6A), MD 1/2/38/39 equal
+  /// (6D), the axes together within MD 29 (25). False when the start is refused (error raised).
+  bool split_start(TimePoint now);
+  /// The master's cycle: engagement, the slave's errors (6A, 69/6B); the slave's cycle: split_compare.
+  void split_cycle(TimePoint now);
+  /// The slave's cycle: the MD 29 comparison (25 on both, the motion terminated), data code 30's value.
+  void split_compare(TimePoint now);
+  /// Data codes 30 (difference) / 31 (programmed shift): false when not a split-drive code.
+  bool split_data_code(std::uint16_t code, std::int32_t p1, std::int32_t p2, TimePoint now, std::int32_t& result);
+  [[nodiscard]] bool split_monitoring() const noexcept;
+  void split_detach() noexcept;
   /// Whether this axis runs the stored program `number` (main or subprogram; not a buffer).
   [[nodiscard]] bool runs_stored_program(int number) const noexcept {
     const Wf725Program* p = store_->find(number);
@@ -243,7 +287,9 @@ class Wf725Controller final : public Controller {
   }
   /// Moves to machine position `target_mm` at `feed` (10^-2 mm/min), clamped to the armed
   /// pre-limits. False when the axis refused (error raised).
-  bool go(double target_mm, std::int64_t feed, TimePoint now, motion::Direction dir = motion::Direction::shortest);
+  /// `acceleration` > 0: the ramp of this move in mm/s^2 (an interpolation pair), else the axis'.
+  bool go(double target_mm, std::int64_t feed, TimePoint now, motion::Direction dir = motion::Direction::shortest,
+          double acceleration = 0.0);
   bool go_velocity(int direction, std::int64_t feed, TimePoint now);
   [[nodiscard]] bool armed() const noexcept { return synced_ || !md_.incremental(); }
   [[nodiscard]] double machine_mm() const noexcept;          ///< actual, machine coordinates
@@ -285,6 +331,27 @@ class Wf725Controller final : public Controller {
   void output_m(int m, TimePoint now);
   void m_cycle(TimePoint now);
 
+  // combined programs (wf725_combined.cpp)
+  /// At the start of program `p` (master): every other axis its blocks name (subprograms
+  /// included) exists on the module and is in traversing with submode "0" and no job: else 69 in
+  /// that axis, 6B here (or 6B alone for an axis the module lacks); false then.
+  bool check_slaves(const Wf725Program& p, TimePoint now);
+  /// Whether the current block is combined: another axis' letter (1) or an interpolation pair (2).
+  [[nodiscard]] int combined_kind(const Wf725Block& b) const noexcept;
+  /// Starts the current combined block (or pair); false when it failed (error raised, job ended).
+  bool begin_combined(TimePoint now);
+  /// Step::combined: waits for the axes of the combined block; false while it runs or failed.
+  bool combined_cycle(TimePoint now);
+  /// Stops (`abort`) or releases the slaves this axis commands.
+  void release_slaves(bool abort) noexcept;
+  /// Slave side: whether the axis can take a block of a master's combined program.
+  [[nodiscard]] bool slave_ready() const noexcept;
+  /// Slave side: the machine target of block `b` in this axis' coordinates.
+  [[nodiscard]] double combined_target(const Wf725Block& b, bool absolute) const noexcept;
+  /// Slave side: moves to `target_mm` for `master` (Job::slave); false when the axis refused
+  /// (its error raised here).
+  bool slave_move(Wf725Controller& master, double target_mm, std::int64_t feed, double acceleration, TimePoint now);
+
   Wf725MachineData md_;
   Wf725Options opt_;
   std::shared_ptr<Wf725ProgramStore> store_;
@@ -316,6 +383,8 @@ class Wf725Controller final : public Controller {
   bool peh_ = false;
   bool positioning_ = false;  ///< a motion started since the PEH window was last reached
   std::vector<int> pending_md_;
+  std::unique_ptr<Wf725SplitDrive> split_;   ///< master side of a split drive
+  Wf725Controller* split_master_ = nullptr;  ///< slave side: the master (axis A)
 
   // jobs
   Job job_ = Job::none;
@@ -381,6 +450,14 @@ class Wf725Controller final : public Controller {
   TimePoint m_until_{};
   std::vector<int> m_history_;
   std::vector<double> block_changes_um_;
+
+  // combined programs
+  Wf726Module* module_ = nullptr;
+  Wf725Controller* master_ = nullptr;                ///< slave: the master moving this axis
+  std::array<Wf725Controller*, 2> combined_axes_{};  ///< master: the axes of the running combined block
+  int combined_blocks_ = 0;                          ///< master: blocks the running combined step takes (1, 2)
+  bool combined_done_ = false;                       ///< master: the motion of the combined step ended
+  std::vector<int> combined_m_;                      ///< master: M functions output after the combined motion
 };
 
 /// Registers `wf725-726` in `registry` (the module model; replaces a factory of that name).

@@ -24,6 +24,7 @@
 #include <vector>
 
 #include "hil/controllers/s5/wf725_controller.hpp"
+#include "hil/controllers/s5/wf726_module.hpp"
 #include "hil/mocks/legacy/s5_block_endpoint.hpp"
 
 namespace hil::controllers::s5 {
@@ -35,7 +36,8 @@ inline constexpr std::uint16_t wf725_md_image_words = 100;  ///< 50 MD x 2 words
 class Wf725ModulePolicy final : public mocks::legacy::DbPolicy {
  public:
   /// `axes`: the module's 1..3 axes in the order A, B, C (non-null, alive as long as the policy,
-  /// DB axis numbers distinct and not 1); they share the first axis' program memory from now on.
+  /// DB axis numbers distinct and not 1, letters distinct); they form one Wf726Module: they share
+  /// the first axis' program memory from now on and run combined programs.
   /// `period`: the run period; `cycle` runs one period.
   Wf725ModulePolicy(std::vector<Wf725Controller*> axes, Duration period, std::function<void(const CycleTime&)> cycle);
 
@@ -62,6 +64,7 @@ class Wf725ModulePolicy final : public mocks::legacy::DbPolicy {
   /// Lends the endpoint's DB store to every axis as its user data blocks (call once, before serving).
   void share_store(mocks::legacy::DbStore& store);
   [[nodiscard]] const std::vector<Wf725Controller*>& axes() const noexcept { return axes_; }
+  [[nodiscard]] const Wf726Module& module() const noexcept { return module_; }
   /// Why the last refused job was refused (empty: none yet).
   [[nodiscard]] const std::string& last_rejection() const noexcept { return rejection_; }
 
@@ -72,6 +75,7 @@ class Wf725ModulePolicy final : public mocks::legacy::DbPolicy {
                                        std::vector<std::uint16_t>& out);
 
   std::vector<Wf725Controller*> axes_;
+  Wf726Module module_;
   Duration period_;
   std::function<void(const CycleTime&)> cycle_;
   TimePoint t_{};

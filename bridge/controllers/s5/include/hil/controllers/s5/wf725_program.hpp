@@ -24,7 +24,10 @@
 //   group 4: G17/G18/G19 interpolation, G23..G29 (block change MD 46), G73..G79 (MD 47)  (86 / 235)
 // Syntax errors carry the STEP 5 memory administration's numbers (§6.1.3, 230..240), which
 // validate blocks on input; a syntax rule the manual gives no number for is 220 ("wrong
-// parameters", the text is the FB's input). Nothing of a faulty file is stored. Pure.
+// parameters", the text is the FB's input). Interpolation pairs (G17 A+B, G18 A+C, G19 B+C: the
+// block with the G and the next block, one per axis of the pair, each with X) are checked on
+// input with the program-I/O numbers 174 (letters/G/X do not fit the pair) and 181 (the partner
+// does not follow, or the numbers do not ascend). Nothing of a faulty file is stored. Pure.
 
 #include <array>
 #include <cstdint>
@@ -78,12 +81,23 @@ struct Wf725Program {
 
 /// A rejected program text: the number of the STEP 5 memory administration (§6.1.3), where.
 struct Wf725SyntaxError {
-  int code = 0;         ///< 220, 230..240
+  int code = 0;         ///< 220, 230..240; 174 / 181 (program I/O: interpolation pairs)
   int program = 0;      ///< program number (0 before the header)
   int block = 0;        ///< N of the faulty block (0: header)
   int line = 0;         ///< 1-based line of the text
   std::string message;  ///< what is wrong and what to write instead
 };
+
+/// The axis pair G17 / G18 / G19 interpolates ("AB", "AC", "BC"); empty for any other G.
+[[nodiscard]] std::string_view wf725_pair_axes(int g) noexcept;
+/// Whether block `i` of `p` is the partner (second block) of an interpolation pair: the block
+/// before it opens a pair (G17/G18/G19) and is not itself a partner.
+[[nodiscard]] inline bool wf725_pair_partner(const Wf725Program& p, std::size_t i) noexcept {
+  bool partner = false;  // of block k, walking from the start
+  for (std::size_t k = 1; k <= i && k < p.blocks.size(); ++k)
+    partner = !partner && !wf725_pair_axes(p.blocks[k - 1].group(4)).empty();
+  return partner;
+}
 
 /// G group (1..4) of G number `g` in the built-in table (= profile table program_g_functions),
 /// 0 when the WF has no such G function.
