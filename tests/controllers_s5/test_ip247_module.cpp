@@ -7,6 +7,7 @@
 #include "hil/controllers/s5/ip247_interface.hpp"
 #include "hil/controllers/s5/ip247_module_endpoint.hpp"
 #include "hil/controllers/s5/ip247_program_db.hpp"
+#include "hil/controllers/s5/ip247_rack.hpp"
 
 using namespace hil::controllers::s5;
 using hil::serial::s5::Rk512Error;
@@ -146,4 +147,95 @@ TEST(Ip247Module, DataJobsThroughTheJobBlockDx4) {
   EXPECT_EQ(r[7], 0);
   EXPECT_FALSE(m.store.contains(10));
   EXPECT_EQ(m.policy.on_read_dx(m.store, 4, 10, 10, out), Rk512Error::target_too_small);
+}
+
+// `hilbridge emulate ip247` with several modules (docs/ip247.md, "Several modules on the line"): two
+// modules of one rack, each its own endpoint with the same DB/DX mapping, hold an MD DB 1 and a
+// program 10 of their own and run them independently; the PLC's DBs (DX 5..255) are the rack's;
+// each module's state file text brings back its own images.
+TEST(Ip247Rack, TwoModulesRunTheirProgramsIndependently) {
+  EXPECT_FALSE(Ip247Rack::make({}));
+  EXPECT_FALSE(Ip247Rack::make({Ip247ModuleOptions{.tile = 4}, Ip247ModuleOptions{.tile = 4}}));
+  EXPECT_FALSE(Ip247Rack::make({Ip247ModuleOptions{.tile = 6}}));
+  EXPECT_FALSE(Ip247Rack::make(std::vector<Ip247ModuleOptions>(9)));
+  auto made = Ip247Rack::make({Ip247ModuleOptions{.tile = 0}, Ip247ModuleOptions{.tile = 4}});
+  ASSERT_TRUE(made) << made.error();
+  Ip247Rack rack = std::move(*made);
+  ASSERT_EQ(rack.size(), 2U);
+  EXPECT_EQ(rack.state_path("/s/ip247.json", 0), "/s/ip247-tile0.json");
+  EXPECT_EQ(rack.state_path("/s/ip247.json", 1), "/s/ip247-tile4.json");
+  hil::TimePoint now{};
+  const auto run = [&](hil::Duration d) {
+    for (const auto end = now + d; now < end;) {
+      now += 1ms;
+      for (std::size_t i = 0; i < rack.size(); ++i) rack.policy(i).on_time(now);
+    }
+  };
+  run(1ms);
+  const auto write = [&](std::size_t i, std::uint8_t db, const std::vector<std::uint16_t>& w) {
+    return rack.policy(i).on_write(rack.endpoint(i).store(), db, 0, w);
+  };
+  const auto dx = [&](std::size_t i, std::uint8_t n, std::vector<std::uint16_t> w) {
+    return rack.policy(i).on_write_dx(rack.endpoint(i).store(), n, 0, w);
+  };
+  const auto actual = [&](std::size_t i) {
+    std::vector<std::uint16_t> s;
+    EXPECT_EQ(rack.policy(i).on_read_dx(rack.endpoint(i).store(), 1, 0, 14, s), Rk512Error::ok);
+    return static_cast<std::int32_t>((s[5] << 16) | s[6]);
+  };
+  Ip247MachineData md;
+  md.limits_normally_closed = false;
+  for (std::size_t i = 0; i < 2; ++i) EXPECT_EQ(write(i, 1, make_ip247_md_db(md)), Rk512Error::ok) << i;
+  // Program 10 on each module, different texts: the same DB number is each module's own.
+  EXPECT_EQ(write(0, 10, *make_ip247_vp_db({.db = 10, .text = "%10\nN10 X50 F3000\nN20 M02\n"})), Rk512Error::ok);
+  EXPECT_EQ(write(1, 10, *make_ip247_vp_db({.db = 10, .text = "%10\nN10 X20 F1500\nN20 X-5 F1500\nN30 M02\n"})),
+            Rk512Error::ok);
+  EXPECT_EQ(write(1, 10, *make_ip247_vp_db({.db = 10, .text = "%10\nN10 M02\n"})), Rk512Error::db_exists);
+  for (std::size_t i = 0; i < 2; ++i) {
+    EXPECT_EQ(dx(i, 1, {0x0501, 0, 0, 0, 0x0001}), Rk512Error::ok);  // BA5 set at 0
+  }
+  run(10ms);
+  EXPECT_EQ(dx(0, 1, {0x080A, 0, 0, 0, 0x0001}), Rk512Error::ok);  // BA8 program 10 on module 1 only
+  run(300ms);
+  EXPECT_GT(actual(0), 0);
+  EXPECT_EQ(actual(1), 0) << "module 2 did not move";
+  EXPECT_EQ(dx(1, 1, {0x080A, 0, 0, 0, 0x0001}), Rk512Error::ok);  // now module 2's own program 10
+  run(300ms);
+  EXPECT_GT(actual(1), 0);
+  EXPECT_EQ(rack.policy(0).on_write(rack.endpoint(0).store(), 10, 0, {0}), Rk512Error::processing_not_possible)
+      << "module 1 runs its program 10 (51)";
+  run(20s);
+  EXPECT_EQ(actual(0), 50'000);
+  EXPECT_EQ(actual(1), -5'000);
+  EXPECT_EQ(rack.policy(0).axis(1).m_output(), 2);
+  EXPECT_EQ(rack.policy(1).axis(1).m_output(), 2);
+
+  // The PLC's DBs are the rack's: DB 20 sent on module 1's line is module 2's Q-DB of a BA20 on its
+  // axis 2 (SSNR 5 = tile 4 + axis 2 - 1).
+  Ip247MachineData md2 = md;
+  md2.db = 2;
+  md2.axis = 2;
+  EXPECT_EQ(dx(0, 20, make_ip247_md_db(md2)), Rk512Error::ok);
+  EXPECT_EQ(dx(1, ip247_job_block_dx, {0, 20, 0, 2, 0, 5}), Rk512Error::ok);
+  EXPECT_EQ(dx(1, ip247_job_block_dx, {20}), Rk512Error::ok);
+  std::vector<std::uint16_t> job;
+  EXPECT_EQ(rack.policy(1).on_read_dx(rack.endpoint(1).store(), ip247_job_block_dx, 0, 15, job), Rk512Error::ok);
+  EXPECT_EQ(job[7], 0) << "MB250/MB251";
+  EXPECT_TRUE(rack.policy(1).axis(2).machine_data());
+  EXPECT_FALSE(rack.policy(0).axis(2).machine_data()) << "module 1 has no axis 2 set";
+  EXPECT_TRUE(rack.endpoint(1).store().contains(2));
+  EXPECT_FALSE(rack.endpoint(0).store().contains(2));
+
+  // Each module's state (its images) comes back into a new rack, module by module.
+  const std::string s0 = rack.endpoint(0).save_state(), s1 = rack.endpoint(1).save_state();
+  auto again = Ip247Rack::make({Ip247ModuleOptions{.tile = 0}, Ip247ModuleOptions{.tile = 4}});
+  ASSERT_TRUE(again);
+  ASSERT_TRUE(again->load(0, s0));
+  ASSERT_TRUE(again->load(1, s1));
+  ASSERT_TRUE(again->policy(0).programs().find(10));
+  ASSERT_TRUE(again->policy(1).programs().find(10));
+  EXPECT_EQ(again->policy(0).programs().find(10)->blocks.size(), 2U);
+  EXPECT_EQ(again->policy(1).programs().find(10)->blocks.size(), 3U);
+  EXPECT_TRUE(again->policy(1).axis(2).machine_data());
+  EXPECT_FALSE(again->policy(0).axis(2).machine_data());
 }

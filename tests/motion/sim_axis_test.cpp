@@ -150,5 +150,42 @@ TEST_F(SimAxis, JogIntoTheSoftLimitLandsOnIt) {
   EXPECT_EQ(axis->status().command_position, 500.0);
 }
 
+TEST_F(SimAxis, SetpointOffsetShowsAsStandstillFollowingErrorAndTripsTheWindows) {
+  // 0.05 mm offset (a drift's position equivalent): the plant settles there, the axis reads a
+  // following error of -0.05 mm against its unchanged command, inside the standstill window 0.1.
+  const double p0 = axis->status().position;
+  ASSERT_FALSE(axis->set_setpoint_offset(0.05));
+  EXPECT_EQ(axis->set_setpoint_offset(std::nan("")), make_error_code(MotionFault::invalid_command));
+  for (int i = 0; i < 500; ++i) cycle();
+  EXPECT_EQ(axis->status().state, AxisState::standstill) << axis->status().fault.describe();
+  EXPECT_NEAR(axis->status().position - p0, 0.05, 2e-3);
+  EXPECT_NEAR(axis->status().following_error, -0.05, 2e-3);
+  EXPECT_NEAR(axis->status().command_position, p0, 1e-9) << "the offset is not the command";
+  EXPECT_FALSE(axis->status().in_position) << "0.05 from the target, window 0.01";
+  // A positioning towards the offset's side ends with the in-position timeout: the actual stops
+  // 0.05 short of the target and never enters the window (from the other side it would pass
+  // through the window and arm the standstill check there).
+  ASSERT_FALSE(axis->move_relative(-5.0));
+  for (int i = 0; i < 3000 && axis->status().state != AxisState::error; ++i) cycle();
+  EXPECT_EQ(axis->status().fault.code, make_error_code(MotionFault::in_position_timeout));
+  // Compensated (offset 0 again) the axis settles on its command and is in position.
+  ASSERT_FALSE(axis->reset());
+  ASSERT_FALSE(axis->set_setpoint_offset(0.0));
+  for (int i = 0; i < 50 && axis->status().state != AxisState::standstill; ++i) cycle();
+  if (axis->status().state == AxisState::disabled) {
+    ASSERT_FALSE(axis->enable());
+    for (int i = 0; i < 50 && axis->status().state != AxisState::standstill; ++i) cycle();
+  }
+  ASSERT_FALSE(axis->move_relative(5.0));
+  for (int i = 0; i < 3000 && (axis->status().busy || !axis->status().in_position); ++i) cycle();
+  EXPECT_TRUE(axis->status().in_position) << axis->status().fault.describe();
+  for (int i = 0; i < 300; ++i) cycle();
+  EXPECT_NEAR(axis->status().following_error, 0.0, 2e-3);
+  // Beyond the standstill window at rest: standstill error.
+  ASSERT_FALSE(axis->set_setpoint_offset(-0.2));
+  for (int i = 0; i < 500 && axis->status().state != AxisState::error; ++i) cycle();
+  EXPECT_EQ(axis->status().fault.code, make_error_code(MotionFault::standstill));
+}
+
 }  // namespace
 }  // namespace hil::motion

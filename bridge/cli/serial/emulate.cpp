@@ -12,6 +12,7 @@
 #include <mutex>
 #include <optional>
 #include <thread>
+#include <vector>
 
 #include "hil/cli/duration_option.hpp"
 #include "hil/core/text_file.hpp"
@@ -54,6 +55,30 @@ std::filesystem::path default_state_path(const std::string& device) {
 
 int serve(mocks::legacy::Endpoint& endpoint, const EmulateOptions& o, const std::filesystem::path& state,
           const std::function<std::string(mocks::legacy::Endpoint&, const std::string&)>& on_command) {
+  return serve_lines(
+      {ServedLine{&endpoint, state}}, o,
+      [&](std::span<mocks::legacy::Endpoint* const> e, const std::string& cmd) { return on_command(*e.front(), cmd); });
+}
+
+namespace {
+
+/// One served line: its pty or TCP listener, the stream of the present client, the host.
+struct LineState {
+  mocks::legacy::Endpoint* endpoint = nullptr;
+  std::filesystem::path state;
+  std::unique_ptr<hil::serial::SerialStream> stream;
+  std::optional<hil::serial::linux_io::PtyEndpoint> pty;
+  std::unique_ptr<hil::serial::linux_io::TcpListener> listener;
+  std::unique_ptr<mocks::legacy::EndpointHost> host;
+  std::uint64_t errors_before = 0;  ///< listener->accept_errors() when the present run of failures began
+  bool failing = false;
+};
+
+}  // namespace
+
+int serve_lines(
+    const std::vector<ServedLine>& served, const EmulateOptions& o,
+    const std::function<std::string(std::span<mocks::legacy::Endpoint* const>, const std::string&)>& on_command) {
   auto fmt_ok = line_format(o.link);
   if (!fmt_ok) {
     fmt::print(stderr, "error: {}\n", fmt_ok.error());
@@ -67,73 +92,101 @@ int serve(mocks::legacy::Endpoint& endpoint, const EmulateOptions& o, const std:
   SteadyClock clock;
   hil::serial::Discipline d;
   d.software_parity = true;
-  std::unique_ptr<hil::serial::SerialStream> stream;
-  std::optional<hil::serial::linux_io::PtyEndpoint> pty;
-  std::unique_ptr<hil::serial::linux_io::TcpListener> listener;
-  if (o.pty) {
-    auto p = hil::serial::linux_io::PtyEndpoint::create();
-    if (!p) {
-      fmt::print(stderr, "error: {}\n", p.error().message);
-      return 1;
+  std::vector<LineState> lines(served.size());
+  std::vector<mocks::legacy::Endpoint*> endpoints;
+  for (std::size_t i = 0; i < served.size(); ++i) {
+    auto& l = lines[i];
+    l.endpoint = served[i].endpoint;
+    l.state = served[i].state;
+    endpoints.push_back(l.endpoint);
+    if (o.pty) {
+      auto p = hil::serial::linux_io::PtyEndpoint::create();
+      if (!p) {
+        fmt::print(stderr, "error: {}\n", p.error().message);
+        return 1;
+      }
+      l.pty.emplace(std::move(*p));
+      l.stream = std::make_unique<hil::serial::SerialStream>(l.pty->take_master(), *fmt_ok, d, clock);
+      fmt::print("{}\n", l.pty->slave_path());
+    } else {
+      // Line i on port + i (port 0: any free port for each).
+      const int port = o.tcp_port == 0 ? 0 : o.tcp_port + static_cast<int>(i);
+      if (port > 65535) {
+        fmt::print(stderr, "error: --tcp {}: line {} would need port {}\n", o.tcp_port, i + 1, port);
+        return 2;
+      }
+      auto listener = hil::serial::linux_io::TcpListener::create(o.bind, static_cast<std::uint16_t>(port));
+      if (!listener) {
+        fmt::print(stderr, "error: {}\n", listener.error().message);
+        return 1;
+      }
+      l.listener = std::move(*listener);
+      fmt::print("tcp:{}:{}\n", o.bind, l.listener->port());
     }
-    pty.emplace(std::move(*p));
-    stream = std::make_unique<hil::serial::SerialStream>(pty->take_master(), *fmt_ok, d, clock);
-    fmt::print("{}\n", pty->slave_path());
-  } else {
-    auto l = hil::serial::linux_io::TcpListener::create(o.bind, static_cast<std::uint16_t>(o.tcp_port));
-    if (!l) {
-      fmt::print(stderr, "error: {}\n", l.error().message);
-      return 1;
-    }
-    listener = std::move(*l);
-    fmt::print("tcp:{}:{}\n", o.bind, listener->port());
   }
   std::fflush(stdout);
-  if (!state.empty()) fmt::print(stderr, "state file: {}\n", state.string());
+  for (const auto& l : lines)
+    if (!l.state.empty()) fmt::print(stderr, "state file: {}\n", l.state.string());
 
+  // One thread serves every line in turn (a module's deadline bounds each wait to its cycle), so the
+  // endpoints never run concurrently: endpoints that share data (the PLC's DBs of an S5 rack) need
+  // no lock of their own. With several lines the waits are short so that no line starves.
+  const bool several = lines.size() > 1;
+  const Duration step_wait = several ? Duration(std::chrono::milliseconds(2)) : Duration(std::chrono::milliseconds(50));
+  const Duration accept_wait =
+      several ? Duration(std::chrono::milliseconds(5)) : Duration(std::chrono::milliseconds(200));
   std::atomic<bool> stop{false};
-  std::mutex endpoint_mutex;  // guards the endpoint between the line thread and stdin commands
-  std::unique_ptr<mocks::legacy::EndpointHost> host;
+  std::mutex endpoint_mutex;  // guards the hosts between the line thread and stdin commands
   std::thread line([&] {
-    // Failed accepts: one line when they start, one when a client is accepted again.
-    std::uint64_t errors_before = 0;  // listener->accept_errors() when the present run of failures began
-    bool failing = false;
     while (!stop && !interrupted()) {
-      if (listener && !stream) {
-        // A failed accept (out of file descriptors) returns after its whole 200 ms: no busy loop.
-        auto raw = listener->accept(std::chrono::milliseconds(200));
-        const std::uint64_t errors = listener->accept_errors();
-        if (!failing && errors != errors_before) {
-          failing = true;
-          fmt::print(stderr, "accepting a TCP client failed: {}; retrying every 200 ms\n",
-                     listener->last_accept_error().message());
+      for (auto& l : lines) {
+        if (l.listener && !l.stream) {
+          // A failed accept (out of file descriptors) returns after its whole wait: no busy loop.
+          auto raw = l.listener->accept(accept_wait);
+          const std::uint64_t errors = l.listener->accept_errors();
+          if (!l.failing && errors != l.errors_before) {
+            l.failing = true;
+            fmt::print(stderr, "accepting a TCP client failed: {}; retrying every {}\n",
+                       l.listener->last_accept_error().message(), format_duration(accept_wait));
+          }
+          if (!raw) continue;
+          if (l.failing) {
+            fmt::print(stderr, "accepted a TCP client after {} failed accepts\n", errors - l.errors_before);
+            l.failing = false;
+          }
+          l.errors_before = errors;
+          l.stream = std::make_unique<hil::serial::SerialStream>(std::move(raw), *fmt_ok, d, clock);
         }
-        if (!raw) continue;
-        if (failing) {
-          fmt::print(stderr, "accepted a TCP client after {} failed accepts\n", errors - errors_before);
-          failing = false;
+        {
+          std::lock_guard lock(endpoint_mutex);
+          if (!l.host) l.host = std::make_unique<mocks::legacy::EndpointHost>(*l.endpoint, *l.stream, clock, l.state);
         }
-        errors_before = errors;
-        stream = std::make_unique<hil::serial::SerialStream>(std::move(raw), *fmt_ok, d, clock);
-      }
-      {
-        std::lock_guard lock(endpoint_mutex);
-        if (!host) host = std::make_unique<mocks::legacy::EndpointHost>(endpoint, *stream, clock, state);
-      }
-      const auto ec = host->step(std::chrono::milliseconds(50));
-      const bool idle = listener && clock.now() - host->last_rx() > o.idle_timeout;
-      if (idle)
-        fmt::print(stderr, "closing the TCP client: nothing received for {}\n", format_duration(o.idle_timeout));
-      if (listener && (ec == hil::serial::LineError::closed || idle)) {
-        // The TCP client went away (or idles): keep the state, wait for the next one.
-        std::lock_guard lock(endpoint_mutex);
-        (void)host->persist();
-        host.reset();
-        stream.reset();
+        const auto ec = l.host->step(step_wait);
+        const bool idle = l.listener && clock.now() - l.host->last_rx() > o.idle_timeout;
+        if (idle)
+          fmt::print(stderr, "closing the TCP client: nothing received for {}\n", format_duration(o.idle_timeout));
+        if (l.listener && (ec == hil::serial::LineError::closed || idle)) {
+          // The TCP client went away (or idles): keep the state, wait for the next one.
+          std::lock_guard lock(endpoint_mutex);
+          (void)l.host->persist();
+          l.host.reset();
+          l.stream.reset();
+        }
       }
     }
-    if (host) (void)host->persist();
+    for (auto& l : lines)
+      if (l.host) (void)l.host->persist();
   });
+
+  // Runs `fn` with every endpoint locked (each under its host's lock, in line order).
+  const std::function<void(std::size_t, const std::function<void()>&)> with_all = [&](std::size_t i,
+                                                                                      const std::function<void()>& fn) {
+    if (i == lines.size()) return fn();
+    if (lines[i].host)
+      lines[i].host->with_endpoint([&](mocks::legacy::Endpoint&) { with_all(i + 1, fn); });
+    else
+      with_all(i + 1, fn);
+  };
 
   std::string cmd;
   bool stdin_open = true;
@@ -152,24 +205,26 @@ int serve(mocks::legacy::Endpoint& endpoint, const EmulateOptions& o, const std:
     if (cmd == "quit" || cmd == "exit") break;
     std::string reply;
     if (cmd.starts_with("drop ")) {
-      // Fault injection for tests: "drop AFTER COUNT" stops answering after AFTER replies.
+      // Fault injection for tests: "drop AFTER COUNT" stops answering after AFTER replies (every line).
       int after = 0, count = 0;
       if (std::sscanf(cmd.c_str(), "drop %d %d", &after, &count) != 2 || after < 0 || count < 0) {
         fmt::print("error: usage: drop AFTER COUNT\n");
       } else {
         std::lock_guard lock(endpoint_mutex);
-        if (host) host->drop_replies(after, count);
-        fmt::print("{}\n", host ? "ok " + cmd : std::string("error: no line yet"));
+        bool any = false;
+        for (auto& l : lines)
+          if (l.host) {
+            l.host->drop_replies(after, count);
+            any = true;
+          }
+        fmt::print("{}\n", any ? "ok " + cmd : std::string("error: no line yet"));
       }
       std::fflush(stdout);
       continue;
     }
     {
       std::lock_guard lock(endpoint_mutex);
-      if (host)
-        host->with_endpoint([&](mocks::legacy::Endpoint& e) { reply = on_command(e, cmd); });
-      else
-        reply = on_command(endpoint, cmd);
+      with_all(0, [&] { reply = on_command(endpoints, cmd); });
     }
     fmt::print("{}\n", reply);
     std::fflush(stdout);
@@ -187,10 +242,10 @@ std::expected<std::filesystem::path, std::string> resolve_state(const EmulateOpt
       o.state_file.empty() ? default_state_path(device) : std::filesystem::path(o.state_file);
   std::error_code ec;
   if (p.has_parent_path()) std::filesystem::create_directories(p.parent_path(), ec);
-  static std::optional<hil::serial::FileLock> held;
+  static std::vector<hil::serial::FileLock> held;  // one per state file (several lines: several files)
   auto lock = hil::serial::FileLock::acquire(p);
   if (!lock) return std::unexpected(lock.error());
-  held.emplace(std::move(*lock));
+  held.push_back(std::move(*lock));
   return p;
 }
 

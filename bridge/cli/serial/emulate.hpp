@@ -7,7 +7,9 @@
 #include <functional>
 #include <memory>
 #include <optional>
+#include <span>
 #include <string>
+#include <vector>
 
 #include "hil/mocks/legacy/endpoint.hpp"
 #include "link_options.hpp"
@@ -42,5 +44,19 @@ void add_emulate_options(CLI::App& cmd, EmulateOptions& o);
 /// handled here for every device.
 int serve(mocks::legacy::Endpoint& endpoint, const EmulateOptions& o, const std::filesystem::path& state,
           const std::function<std::string(mocks::legacy::Endpoint&, const std::string&)>& on_command);
+
+/// One line of serve_lines(): its endpoint and state file (empty: none).
+struct ServedLine {
+  mocks::legacy::Endpoint* endpoint = nullptr;
+  std::filesystem::path state;
+};
+/// serve() for several endpoints, each on its own line (devices of one rack, e.g. several IP247
+/// modules): `--pty` opens one pty per line (the slave paths on the first lines of stdout, in
+/// order), `--tcp P` listens on P, P + 1, ... (0: any free port for each; one `tcp:` line each).
+/// One thread serves the lines in turn, so the endpoints never run concurrently (they may share
+/// data). `on_command` gets every endpoint (each under its host's lock); "drop" applies to every line.
+int serve_lines(
+    const std::vector<ServedLine>& lines, const EmulateOptions& o,
+    const std::function<std::string(std::span<mocks::legacy::Endpoint* const>, const std::string&)>& on_command);
 
 }  // namespace hil::cli::serial_cli

@@ -22,6 +22,7 @@
 #include "hil/controllers/parameter_file.hpp"
 #include "hil/controllers/s5/ip247_follower.hpp"
 #include "hil/controllers/s5/ip247_module_endpoint.hpp"
+#include "hil/controllers/s5/ip247_rack.hpp"
 #include "hil/core/clock.hpp"
 #include "hil/core/text_file.hpp"
 #include "hil/mocks/legacy/clm14_line.hpp"
@@ -496,127 +497,159 @@ void register_emulators(Context& ctx) {
 
   // --- IP247 (the WF 725/726: emulate_wf725.cpp) ----------------------------------------------
   register_wf725_emulator(ctx);
-  for (const std::string dev : {"ip247"}) {
+  {
+    const std::string dev = "ip247";
     auto so = std::make_shared<EmulateOptions>();
     so->link.format = "8E1";
     so->link.baud = 9600;
     auto* cmd = ctx.emulate.add_subcommand(
         dev,
-        "Emulated SIMATIC S5 IP247: MD and traversing-program DBs behind 3964R/RK512 (SEND writes, FETCH "
-        "reads; no overwrite, delete = SEND of one word 0000 to DW0)");
+        "Emulated SIMATIC S5 IP247 modules (one or several, one line each): MD and traversing-program DBs, "
+        "axis interface DBs and data jobs behind 3964R/RK512 (SEND writes, FETCH reads)");
     add_emulate_options(*cmd, *so);
     auto switches = std::make_shared<std::vector<std::string>>();
     auto cycle = std::make_shared<Duration>(std::chrono::milliseconds(1));
-    auto machine = std::make_shared<std::string>();
-    auto tile = std::make_shared<int>(0);
-    if (dev == "ip247") {
-      cmd->add_option("--tile", *tile,
-                      "SSNR base of the module (switch S2, a multiple of 4): axes 1..3 on TILE..TILE+2, the data "
-                      "channel on TILE+3 (the SSNR of the data jobs in DX 4); default 0")
-          ->check(CLI::Range(0, 252));
-      cmd->add_option("--machine", *machine,
-                      "Retrofit mode: a machine file (scenario with machine.axes, 1 increment = 1 pulse) whose axes "
-                      "1..3 are the module's axes on real transports (step/dir on a GPIO chip, CiA 402 CSP, sim); "
-                      "their limit and reference lines replace the mock switches when the drive reports them");
-      cmd->add_option("--switch", *switches,
-                      "Mock switch of an axis, actuated as a function of the pulses output: "
-                      "AXIS:limit-start:PULSES, AXIS:limit-end:PULSES or AXIS:cam:FROM:TO; repeatable");
-      const DurationRange cycle_range{std::chrono::microseconds(1), std::chrono::seconds(1)};
-      add_duration_option(*cmd, "--cycle", *cycle, "Module cycle, e.g. 2ms (default 1ms; 1us .. 1s)", "ms",
-                          cycle_range);
-      add_duration_alias(*cmd, "--cycle-ms", "--cycle", *cycle, "ms", cycle_range);
-    }
-    cmd->callback([&ctx, so, dev, switches, cycle, machine, tile] {
-      std::unique_ptr<Ip247Retrofit> retrofit;  // outlives the endpoint that calls its hooks
-      std::unique_ptr<lg::DbPolicy> policy;
-      hil::controllers::s5::Ip247ModulePolicy* module = nullptr;
-      if (dev == "ip247") {
-        // A running module: 3 axes on the IP247 step planner, DX1..3 = axis interface DBs
-        // (docs/ip247.md), DB n = MD and VP images.
-        hil::controllers::s5::Ip247ModuleOptions mo;
-        mo.cycle = *cycle;
-        if (*tile % 4 != 0) {
-          fmt::print(stderr, "error: --tile {}: the SSNR base is a multiple of 4 (0, 4, 8, ... 252)\n", *tile);
-          ctx.exit_code = 2;
-          return;
-        }
-        mo.tile = *tile;
-        for (const auto& sw : *switches) {
-          int axis = 0;
-          long long a = 0, b = 0;
-          char kind[16] = {};
-          const int n = std::sscanf(sw.c_str(), "%d:%15[a-z-]:%lld:%lld", &axis, kind, &a, &b);
-          const std::string k = kind;
-          if (n < 3 || axis < 1 || axis > 3 || (k == "cam" && n != 4) ||
-              (k != "cam" && k != "limit-start" && k != "limit-end") || mo.cycle.count() <= 0) {
-            fmt::print(stderr, "error: --switch '{}': expected AXIS:limit-start:P, AXIS:limit-end:P or AXIS:cam:A:B\n",
-                       sw);
-            ctx.exit_code = 2;
-            return;
-          }
-          auto& s = mo.switches[static_cast<std::size_t>(axis - 1)];
-          if (k == "cam") s.cam = std::pair<std::int64_t, std::int64_t>{a, b};
-          if (k == "limit-start") s.limit_start_at = a;
-          if (k == "limit-end") s.limit_end_at = a;
-        }
-        auto p = std::make_unique<hil::controllers::s5::Ip247ModulePolicy>(mo);
-        module = p.get();
-        policy = std::move(p);
-        if (!machine->empty()) {
-          auto r = make_ip247_retrofit(*machine, ctx.transports);
-          if (!r) {
-            fmt::print(stderr, "error: --machine: {}\n", r.error());
-            ctx.exit_code = 2;
-            return;
-          }
-          retrofit = std::move(*r);
-          module->set_hooks(ip247_retrofit_hooks(*retrofit, *module, mo.cycle));
-        }
-      }
-      lg::S5BlockEndpoint ep(std::move(policy));
-      const auto locked = resolve_state(*so, dev);
-      if (!locked) {
-        fmt::print(stderr, "error: {}\n", locked.error());
+    auto machines = std::make_shared<std::vector<std::string>>();
+    auto tiles = std::make_shared<std::vector<int>>();
+    cmd->add_option("--tile", *tiles,
+                    "SSNR base of a module (switch S2, a multiple of 4): axes 1..3 on TILE..TILE+2, the data "
+                    "channel on TILE+3 (the SSNR of the data jobs in DX 4); default 0. Repeat it for a rack of "
+                    "several modules: one module per --tile, each on its own line (docs/ip247.md)")
+        ->check(CLI::Range(0, 252));
+    cmd->add_option("--machine", *machines,
+                    "Retrofit mode: a machine file (scenario with machine.axes, 1 increment = 1 pulse) whose axes "
+                    "1..3 are the module's axes on real transports (step/dir on a GPIO chip, CiA 402 CSP, sim); "
+                    "their limit and reference lines replace the mock switches when the drive reports them. With "
+                    "several modules: once per module, in the order of --tile");
+    cmd->add_option("--switch", *switches,
+                    "Mock switch of an axis, actuated as a function of the pulses output: "
+                    "[MODULE.]AXIS:limit-start:PULSES, [MODULE.]AXIS:limit-end:PULSES or [MODULE.]AXIS:cam:FROM:TO "
+                    "(MODULE 1.. in the order of --tile, default 1); repeatable");
+    const DurationRange cycle_range{std::chrono::microseconds(1), std::chrono::seconds(1)};
+    add_duration_option(*cmd, "--cycle", *cycle, "Module cycle, e.g. 2ms (default 1ms; 1us .. 1s)", "ms", cycle_range);
+    add_duration_alias(*cmd, "--cycle-ms", "--cycle", *cycle, "ms", cycle_range);
+    cmd->callback([&ctx, so, dev, switches, cycle, machines, tiles] {
+      namespace s5 = hil::controllers::s5;
+      const auto fail = [&](const std::string& message) {
+        fmt::print(stderr, "error: {}\n", message);
         ctx.exit_code = 2;
-        return;
+      };
+      // The rack: one module per --tile (none: one module on tile 0), each on its own line.
+      const std::vector<int> rack = tiles->empty() ? std::vector<int>{0} : *tiles;
+      if (!machines->empty() && machines->size() != rack.size())
+        return fail(
+            fmt::format("--machine given {} times for {} module(s): give one machine file per module, in "
+                        "the order of --tile",
+                        machines->size(), rack.size()));
+      std::vector<s5::Ip247ModuleOptions> opts(rack.size());
+      for (std::size_t i = 0; i < rack.size(); ++i) {
+        opts[i].cycle = *cycle;
+        opts[i].tile = rack[i];
       }
-      const auto& state = *locked;
-      if (auto text = read_file(state))
-        if (auto r = ep.load_state(*text); !r) fmt::print(stderr, "warning: {}\n", r.error());
-      if (module != nullptr) module->adopt(ep.store());  // battery-backed MD and programs
-      Ip247Retrofit* rf = retrofit.get();
-      ctx.exit_code = serve(ep, *so, state, [module, rf](lg::Endpoint& e, const std::string& c) -> std::string {
-        auto& s = static_cast<lg::S5BlockEndpoint&>(e);
-        if (c == "axes" && module != nullptr) {
-          std::string out;
-          for (int n = 1; n <= 3; ++n) {
-            const auto& a = module->axis(n);
-            out += fmt::format("axis {}: BA{} actual {} remaining {} M{} attributes {:02X} error {}\n", n, a.ba(),
-                               a.actual(), a.remaining(), a.m_output(), a.attributes(), a.error());
-          }
-          return out;
+      for (const auto& sw : *switches) {
+        int module = 1, axis = 0;
+        long long a = 0, b = 0;
+        char kind[16] = {};
+        std::string text = sw;
+        if (const auto dot = text.find('.'); dot != std::string::npos && dot < text.find(':')) {
+          module = std::atoi(text.substr(0, dot).c_str());
+          text = text.substr(dot + 1);
         }
-        if (c == "machine" && rf != nullptr) {  // the retrofit's machine axes (increments = pulses)
-          std::string out;
-          for (const auto& a : rf->machine->axes()) {
-            const auto& st = a.axis->status();
-            out += fmt::format("machine axis {}: position {} inc state {}{}\n", a.spec->name, st.position_inc,
-                               hil::motion::to_string(st.state), st.fault ? " fault " + st.fault.describe() : "");
-          }
-          return out;
+        const int n = std::sscanf(text.c_str(), "%d:%15[a-z-]:%lld:%lld", &axis, kind, &a, &b);
+        const std::string k = kind;
+        if (n < 3 || axis < 1 || axis > 3 || module < 1 || module > static_cast<int>(rack.size()) ||
+            (k == "cam" && n != 4) || (k != "cam" && k != "limit-start" && k != "limit-end") || cycle->count() <= 0)
+          return fail(
+              fmt::format("--switch '{}': expected [MODULE.]AXIS:limit-start:P, [MODULE.]AXIS:limit-end:P "
+                          "or [MODULE.]AXIS:cam:A:B (MODULE 1..{})",
+                          sw, rack.size()));
+        auto& s = opts[static_cast<std::size_t>(module - 1)].switches[static_cast<std::size_t>(axis - 1)];
+        if (k == "cam") s.cam = std::pair<std::int64_t, std::int64_t>{a, b};
+        if (k == "limit-start") s.limit_start_at = a;
+        if (k == "limit-end") s.limit_end_at = a;
+      }
+      // Per module (s5::Ip247Rack): its policy (a running module: 3 axes on the IP247 step planner,
+      // DX1..3 = axis interface DBs, DB n = MD and VP images), its endpoint, its state file; the PLC's
+      // DBs of the data jobs (DX 5..255) are one PLC's, shared by the modules. Here: the retrofits.
+      auto made = s5::Ip247Rack::make(opts);
+      if (!made) return fail(fmt::format("--tile: {}", made.error()));
+      s5::Ip247Rack modules = std::move(*made);
+      std::vector<std::unique_ptr<Ip247Retrofit>> retrofits(modules.size());  // outlive the endpoints' hooks
+      std::vector<std::filesystem::path> states(modules.size());
+      for (std::size_t i = 0; i < modules.size(); ++i) {
+        if (!machines->empty()) {
+          auto r = make_ip247_retrofit((*machines)[i], ctx.transports);
+          if (!r) return fail(fmt::format("--machine: {}", r.error()));
+          retrofits[i] = std::move(*r);
+          modules.policy(i).set_hooks(ip247_retrofit_hooks(*retrofits[i], modules.policy(i), opts[i].cycle));
         }
-        if (c == "rejection" && module != nullptr) {
-          return module->last_rejection().empty() ? std::string("none") : module->last_rejection();
-        }
-        if (c == "dbs") {
-          std::string out;
-          for (const auto& [n, w] : s.store()) out += fmt::format("DB{} {} words\n", n, w.size());
-          return out.empty() ? std::string("no DBs") : out;
-        }
-        if (c == "error") return s.last_error().empty() ? std::string("no error") : s.last_error();
-        return rf != nullptr ? "error: unknown command (dbs, error, axes, machine, rejection, quit)"
-                             : "error: unknown command (dbs, error, axes, rejection, quit)";
-      });
+        EmulateOptions so_m = *so;
+        if (modules.size() > 1 && so->state_file != "none")
+          so_m.state_file =
+              modules
+                  .state_path(so->state_file.empty() ? default_state_path(dev) : std::filesystem::path(so->state_file),
+                              i)
+                  .string();
+        const auto locked = resolve_state(so_m, dev);
+        if (!locked) return fail(locked.error());
+        states[i] = *locked;
+        if (auto text = read_file(states[i]))
+          if (auto r = modules.load(i, *text); !r) fmt::print(stderr, "warning: {}\n", r.error());
+      }
+      std::vector<ServedLine> lines;
+      for (std::size_t i = 0; i < modules.size(); ++i) lines.push_back(ServedLine{&modules.endpoint(i), states[i]});
+      const bool several = modules.size() > 1;
+      ctx.exit_code = serve_lines(
+          lines, *so,
+          [&modules, &retrofits, several](std::span<lg::Endpoint* const>, const std::string& c) -> std::string {
+            std::string out;
+            const auto prefix = [&](std::size_t i) {
+              return several ? fmt::format("module {} (tile {}) ", i + 1, modules.tile(i)) : std::string();
+            };
+            if (c == "axes") {
+              for (std::size_t i = 0; i < modules.size(); ++i)
+                for (int n = 1; n <= 3; ++n) {
+                  const auto& a = modules.policy(i).axis(n);
+                  out +=
+                      fmt::format("{}axis {}: BA{} actual {} remaining {} M{} attributes {:02X} error {}\n", prefix(i),
+                                  n, a.ba(), a.actual(), a.remaining(), a.m_output(), a.attributes(), a.error());
+                }
+              return out;
+            }
+            if (c == "machine" && retrofits.front()) {  // the retrofits' machine axes (increments = pulses)
+              for (std::size_t i = 0; i < modules.size(); ++i)
+                for (const auto& a : retrofits[i]->machine->axes()) {
+                  const auto& st = a.axis->status();
+                  out += fmt::format("{}machine axis {}: position {} inc state {}{}\n", prefix(i), a.spec->name,
+                                     st.position_inc, hil::motion::to_string(st.state),
+                                     st.fault ? " fault " + st.fault.describe() : "");
+                }
+              return out;
+            }
+            if (c == "rejection") {
+              for (std::size_t i = 0; i < modules.size(); ++i) {
+                const auto& r = modules.policy(i).last_rejection();
+                out += fmt::format("{}{}{}", out.empty() ? "" : "\n", prefix(i), r.empty() ? std::string("none") : r);
+              }
+              return out;
+            }
+            if (c == "dbs") {
+              for (std::size_t i = 0; i < modules.size(); ++i)
+                for (const auto& [n, w] : modules.endpoint(i).store())
+                  out += fmt::format("{}DB{} {} words\n", prefix(i), n, w.size());
+              return out.empty() ? std::string("no DBs") : out;
+            }
+            if (c == "error") {
+              for (std::size_t i = 0; i < modules.size(); ++i) {
+                const auto& e = modules.endpoint(i).last_error();
+                out +=
+                    fmt::format("{}{}{}", out.empty() ? "" : "\n", prefix(i), e.empty() ? std::string("no error") : e);
+              }
+              return out;
+            }
+            return retrofits.front() ? "error: unknown command (dbs, error, axes, machine, rejection, quit)"
+                                     : "error: unknown command (dbs, error, axes, rejection, quit)";
+          });
     });
   }
 }

@@ -350,6 +350,13 @@ std::error_code Axis::quick_stop() {
   }
 }
 
+std::error_code Axis::set_setpoint_offset(double offset) {
+  if (!std::isfinite(offset) || (drive_ && drive_->capabilities().drive_profile))
+    return make_error_code(MotionFault::invalid_command);
+  setpoint_offset_ = offset;
+  return {};
+}
+
 std::error_code Axis::follow(std::int64_t position_inc, double velocity_inc_per_s, double acceleration_inc_per_s2) {
   if (auto ec = check_can_move()) return ec;
   if (drive_profile_ || !std::isfinite(velocity_inc_per_s) || !std::isfinite(acceleration_inc_per_s2))
@@ -596,13 +603,17 @@ CycleResult Axis::update(const hil::CycleTime& cycle) {
   cmd.mode = hil::CommandMode::position;
   const bool follows_actual = status_.state == AxisState::disabled || status_.state == AxisState::enabling ||
                               status_.state == AxisState::homing;
-  cmd.position_inc = follows_actual ? fb.position_inc : drive_cmd;
+  // The set-point offset (a drift, its compensation) reaches the drive but is not the command the
+  // following error is measured against.
+  const std::int64_t offset_inc =
+      setpoint_offset_ != 0.0 && !drive_profile_ ? scaling_.to_inc_fast(setpoint_offset_) : 0;
+  cmd.position_inc = follows_actual ? fb.position_inc : drive_cmd + offset_inc;
   cmd.velocity_inc_per_s = cmd_v_ * scaling_.inc_per_unit();
   cmd.acceleration_inc_per_s2 = cmd_a_ * scaling_.inc_per_unit();
   cmd.move = drive_move_;
   cmd.digital_outputs = digital_outputs_;
   drive_->write(cycle, cmd);
-  last_drive_cmd_inc_ = cmd.position_inc;
+  last_drive_cmd_inc_ = follows_actual ? fb.position_inc : drive_cmd;
   last_now_ = cycle.now;
 
   // Status.

@@ -157,7 +157,7 @@ Rk512Error Ip247ModulePolicy::on_write_dx(mocks::legacy::DbStore& store, std::ui
                                           const std::vector<std::uint16_t>& w) {
   if (dx == 0) return Rk512Error::db_missing;
   if (dx >= ip247_first_plc_dx) {  // the PLC's DB dx: created or extended by the SEND
-    auto& b = plc_[dx];
+    auto& b = (*plc_)[dx];
     if (b.size() < std::size_t{dw} + w.size()) b.resize(std::size_t{dw} + w.size(), 0);
     std::copy(w.begin(), w.end(), b.begin() + dw);
     return Rk512Error::ok;
@@ -192,7 +192,7 @@ Rk512Error Ip247ModulePolicy::job_block_written(mocks::legacy::DbStore& store) {
   // The images the module holds before and after the job: the endpoint's DB store follows them.
   mocks::legacy::DbStore before;
   mirror(before);
-  const auto r = module_.data_job(*job, plc_);
+  const auto r = module_.data_job(*job, *plc_);
   write_ip247_data_result(job_block_, r);
   if (r.module_error != Ip247Error::none || r.interface_error != Ip247InterfaceError::none)
     rejection_ = fmt::format("data job BA{}: MB250 {} MB251 {} ({})", job->ba, static_cast<int>(r.interface_error),
@@ -216,8 +216,8 @@ Rk512Error Ip247ModulePolicy::on_read_dx(const mocks::legacy::DbStore&, std::uin
   const std::vector<std::uint16_t>* words = nullptr;
   if (dx == 0) return Rk512Error::db_missing;
   if (dx >= ip247_first_plc_dx) {
-    const auto it = plc_.find(dx);
-    if (it == plc_.end()) return Rk512Error::db_missing;
+    const auto it = plc_->find(dx);
+    if (it == plc_->end()) return Rk512Error::db_missing;
     words = &it->second;
   } else if (dx == ip247_job_block_dx) {
     words = &job_block_;

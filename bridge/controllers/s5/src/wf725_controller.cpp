@@ -216,6 +216,7 @@ void Wf725Controller::on_cycle(const CycleTime& cycle) noexcept {
     (void)acknowledge(Acknowledgement::reset);
   }
   handle_mode(now);
+  drift_cycle(now);
   encoder_cycle(now);
   voltage_cycle(now);
   handle_drive(now);
@@ -439,6 +440,7 @@ void Wf725Controller::handle_start(TimePoint now) {
   switch (submode_) {
     case Submode::none:
     case Submode::set_up:
+    case Submode::run:  // RUN has no start function: data code 10 acts there
       return;
     case Submode::reference: {
       const bool plus = db_.bit(dw_control, bit_plus), minus = db_.bit(dw_control, bit_minus);

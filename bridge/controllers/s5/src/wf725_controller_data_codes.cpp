@@ -69,6 +69,9 @@ void Wf725Controller::handle_data_code(TimePoint now) {
             static_cast<std::int32_t>(std::llround(std::abs(inc_per_s) * 60.0 / static_cast<double>(md_.integer(34))));
       }
       break;
+    case code::drift:
+      result = compensate_drift(now);
+      break;
     case code::control_voltage:
       control_mv_ = std::clamp<std::int32_t>(p1, 0, 10000);  // the 11-bit DAC: at most 10 V
       break;

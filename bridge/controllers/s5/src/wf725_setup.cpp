@@ -4,6 +4,7 @@
 #include <fmt/format.h>
 
 #include <charconv>
+#include <cmath>
 #include <fstream>
 #include <sstream>
 
@@ -29,7 +30,7 @@ bool wf725_wants_module(const ControllerSpec& spec) noexcept {
   if (!spec.programs.empty()) return true;
   for (const char* key : {"db", "module", "reference_speeds", "jog_feed", "difference_cycles", "open_loop_speed",
                           "open_loop_acceleration", "axis_b", "axis_c", "db_b", "db_c",
-                          "split_monitoring"})
+                          "split_monitoring", "drift"})
     if (spec.options.contains(key)) return true;
   return false;
 }
@@ -84,6 +85,16 @@ std::expected<std::unique_ptr<Wf725Controller>, ConfigError> create_axis(const C
         if (value != "bit" && value != "always")
           return fail(key, "split_monitoring: bit (the MD 29 comparison runs while D 2.3 of axis A is set) or always");
         opt.split_monitoring_always = value == "always";
+      } else if (key == "drift") {
+        // The drive's input offset on X3 in mV, signed (docs/wf725.md "Drift"): within the DAC's +-10 V.
+        double v = 0;
+        const auto r = std::from_chars(value.data(), value.data() + value.size(), v);
+        if (r.ec != std::errc{} || r.ptr != value.data() + value.size() || !std::isfinite(v) || std::abs(v) > 10000.0)
+          return fail(key,
+                      fmt::format("drift: '{}' is not the drive's offset voltage in mV, -10000..10000 (the speed "
+                                  "at zero command: drift / MD 23 x MD 3; open loop drift / 10 V x open_loop_speed)",
+                                  value));
+        opt.drift_mv = v;
       } else if (key == "jog_feed") {
         const auto v = number(value);
         if (!v) return fail(key, "jog_feed: the set-up speed in mm/min (data code 1C)");
@@ -91,7 +102,7 @@ std::expected<std::unique_ptr<Wf725Controller>, ConfigError> create_axis(const C
       } else {
         return fail(key, fmt::format("unknown controller key '{}' (known: device, parameters, programs, cycle, axis, "
                                      "module, db, reference_speeds, jog_feed, difference_cycles, open_loop_speed, "
-                                     "open_loop_acceleration, axis_b, axis_c, db_b, db_c, split_monitoring)",
+                                     "open_loop_acceleration, axis_b, axis_c, db_b, db_c, split_monitoring, drift)",
                                      key));
       }
     }

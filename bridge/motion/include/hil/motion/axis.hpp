@@ -50,6 +50,17 @@ class Axis {
   /// end the coupling with a ramp under the axis' limits. Rejected (invalid_command) on drives
   /// that run their own profile, for non-finite values, and in the states check_can_move refuses.
   std::error_code follow(std::int64_t position_inc, double velocity_inc_per_s, double acceleration_inc_per_s2);
+  /// An offset (units, signed) of the set-point the drive gets that the axis does not count as its
+  /// command: the position equivalent of an offset of an analog command value in a proportional
+  /// position loop of gain K_v (a velocity offset v is v / K_v), i.e. a drive's drift and a
+  /// controller's drift compensation (WF 725/726 MD 35, docs/wf725.md "Drift"). The following
+  /// error, the in-position and standstill checks are against the command without it, so at rest
+  /// the axis shows a following error of -offset. Applied from the next update() while the axis
+  /// commands the drive (not while disabled, enabling or homing: the set-point follows the actual
+  /// there). Rejected (invalid_command) on drives that run their own profile and for non-finite
+  /// values.
+  std::error_code set_setpoint_offset(double offset);
+  [[nodiscard]] double setpoint_offset() const noexcept { return setpoint_offset_; }
   /// A fault from the layer above (a coupling's CouplingFault, a controller's device error):
   /// the axis goes to error with its configured reaction, as for a supervision fault. The first
   /// fault stays; reset() clears it.
@@ -121,6 +132,7 @@ class Axis {
   hil::TimePoint last_now_{};
   double ext_v_inc_ = 0.0, ext_a_inc_ = 0.0;  ///< feed-forward of the coupled set-point (Mode::external)
   std::uint32_t digital_outputs_ = 0;         ///< DriveCommand::digital_outputs of every write
+  double setpoint_offset_ = 0.0;              ///< set_setpoint_offset(): units, not part of the command
 };
 
 }  // namespace hil::motion

@@ -63,6 +63,8 @@ struct Ip247ModuleHooks {
 class Ip247ModulePolicy final : public mocks::legacy::DbPolicy {
  public:
   explicit Ip247ModulePolicy(Ip247ModuleOptions o = {});
+  Ip247ModulePolicy(const Ip247ModulePolicy&) = delete;  // plc_ may point at own_plc_
+  Ip247ModulePolicy& operator=(const Ip247ModulePolicy&) = delete;
 
   [[nodiscard]] std::string name() const override { return "ip247"; }
   serial::s5::Rk512Error on_write(mocks::legacy::DbStore& store, std::uint8_t db, std::uint8_t dw,
@@ -83,7 +85,12 @@ class Ip247ModulePolicy final : public mocks::legacy::DbPolicy {
   [[nodiscard]] Ip247ProgramStore& programs() noexcept { return module_.programs(); }
   [[nodiscard]] Ip247Module& module() noexcept { return module_; }
   /// The PLC's data blocks of the data jobs (DX 5..255).
-  [[nodiscard]] const S5Blocks& plc_blocks() const noexcept { return plc_; }
+  [[nodiscard]] const S5Blocks& plc_blocks() const noexcept { return *plc_; }
+  /// Uses `blocks` (non-null; shared by the modules of one rack, `hilbridge emulate ip247` with
+  /// several modules: the PLC's DBs are one PLC's; must outlive the policy) as the PLC's DBs of the
+  /// data jobs; nullptr: the policy's own again. Thread: the endpoint host's (every module of the
+  /// rack on the same thread).
+  void use_plc_blocks(S5Blocks* blocks) noexcept { plc_ = blocks != nullptr ? blocks : &own_plc_; }
   [[nodiscard]] const std::string& last_rejection() const noexcept { return rejection_; }
   /// Current raw inputs of axis n (from the mock switches).
   [[nodiscard]] Ip247Inputs inputs(int n) const;
@@ -99,7 +106,8 @@ class Ip247ModulePolicy final : public mocks::legacy::DbPolicy {
   Ip247Module module_;
   std::array<std::vector<std::uint16_t>, 3> iface_;
   std::vector<std::uint16_t> job_block_;
-  S5Blocks plc_;
+  S5Blocks own_plc_;
+  S5Blocks* plc_ = &own_plc_;
   TimePoint t_{};
   bool started_ = false;
   std::string rejection_;

@@ -13,7 +13,9 @@
 // Options (controller block keys): `axis` (A, B, C: the axis name and letter, default A),
 // `module` (WF725A, WF725B, WF726A, WF726B, WF726C; default WF726A), `db` (DB number of the DB
 // axis, default 10), `reference_speeds` ("rapid,reduced,slow" in mm/min, preset of data codes
-// 8/9/A), `jog_feed` (mm/min, preset of data code 1C).
+// 8/9/A), `jog_feed` (mm/min, preset of data code 1C), `drift` (mV: the drive's input offset on X3;
+// closed loop compensated by MD 35 / data code 10 in submode RUN, open loop a creep;
+// wf725_controller_drift.cpp).
 //
 // I/O image: inputs byte 0 bits 0..5 = X7 E1..E6 (`x7_e1`..`x7_e6`); byte 1 bit 0/1
 // `limit_minus_<axis>` / `limit_plus_<axis>` (the hard range-limit switch inputs, errors 15/16);
@@ -56,6 +58,7 @@ struct Wf725Options {
   int difference_cycles = 4;               ///< error 33 after this many jumps > MD 34 in a row (manual: 4 or 5)
   Wf725OpenLoopDrive drive;                ///< open loop: the drive behind X3 (open_loop_speed/_acceleration)
   bool split_monitoring_always = false;    ///< split drive: compare MD 29 without the enable bit D 2.3
+  double drift_mv = 0.0;                   ///< the drive's input offset on X3, mV (key `drift`)
 };
 
 /// The S5 user data blocks beside the module: the PLC's DBs that the "Software Schale" FB copies
@@ -182,6 +185,10 @@ class Wf725Controller final : public Controller {
   /// Open loop: the speed level output now (0..99; DL 4 in BCD, X3 = level x 100 mV).
   [[nodiscard]] int speed_level() const noexcept { return ol_.level; }
   [[nodiscard]] bool open_loop() const noexcept { return !md_.closed_loop(); }
+  /// The set-point offset the drift and MD 35 give the axis, µm (docs/wf725.md "Drift"): closed loop
+  /// drift / K_v - MD 35 (limited; at rest the following error reads its negative); open loop the
+  /// creep of the drive at drift / 10 V x open_loop_speed since it was powered.
+  [[nodiscard]] double drift_offset_um() const noexcept;
   /// MDs written in mode MD I/O that shape the axis: they apply at the next power-up.
   [[nodiscard]] const std::vector<int>& pending_md() const noexcept { return pending_md_; }
 
@@ -233,6 +240,11 @@ class Wf725Controller final : public Controller {
   void voltage_cycle(TimePoint now);
   /// The command voltage on X3 now, mV (closed loop: feed / MD 3 x MD 23; open loop: level x 100).
   [[nodiscard]] double command_mv() const noexcept;
+  /// The drift of the drive and its compensation MD 35 as the axis' set-point offset, every cycle
+  /// (wf725_controller_drift.cpp); open loop: the creep of the drive since it was powered.
+  void drift_cycle(TimePoint now);
+  /// Data code 10 in submode RUN: the standstill following error into MD 35; the new MD 35 (µm).
+  [[nodiscard]] std::int32_t compensate_drift(TimePoint now);
   /// Data codes 47/4A: writes a page of numbers into DW 30..38.
   void write_list(const std::vector<int>& numbers, int page);
   /// Data codes 44/45: program input from / output to a user data block (Software Schale).
@@ -395,6 +407,8 @@ class Wf725Controller final : public Controller {
   std::int64_t pulse_difference_ = 0;  ///< pulses lost (< 0) since power-up (data code 4)
   std::int64_t last_inc_ = 0;
   std::int32_t control_mv_ = 0;  ///< submode control: voltage (data code 1D)
+  double creep_mm_ = 0.0;        ///< open loop: how far the drift moved the drive since it was powered
+  TimePoint drift_at_{};         ///< the cycle creep_mm_ was integrated to
 
   // program
   std::vector<Frame> stack_;

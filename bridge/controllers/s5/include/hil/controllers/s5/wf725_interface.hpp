@@ -72,6 +72,7 @@ enum class Submode : std::uint8_t {
   clamping = 8,          ///< clamping (MD 32)
   automatic_buffer = 9,  ///< automatic buffer: buffer DW 5 (this axis' pair), M11/M12 change buffers
   control = 10,          ///< control: the voltage of data code 1D with the polarity of D 1.1 / D 1.3
+  run = 11,              ///< RUN: the axis holds under position control; data code 10 compensates the drift
 };
 
 /// Data codes (DW 11), hex as the manual writes them; ours marked (decision).
@@ -81,6 +82,7 @@ inline constexpr std::uint16_t pulse_difference = 0x04;  ///< pulse-check differ
 inline constexpr std::uint16_t ref_rapid = 0x08;         ///< reference speed V_rapid, 10^-2 mm/min
 inline constexpr std::uint16_t ref_reduced = 0x09;       ///< V_reduced
 inline constexpr std::uint16_t ref_slow = 0x0A;          ///< V_slow
+inline constexpr std::uint16_t drift = 0x10;             ///< submode RUN: standstill following error -> MD 35
 inline constexpr std::uint16_t mdi_position = 0x19;      ///< (decision) MDI position µm; param2 bit 0 = G91
 inline constexpr std::uint16_t mdi_feed = 0x1A;          ///< MDI feed, 10^-2 mm/min (0 -> 145)
 inline constexpr std::uint16_t jog_feed = 0x1C;          ///< (decision) set-up speed, 10^-2 mm/min
