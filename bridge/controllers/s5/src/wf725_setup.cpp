@@ -29,8 +29,7 @@ std::optional<double> number(std::string_view s) {
 bool wf725_wants_module(const ControllerSpec& spec) noexcept {
   if (!spec.programs.empty()) return true;
   for (const char* key : {"db", "module", "reference_speeds", "jog_feed", "difference_cycles", "open_loop_speed",
-                          "open_loop_acceleration", "axis_b", "axis_c", "db_b", "db_c",
-                          "split_monitoring", "drift"})
+                          "open_loop_acceleration", "axis_b", "axis_c", "db_b", "db_c", "split_monitoring", "drift"})
     if (spec.options.contains(key)) return true;
   return false;
 }
