@@ -248,7 +248,7 @@ void Ip247Axis::command(const Ip247Job& job) {
   const bool moves = job.command != Ip247Command::stop && !(teach_in_ && job.command == Ip247Command::takeover) &&
                      (job.ba == 1 || job.ba == 2 || (job.ba == 5 && job.byte_param == 0) || job.ba == 6 ||
                       job.ba == 7 || job.ba == 8 || job.ba == 9);
-  if (moves && !running_ && !prev_in_.ready) {
+  if (moves && !running_ && !bb_) {
     raise(Ip247Error::power_section_off);
     return;
   }
@@ -702,6 +702,7 @@ void Ip247Axis::step(std::int64_t now_ns, std::int64_t period_ns, const Ip247Inp
   now_ = now_ns;
   if (!planner_) {
     prev_in_ = in;
+    bb_ = in.ready;
     first_step_ = false;
     return;
   }
@@ -716,6 +717,7 @@ void Ip247Axis::step(std::int64_t now_ns, std::int64_t period_ns, const Ip247Inp
     }
   }
   prev_in_ = in;
+  bb_ = in.ready;
   first_step_ = false;
   if (ext_wait_ && falling_stop) {
     ext_wait_ = false;
