@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <functional>
+#include <tuple>
 
 #include "hil/controllers/s5/ip247_axis.hpp"
 
@@ -291,6 +292,33 @@ TEST(Ip247Axis, LimitSwitchAbortsAndLocksTheDirection) {
   nc.step();
   nc.step();
   EXPECT_EQ(nc.axis.error(), 26);
+}
+
+TEST(Ip247Axis, NoPulsesWhileBbIsLow) {
+  // BB low (the power section off, or a step/dir drive still in its reset pulse): a job that would
+  // output pulses is refused with error 53 and not a single pulse goes out; once BB is high the
+  // same job runs. Before, the module pulsed into a drive that could not take them, and a retrofit
+  // follower anchored later lost them (the machine axis ended short by the pulses of that time).
+  Rig r;
+  r.in.ready = false;
+  r.step();
+  const std::int64_t p0 = r.axis.planner()->motor_position();
+  for (const auto& [ba, c, byte] : {std::tuple{7, C::forward, 0}, std::tuple{1, C::backward, 0},
+                                    std::tuple{5, C::start, 0}, std::tuple{8, C::start, 1}}) {
+    r.cmd(ba, c, 1'000, 0, byte);
+    EXPECT_EQ(r.axis.error(), 53) << "BA" << ba;
+    EXPECT_FALSE(r.axis.running()) << "BA" << ba;
+    for (int i = 0; i < 50; ++i) r.step();
+    EXPECT_EQ(r.axis.planner()->motor_position(), p0) << "BA" << ba;
+  }
+  r.cmd(5, C::start, 0, 0, 1);  // set reference: no pulses, allowed
+  EXPECT_EQ(r.axis.error(), 0);
+  r.in.ready = true;
+  r.step();
+  r.cmd(7, C::forward, 1'000);
+  EXPECT_EQ(r.axis.error(), 0);
+  ASSERT_TRUE(r.settle());
+  EXPECT_EQ(r.axis.planner()->motor_position(), p0 + 100);  // 1000 um at 10 um/pulse
 }
 
 TEST(Ip247Axis, SoftwareLimitBrakesFromTheLimit) {

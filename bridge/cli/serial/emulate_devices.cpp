@@ -12,6 +12,7 @@
 #include <functional>
 #include <optional>
 #include <sstream>
+#include <thread>
 
 #include "emulate.hpp"
 #include "emulate_machine.hpp"
@@ -77,8 +78,47 @@ std::expected<std::unique_ptr<Retrofit>, std::string> make_retrofit(const std::s
 /// chip, CANopen CSP, sim), through their cyclic set-point once per module cycle.
 struct Ip247Retrofit : MachineFile {
   std::array<hil::controllers::s5::Ip247Follower, 3> followers{};
-  bool enabled = false;
+  /// The machine's time when its power sections were up (power_up_ip247_machine).
+  TimePoint powered_at{};
+  /// Machine time minus module time: the machine's timeline goes on from where power-up left it.
+  std::optional<Duration> time_offset;
 };
+
+bool takes_setpoints(const hil::motion::Axis& a) {
+  const auto st = a.status().state;
+  return st == hil::motion::AxisState::standstill || st == hil::motion::AxisState::moving ||
+         st == hil::motion::AxisState::stopping;
+}
+
+/// Switches the machine's power sections on before the module serves its line, as on a machine
+/// whose drives are up before the PLC starts jobs: the axes are enabled and cycled on the machine
+/// file's clock, in real time (a chip's reset pulse is a real 100 ms), until every one takes
+/// set-points (BB high). Without it the first jobs met BB low: a step/dir drive is `enabling` for
+/// its reset pulse (reset_pulse_ms) while the module already pulsed.
+std::expected<void, std::string> power_up_ip247_machine(Ip247Retrofit& rf, Duration cycle, const std::string& file) {
+  auto& axes = rf.machine->axes();
+  for (auto& a : axes) (void)a.axis->enable();
+  const TimePoint start = rf.clock.now();
+  for (TimePoint t = start;; t += cycle) {
+    rf.io.poll();
+    rf.machine->cycle(CycleTime{t, cycle});
+    bool up = true;
+    for (const auto& a : axes) {
+      const auto& st = a.axis->status();
+      if (st.state == hil::motion::AxisState::error)
+        return std::unexpected(
+            fmt::format("{}: axis '{}' did not come up: {}", file, a.spec->name, st.fault.describe()));
+      up = up && takes_setpoints(*a.axis);
+    }
+    if (up) {
+      rf.powered_at = t + cycle;
+      return {};
+    }
+    if (t - start > std::chrono::seconds(10))
+      return std::unexpected(fmt::format("{}: the machine axes did not become ready within 10 s", file));
+    std::this_thread::sleep_until(rf.clock.to_steady(t + cycle));
+  }
+}
 
 std::expected<std::unique_ptr<Ip247Retrofit>, std::string> make_ip247_retrofit(const std::string& file,
                                                                                const TransportRegistry& registry) {
@@ -105,13 +145,8 @@ hil::controllers::s5::Ip247ModuleHooks ip247_retrofit_hooks(Ip247Retrofit& rf,
                                                             hil::controllers::s5::Ip247ModulePolicy& module,
                                                             Duration cycle) {
   namespace s5 = hil::controllers::s5;
-  const auto takes_setpoints = [](const hil::motion::Axis& a) {
-    const auto st = a.status().state;
-    return st == hil::motion::AxisState::standstill || st == hil::motion::AxisState::moving ||
-           st == hil::motion::AxisState::stopping;
-  };
   s5::Ip247ModuleHooks h;
-  h.inputs = [&rf, &module, takes_setpoints](int n, s5::Ip247Inputs& in) {
+  h.inputs = [&rf, &module](int n, s5::Ip247Inputs& in) {
     auto& axes = rf.machine->axes();
     if (static_cast<std::size_t>(n) > axes.size()) return;
     auto& ax = *axes[static_cast<std::size_t>(n - 1)].axis;
@@ -128,18 +163,17 @@ hil::controllers::s5::Ip247ModuleHooks ip247_retrofit_hooks(Ip247Retrofit& rf,
     in.limit_end = end != nc;
     in.reference = in.reference || (di & hil::digital_input::home_switch) != 0;
   };
-  h.after_cycle = [&rf, &module, cycle, takes_setpoints](TimePoint now) {
+  h.after_cycle = [&rf, &module, cycle](TimePoint now) {
     rf.io.poll();
     auto& axes = rf.machine->axes();
-    if (!rf.enabled) {
-      for (auto& a : axes) (void)a.axis->enable();  // the module's power sections come up
-      rf.enabled = true;
-    }
+    // The module's cycles run on the line's clock; the machine's go on from its power-up (never
+    // back in time), in step with the module's.
+    if (!rf.time_offset) rf.time_offset = std::max(rf.clock.now(), rf.powered_at) - now;
     for (std::size_t i = 0; i < axes.size() && i < 3; ++i) {
       auto& ax = *axes[i].axis;
       if (takes_setpoints(ax)) rf.followers[i].step(ax, module.axis(static_cast<int>(i) + 1), cycle.count());
     }
-    rf.machine->cycle(CycleTime{now, cycle});
+    rf.machine->cycle(CycleTime{now + *rf.time_offset, cycle});
   };
   return h;
 }
@@ -581,6 +615,8 @@ void register_emulators(Context& ctx) {
           auto r = make_ip247_retrofit((*machines)[i], ctx.transports);
           if (!r) return fail(fmt::format("--machine: {}", r.error()));
           retrofits[i] = std::move(*r);
+          if (auto up = power_up_ip247_machine(*retrofits[i], opts[i].cycle, (*machines)[i]); !up)
+            return fail(fmt::format("--machine: {}", up.error()));
           modules.policy(i).set_hooks(ip247_retrofit_hooks(*retrofits[i], modules.policy(i), opts[i].cycle));
         }
         EmulateOptions so_m = *so;

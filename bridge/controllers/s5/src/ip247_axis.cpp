@@ -242,6 +242,16 @@ void Ip247Axis::command(const Ip247Job& job) {
     }
     return;
   }
+  // BB must be high while the power section is on (digest §1.2, error 53): a job that would
+  // output pulses is not started while BB is low, since a drive that is off (or still in its reset
+  // pulse) does not take them and the module's pulse count would no longer be the motor's.
+  const bool moves = job.command != Ip247Command::stop && !(teach_in_ && job.command == Ip247Command::takeover) &&
+                     (job.ba == 1 || job.ba == 2 || (job.ba == 5 && job.byte_param == 0) || job.ba == 6 ||
+                      job.ba == 7 || job.ba == 8 || job.ba == 9);
+  if (moves && !running_ && !bb_) {
+    raise(Ip247Error::power_section_off);
+    return;
+  }
   if (phase_ == Phase::program && prog_ == ProgState::interrupted && !running_) {
     if (job.ba == ba_ && job.command == Ip247Command::takeover) {
       ++takeovers_;
@@ -692,6 +702,7 @@ void Ip247Axis::step(std::int64_t now_ns, std::int64_t period_ns, const Ip247Inp
   now_ = now_ns;
   if (!planner_) {
     prev_in_ = in;
+    bb_ = in.ready;
     first_step_ = false;
     return;
   }
@@ -706,6 +717,7 @@ void Ip247Axis::step(std::int64_t now_ns, std::int64_t period_ns, const Ip247Inp
     }
   }
   prev_in_ = in;
+  bb_ = in.ready;
   first_step_ = false;
   if (ext_wait_ && falling_stop) {
     ext_wait_ = false;

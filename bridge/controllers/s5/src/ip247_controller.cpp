@@ -542,6 +542,9 @@ void Ip247Controller::on_cycle(const CycleTime& cycle) noexcept {
       const auto base = mbase + i * ip247_axis_db_words;
       pending[i] = words_[base + 4];
       if (!ready) continue;
+      // BB of this cycle, before its job: the machine axis up and not in error (as in the step below).
+      const std::size_t ax = machine_axis(k, n);
+      m.axis(n).read_bb(ax < axes_.size() && axis(ax).status().state != motion::AxisState::error);
       std::copy_n(words_.begin() + static_cast<std::ptrdiff_t>(base), ip247_axis_db_words, block.begin());
       const Ip247Axis& a = m.axis(n);
       if (auto job = take_ip247_job(block, a.machine_data() && a.machine_data()->ag_bcd)) {

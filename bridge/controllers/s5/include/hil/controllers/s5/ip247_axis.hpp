@@ -81,6 +81,9 @@ class Ip247Axis {
   void command(const Ip247Job& job);
   /// One module cycle.
   void step(std::int64_t now_ns, std::int64_t period_ns, const Ip247Inputs& in, std::vector<gpio::Edge>* edges);
+  /// BB as read before this cycle's jobs (a controller that hands the jobs over before step());
+  /// step() reads it too. A motion job with BB low is refused with error 53.
+  void read_bb(bool ready) noexcept { bb_ = ready; }
   /// Restart after power failure (§7.3.3): the job is dropped, reference lost, BA4, message 8,
   /// actual value = reference coordinate; offsets and MD kept with battery, else everything lost.
   void power_restart(bool battery_ok);
@@ -174,6 +177,7 @@ class Ip247Axis {
   int lock_dir_ = 0;  ///< direction locked after a limit-switch overrun
   Ip247Inputs prev_in_{};
   bool first_step_ = true;
+  bool bb_ = true;         ///< BB level last read (Ip247Inputs::ready)
   bool ext_wait_ = false;  ///< job held by the external start/stop input (message 6)
   std::int64_t now_ = 0;
   std::vector<gpio::Edge> scratch_;
