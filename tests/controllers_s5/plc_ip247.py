@@ -10,6 +10,8 @@ import subprocess
 import sys
 import time
 
+from plc_check import check, finish, stop  # verdicts, the emulator's end
+
 try:
     from s5_plc_link import Link, dd, s32  # 3964R + RK512, the PLC side (python3-serial)
     from ip247_plc import md_db, vp_db, status, wait_finished, data_job
@@ -21,15 +23,6 @@ HILBRIDGE = sys.argv[1]
 # Optional: `--machine FILE`: the emulator's axis 1 drives the machine axis of FILE (retrofit mode);
 # the script then also checks that the machine axis stands where the module's pulses put it.
 MACHINE = sys.argv[3] if len(sys.argv) > 3 and sys.argv[2] == "--machine" else None
-failures = []
-
-
-def check(name, ok, detail=""):
-    if ok:
-        print(f"ok   {name}")
-    else:
-        failures.append(f"{name}: {detail}")
-        print(f"FAIL {name}: {detail}")
 
 
 def main():
@@ -102,15 +95,8 @@ def main():
                   pos is not None and abs(pos * 10 - s["actual"]) <= 10 and "standstill" in line,
                   f"{line!r}, module actual {s['actual']} BU")
     finally:
-        try:
-            p.stdin.write("quit\n")
-            p.stdin.flush()
-            p.wait(timeout=10)
-        except Exception:
-            p.kill()
-    if failures:
-        print("\n".join(failures))
-        sys.exit(1)
+        stop(p)
+    finish()
 
 
 main()

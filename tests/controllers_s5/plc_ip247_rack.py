@@ -15,6 +15,8 @@ import sys
 import tempfile
 import time
 
+from plc_check import check, finish, stop  # verdicts, the emulator's end
+
 try:
     from s5_plc_link import Link, dd  # 3964R + RK512, the PLC side (python3-serial)
     from ip247_plc import md_db, vp_db, status, wait_finished, data_job
@@ -24,18 +26,9 @@ except ImportError:
 
 HILBRIDGE = sys.argv[1]
 MACHINE = sys.argv[3] if len(sys.argv) > 3 and sys.argv[2] == "--machine" else None
-failures = []
 
 PROG1 = "%10 M1\nN10 X50 F3000 M10\nN20 G04 F1\nN30 X0 F3000 M20\nN40 M02\n"
 PROG2 = "%10 M2\nN10 X20 F1500 M30\nN20 X-5 F1500\nN30 M02\n"
-
-
-def check(name, ok, detail=""):
-    if ok:
-        print(f"ok   {name}")
-    else:
-        failures.append(f"{name}: {detail}")
-        print(f"FAIL {name}: {detail}")
 
 
 def start(state):
@@ -48,15 +41,6 @@ def start(state):
     check("emulator printed one pty per module", all(x.startswith("/dev/pts/") for x in paths) and
           paths[0] != paths[1], paths)
     return p, [Link(x) for x in paths]
-
-
-def stop(p):
-    try:
-        p.stdin.write("quit\n")
-        p.stdin.flush()
-        p.wait(timeout=10)
-    except Exception:
-        p.kill()
 
 
 def console(p, cmd, lines):
@@ -145,9 +129,7 @@ def main():
         check("module 2 ends at -5 mm again", s2["actual"] == -5000 and s2["error"] == 0, s2)
     finally:
         stop(p)
-    if failures:
-        print("\n".join(failures))
-        sys.exit(1)
+    finish()
 
 
 main()

@@ -14,6 +14,8 @@ import subprocess
 import sys
 import time
 
+from plc_check import check, finish, stop  # verdicts, the emulator's end
+
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 try:
     from s5_plc_link import Link, s32
@@ -26,16 +28,6 @@ HILBRIDGE = sys.argv[1]
 MACHINE = sys.argv[3] if len(sys.argv) > 3 and sys.argv[2] == "--machine" else None
 MD = None if MACHINE else sys.argv[2]
 DB = 10  # the DB axis
-failures = []
-
-
-def check(name, ok, detail=""):
-    if ok:
-        print(f"ok   {name}")
-    else:
-        failures.append(f"{name}: {detail}")
-        print(f"FAIL {name}: {detail}")
-
 
 PROGRAM = """%7 A
 N1 G90 X 20 000 F 300 000
@@ -125,15 +117,8 @@ def main():
         s, _ = wf.wait(lambda s: s["peh"] and s["actual"] == 10000, 30)
         check("back to 10 mm after the acknowledgement", s["error"] == 0, s)
     finally:
-        try:
-            p.stdin.write("quit\n")
-            p.stdin.flush()
-            p.wait(timeout=10)
-        except Exception:
-            p.kill()
-    if failures:
-        print("\n".join(failures))
-        sys.exit(1)
+        stop(p)
+    finish()
 
 
 main()

@@ -21,6 +21,8 @@ import sys
 import tempfile
 import time
 
+from plc_check import check, finish, stop  # verdicts, the emulator's end
+
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 try:
     from s5_plc_link import Link, s32
@@ -32,13 +34,6 @@ except ImportError:
 HILBRIDGE = sys.argv[1]
 MACHINES = sys.argv[3:5] if sys.argv[2] == "--machine" else None
 MD_A, MD_B = (None, None) if MACHINES else (sys.argv[2], sys.argv[3])
-failures = []
-
-
-def check(name, ok, detail=""):
-    print(f"{'ok  ' if ok else 'FAIL'} {name}" + ("" if ok else f": {detail}"))
-    if not ok:
-        failures.append(f"{name}: {detail}")
 
 
 def wait(axes, cond, timeout=30):
@@ -81,15 +76,6 @@ def emulator(state, *extra):
         p.kill()
         raise RuntimeError("emulator printed no pty: " + path + p.stderr.read())
     return p, Link(path)
-
-
-def stop(p):
-    try:
-        p.stdin.write("quit\n")
-        p.stdin.flush()
-        p.wait(timeout=10)
-    except Exception:
-        p.kill()
 
 
 def first_run(state):
@@ -242,17 +228,13 @@ def machine_run():
 def main():
     if MACHINES:
         machine_run()
-        if failures:
-            print("\n".join(failures))
-            sys.exit(1)
+        finish()
         return
     with tempfile.TemporaryDirectory() as d:
         state = os.path.join(d, "wf726.json")
         first_run(state)
         second_run(state)
-    if failures:
-        print("\n".join(failures))
-        sys.exit(1)
+    finish()
 
 
 main()

@@ -14,6 +14,8 @@ import subprocess
 import sys
 import time
 
+from plc_check import check, finish, stop  # verdicts, the emulator's end
+
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 try:
     from s5_plc_link import Link, s32
@@ -24,13 +26,6 @@ except ImportError:
 
 HILBRIDGE, MD_A, MD_B = sys.argv[1], sys.argv[2], sys.argv[3]
 MONITORING = 1 << 3  # D 2.3 in axis A's DB axis
-failures = []
-
-
-def check(name, ok, detail=""):
-    print(f"{'ok  ' if ok else 'FAIL'} {name}" + ("" if ok else f": {detail}"))
-    if not ok:
-        failures.append(f"{name}: {detail}")
 
 
 def wait(axes, cond, timeout=30):
@@ -114,15 +109,8 @@ def main():
         check("B not in submode 0: 6B in A, 69 in B, nothing moved",
               s[0]["error"] == 0x6B and s[1]["error"] == 0x69 and s[0]["actual"] == 30000, s)
     finally:
-        try:
-            p.stdin.write("quit\n")
-            p.stdin.flush()
-            p.wait(timeout=10)
-        except Exception:
-            p.kill()
-    if failures:
-        print("\n".join(failures))
-        sys.exit(1)
+        stop(p)
+    finish()
 
 
 main()
