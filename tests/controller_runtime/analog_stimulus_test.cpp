@@ -4,12 +4,13 @@
 #include <gtest/gtest.h>
 
 #include "hil/controllers/analog_stimulus.hpp"
-#include "hil/runtime/runner.hpp"
-#include "hil/runtime/scenario_loader.hpp"
-#include "sim_registry.hpp"
+#include "scenario_text.hpp"
 
 namespace hil::runtime {
 namespace {
+
+using scenario_text::run_text;
+using scenario_text::wf_head;
 
 using namespace std::chrono_literals;
 using controllers::analog_value_at;
@@ -28,14 +29,6 @@ TEST(AnalogStimulus, StepsAndRampsOverTime) {
   // a step during a ramp starts from the ramp's value at that time
   const std::vector<AnalogStep> t{{0s, 10.0, 2s}, {1s, 0.0, 1s}};
   EXPECT_EQ(analog_value_at(t, 0.0, 1500ms), 2.5);
-}
-
-std::expected<RunResult, ConfigError> run_text(const std::string& text) {
-  auto s = parse_scenario(text, "examples/controllers/test.yaml");
-  if (!s) return std::unexpected(s.error());
-  static Scenario keep;
-  keep = std::move(*s);
-  return run_scenario(keep, hil::testing::sim_registry(), RunOptions{});
 }
 
 const std::string clm_head = R"(
@@ -83,16 +76,7 @@ TEST(AnalogStimulus, ErrorsNameTheEntry) {
   const auto missing = run_text(clm_head + "  - {analog: AE2, at: 1s}\n");
   ASSERT_FALSE(missing);
   EXPECT_NE(missing.error().describe().find("value"), std::string::npos) << missing.error().describe();
-  const auto wf = run_text(R"(
-period: 1ms
-controller: {device: wf725-726, parameters: wf725-axis-a.txt}
-machine:
-  axes:
-    - name: A
-      drive: {transport: sim, kv: 100, feedforward: 1.0}
-io:
-  - {analog: AE1, value: 1, at: 0s}
-)");
+  const auto wf = run_text(wf_head + "io:\n  - {analog: AE1, value: 1, at: 0s}\n");
   ASSERT_FALSE(wf);
   EXPECT_NE(wf.error().describe().find("has no analog inputs"), std::string::npos) << wf.error().describe();
 }

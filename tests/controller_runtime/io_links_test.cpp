@@ -9,32 +9,14 @@
 #include <fstream>
 #include <sstream>
 
-#include "hil/runtime/runner.hpp"
-#include "hil/runtime/scenario_loader.hpp"
 #include "hil/runtime/trace_csv.hpp"
-#include "sim_registry.hpp"
+#include "scenario_text.hpp"
 
 namespace hil::runtime {
 namespace {
 
-std::expected<RunResult, ConfigError> run_text(const std::string& text, std::vector<RunObserver*> observers = {}) {
-  auto s = parse_scenario(text, "examples/controllers/test.yaml");
-  if (!s) return std::unexpected(s.error());
-  static Scenario keep;
-  keep = std::move(*s);
-  RunOptions o;
-  o.observers = std::move(observers);
-  return run_scenario(keep, hil::testing::sim_registry(), o);
-}
-
-const std::string wf_head = R"(
-period: 1ms
-controller: {device: wf725-726, parameters: wf725-axis-a.txt}
-machine:
-  axes:
-    - name: A
-      drive: {transport: sim, kv: 100, feedforward: 1.0}
-)";
+using scenario_text::run_text;
+using scenario_text::wf_head;
 
 // Column index of `name` in a CSV header.
 std::size_t column(const std::string& header, const std::string& name) {
