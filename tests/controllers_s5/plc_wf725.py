@@ -14,9 +14,8 @@ import subprocess
 import sys
 import time
 
-from plc_check import check, finish, stop  # verdicts, the emulator's end
-
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from plc_check import check, finish, stop  # verdicts, the emulator's end
 try:
     from s5_plc_link import Link, s32
     from wf_plc import AUTOMATIC, DW_ENABLE, DW_PROGRAM, MDI, PROGRAM_IO, SET_ACTUAL, TRAVERSING, WfAxis, db_text, text_db

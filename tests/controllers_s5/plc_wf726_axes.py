@@ -21,12 +21,11 @@ import sys
 import tempfile
 import time
 
-from plc_check import check, finish, stop  # verdicts, the emulator's end
-
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from plc_check import check, finish, stop  # verdicts, the emulator's end
 try:
     from s5_plc_link import Link, s32
-    from wf_plc import AUTOMATIC, DW_PROGRAM, PROGRAM_IO, TRAVERSING, WfAxis, db_text, text_db
+    from wf_plc import AUTOMATIC, DW_PROGRAM, PROGRAM_IO, TRAVERSING, WfAxis, db_text, text_db, wait_axes
 except ImportError:
     print("SKIP: python3-serial is not installed (apt-get install python3-serial)")
     sys.exit(77)
@@ -34,19 +33,6 @@ except ImportError:
 HILBRIDGE = sys.argv[1]
 MACHINES = sys.argv[3:5] if sys.argv[2] == "--machine" else None
 MD_A, MD_B = (None, None) if MACHINES else (sys.argv[2], sys.argv[3])
-
-
-def wait(axes, cond, timeout=30):
-    """Polls the axes until cond(statuses); returns (statuses, every sample)."""
-    deadline = time.time() + timeout
-    samples = []
-    while time.time() < deadline:
-        s = [a.status() for a in axes]
-        samples.append(s)
-        if cond(s):
-            return s, samples
-        time.sleep(0.03)
-    raise TimeoutError(f"condition not reached: {samples[-1] if samples else None}")
 
 
 PROGRAMS = """%7
@@ -100,31 +86,31 @@ def first_run(state):
         # Axes A and C run program 7 together.
         for ax in (a, c):
             ax.synchronize()
-        s, _ = wait([a, c], lambda s: all(x["syn"] for x in s), 5)
+        s, _ = wait_axes([a, c], lambda s: all(x["syn"] for x in s), 5)
         check("A and C synchronized", all(x["syn"] and x["actual"] == 0 for x in s), s)
         for ax in (a, c):
             ax.mode(TRAVERSING, AUTOMATIC)
             ax.write(DW_PROGRAM, 7)
         a.start()
         c.start()
-        s, samples = wait([a, c], lambda s: all(not x["program_active"] and x["peh"] and x["actual"] == 5000
+        s, samples = wait_axes([a, c], lambda s: all(not x["program_active"] and x["peh"] and x["actual"] == 5000
                                                 for x in s))
         both = [x for x in samples if all(0 < y["actual"] < 40000 and y["program_active"] for y in x)]
         check("A and C move at the same time (actual values of both read in one poll)", len(both) >= 3, len(both))
         check("program 7 ends at 5 mm on A and on C", all(x["actual"] == 5000 and x["error"] == 0 for x in s), s)
         c.write(DW_PROGRAM, 9)
         c.start()
-        s, _ = wait([c], lambda s: s[0]["error"] != 0, 5)
+        s, _ = wait_axes([c], lambda s: s[0]["error"] != 0, 5)
         check("program 9 (valid for B only) on axis C: error 90", s[0]["error"] == 0x90, s)
         # While A runs program 5, axis B cannot delete it or read it in again (105).
         a.write(DW_PROGRAM, 5)
         a.start()
-        wait([a], lambda s: s[0]["program_active"], 5)
+        wait_axes([a], lambda s: s[0]["program_active"], 5)
         done, refused, _, io = b.data_code(0x43, 5)
         check("delete program 5 while A runs it: 105", refused and io == 0x0105, (done, refused, hex(io)))
         done, refused, _, io = b.data_code(0x44, 20)
         check("read in program 5 while A runs it: 105", refused and io == 0x0105, (done, refused, hex(io)))
-        s, _ = wait([a], lambda s: not s[0]["program_active"] and s[0]["peh"], 10)
+        s, _ = wait_axes([a], lambda s: not s[0]["program_active"] and s[0]["peh"], 10)
         check("program 5 ran to its end on A (30 mm)", s[0]["actual"] == 30000 and s[0]["error"] == 0, s)
         combined(a, b)
         done, refused, _, io = b.data_code(0x43, 7)
@@ -137,17 +123,17 @@ def first_run(state):
 def combined(a, b):
     """Combined program 30 on A (the master): its G17 pair moves A (30 -> 20 mm) and B (0 -> 15 mm)."""
     b.synchronize()
-    wait([b], lambda s: s[0]["syn"], 5)
+    wait_axes([b], lambda s: s[0]["syn"], 5)
     b.mode(TRAVERSING, AUTOMATIC)
     a.write(DW_PROGRAM, 30)
     a.start()
-    s, _ = wait([a, b], lambda s: s[0]["error"] != 0 and s[1]["error"] != 0, 5)
+    s, _ = wait_axes([a, b], lambda s: s[0]["error"] != 0 and s[1]["error"] != 0, 5)
     check("combined program with B not in submode 0: 6B in A, 69 in B, nothing moves",
           s[0]["error"] == 0x6B and s[1]["error"] == 0x69 and not s[0]["program_active"] and s[1]["actual"] == 0, s)
     b.mode(TRAVERSING, 0)
     a.data_code(0x800C)  # acknowledge 6B
     a.start()
-    s, samples = wait([a, b], lambda s: not s[0]["program_active"] and s[0]["peh"] and s[1]["peh"]
+    s, samples = wait_axes([a, b], lambda s: not s[0]["program_active"] and s[0]["peh"] and s[1]["peh"]
                       and s[0]["actual"] == 20000 and s[1]["actual"] == 15000, 10)
     both = [x for x in samples if 20000 < x[0]["actual"] < 30000 and 0 < x[1]["actual"] < 15000]
     check("the G17 pair moves A and B at the same time (actual values of both in one poll)", len(both) >= 3,
@@ -182,11 +168,11 @@ def second_run(state):
         done, refused, _, io = c.data_code(0x45, 7, 31)
         check("the deleted program 7 stays deleted: 127", refused and io == 0x0127, (done, refused, hex(io)))
         a.synchronize()
-        wait([a], lambda s: s[0]["syn"], 5)
+        wait_axes([a], lambda s: s[0]["syn"], 5)
         a.mode(TRAVERSING, AUTOMATIC)
         a.write(DW_PROGRAM, 5)
         a.start()
-        s, _ = wait([a], lambda s: not s[0]["program_active"] and s[0]["peh"] and s[0]["actual"] == 30000, 10)
+        s, _ = wait_axes([a], lambda s: not s[0]["program_active"] and s[0]["peh"] and s[0]["actual"] == 30000, 10)
         check("the restored program 5 runs on A", s[0]["error"] == 0, s)
     finally:
         stop(p)
@@ -208,11 +194,11 @@ def machine_run():
         done, refused, _, io = b.data_code(0x44, 20)
         check("programs read in through axis B (44)", done and not refused and io == 0, (done, refused, hex(io)))
         a.synchronize()
-        wait([a], lambda s: s[0]["syn"], 5)
+        wait_axes([a], lambda s: s[0]["syn"], 5)
         a.mode(TRAVERSING, AUTOMATIC)
         a.write(DW_PROGRAM, 7)
         a.start()
-        s, _ = wait([a], lambda s: not s[0]["program_active"] and s[0]["peh"] and s[0]["actual"] == 5000)
+        s, _ = wait_axes([a], lambda s: not s[0]["program_active"] and s[0]["peh"] and s[0]["actual"] == 5000)
         check("program 7 (read in through B) ends at 5 mm on A", s[0]["error"] == 0, s)
         time.sleep(0.2)
         p.stdin.write("machine\n")

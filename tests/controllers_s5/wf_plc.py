@@ -111,3 +111,16 @@ class WfAxis:
         self.write(DW_ENABLE, 1)  # D 2.0 drive enable
         time.sleep(0.1)
         self.start()
+
+
+def wait_axes(axes, cond, timeout=30):
+    """Polls the axes' status until cond(statuses); returns (statuses, every sample)."""
+    deadline = time.time() + timeout
+    samples = []
+    while time.time() < deadline:
+        s = [a.status() for a in axes]
+        samples.append(s)
+        if cond(s):
+            return s, samples
+        time.sleep(0.03)
+    raise TimeoutError(f"condition not reached: {samples[-1] if samples else None}")
