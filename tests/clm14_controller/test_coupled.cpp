@@ -425,15 +425,20 @@ TEST(ClmFlyingCutoff, MissingEosIsError35) {
   EXPECT_FALSE(r.clm.coupled(1)) << "the error ends the coupling";
 }
 
-TEST(ClmFlyingCutoff, CarriageAwayFromItsOriginIsError36) {
-  Rig r({CUTOFF_PARAMETERS});
-  r.add_master_encoder();
-  r.program({{0, "NOP"}, {1, "LML 1 000020.000"}, {2, "EOS"}});
+/// Manual: jog 1 forward for 200 ms and let the carriage stop, away from its origin (not homed).
+void jog_carriage_away(Rig& r) {
   r.run_for(20ms);
   r.set(sys::jog_forward[0], true);
   r.run_for(200ms);
   r.set(sys::jog_forward[0], false);
   r.run_for(300ms);
+}
+
+TEST(ClmFlyingCutoff, CarriageAwayFromItsOriginIsError36) {
+  Rig r({CUTOFF_PARAMETERS});
+  r.add_master_encoder();
+  r.program({{0, "NOP"}, {1, "LML 1 000020.000"}, {2, "EOS"}});
+  jog_carriage_away(r);
   r.enter_auto();
   EXPECT_EQ(r.clm.error(), 0x36);
 }
@@ -446,11 +451,7 @@ TEST(ClmFlyingCutoff, PassiveHomingOption5EntersAutomaticOnTheSwitch) {
   auto& material = r.add_master_encoder();
   const auto raw = [&] { return r.motion_axes[0]->status().position; };  // machine position, IU
   r.program({{0, "NOP"}, {1, "LML 1 000050.000"}, {2, "WAI 00.200"}, {3, "EOS"}, {4, "JMP 0001"}});
-  r.run_for(20ms);
-  r.set(sys::jog_forward[0], true);
-  r.run_for(200ms);
-  r.set(sys::jog_forward[0], false);
-  r.run_for(300ms);
+  jog_carriage_away(r);
   const double parked = raw();
   ASSERT_GT(parked, 0.5) << "away from the origin";
   r.set(bit("I1.00.1"), true);  // on the home switch
@@ -486,11 +487,7 @@ TEST(ClmFlyingCutoff, PassiveHomingOffTheSwitchIsStillError36) {
   Rig r({CUTOFF_PARAMETERS, {"A123", "00.00.0 I1.00.1"}, {"A124", "M2.01.0 +100 4"}});
   r.add_master_encoder();
   r.program({{0, "NOP"}, {1, "LML 1 000020.000"}, {2, "EOS"}});
-  r.run_for(20ms);
-  r.set(sys::jog_forward[0], true);
-  r.run_for(200ms);
-  r.set(sys::jog_forward[0], false);
-  r.run_for(300ms);
+  jog_carriage_away(r);
   r.enter_auto();
   EXPECT_EQ(r.clm.error(), 0x36) << "not homed, off the switch, away from 0";
 }
